@@ -1,0 +1,102 @@
+// layerjkr: the adhesive contact solution of one scene - curves, critical points,
+// and inverse lookups.
+//
+// Data flow: ContactModel (non-adhesive state at a) -> jkr_transform -> JkrSolution.
+// Everything is computed on demand: a curve costs one model evaluation per radius;
+// critical points cost a log-grid scan plus a bracketed refinement.
+//
+// Accuracy (measured against the closed-form half-space and Winkler oracles in
+// tests/test_contact.cpp): critical points are the roots of a 6th-order finite-difference
+// derivative, so radii come to ~1e-12 relative and forces and approaches to ~1e-14;
+// roots of P(a) = P* and delta(a) = delta* to ~1e-15 relative in a (TOMS 748).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "layerjkr/jkr.hpp"
+#include "layerjkr/model.hpp"
+
+namespace layerjkr {
+
+/// Search settings; the defaults suit every built-in model.
+struct JkrOptions {
+  /// Points of the log-spaced scan that brackets an extremum (>= 8).
+  int scan_points = 48;
+  /// Decades one scan window spans (> 0); windows step down up to max_windows times.
+  double scan_decades = 6.0;
+  int max_windows = 8;
+  /// Maximum bracket-expansion steps (factor 2 each) when looking for a root (>= 10).
+  int max_bracket_steps = 500;
+  /// Throws DomainError naming the first invalid field.
+  void Validate() const;
+};
+
+/// A point of the adhesive curve where an instability occurs.
+struct CriticalPoint {
+  double a = 0.0;      ///< contact radius [m]
+  double P = 0.0;      ///< force [N]
+  double delta = 0.0;  ///< approach [m]
+};
+
+class JkrSolution {
+ public:
+  /// w [J/m^2] >= 0. Throws DomainError for invalid w or options.
+  JkrSolution(ContactModelPtr model, double w, JkrOptions options = {});
+
+  /// Adhesive state at contact radius a [m].
+  AdhesiveState at(double a) const;
+  std::vector<AdhesiveState> curve(const std::vector<double>& radii) const;
+
+  /// Contact radius at P = 0 on the stable branch (for w = 0: 0). nullopt if the
+  /// force stays negative over every admissible radius (e.g. a sphere too small).
+  std::optional<double> zero_load_radius() const;
+
+  /// Pull-off under load control: the minimum of P(a). nullopt for w = 0 or when
+  /// P has no minimum at a > 0.
+  std::optional<CriticalPoint> pull_off() const;
+
+  /// Instability under fixed grips: the minimum of delta(a), where one exists
+  /// (not for a Winkler foundation, whose delta(a) is monotone).
+  std::optional<CriticalPoint> fixed_grips_critical() const;
+
+  /// Contact radius at force P on the branch stable under load control (a beyond
+  /// pull-off). Throws DomainError if P is below the pull-off force or above the
+  /// largest force the profile admits.
+  double contact_radius_at_force(double P) const;
+
+  /// Contact radius at approach delta on the branch stable under fixed grips.
+  double contact_radius_at_delta(double delta) const;
+
+  /// Force at approach delta on the branch stable under fixed grips.
+  double force_at_delta(double delta) const;
+
+  double w() const { return w_; }
+  const ContactModel& model() const { return *model_; }
+
+ private:
+  double upper_radius() const;
+  double seed_radius() const;
+  std::optional<double> minimise(bool force, double a_hi) const;
+  std::optional<double> first_root(bool force, double target, double a_lo) const;
+
+  ContactModelPtr model_;
+  double w_;
+  JkrOptions options_;
+};
+
+/// Summary of a scene's adhesive behaviour.
+struct ContactSummary {
+  std::string model;
+  double w = 0.0;
+  std::optional<double> zero_load_radius;
+  std::optional<CriticalPoint> pull_off;
+  std::optional<CriticalPoint> fixed_grips;
+  /// One line per quantity, SI units.
+  std::string BriefReport() const;
+};
+
+ContactSummary summarize(const JkrSolution& solution);
+
+}  // namespace layerjkr

@@ -1,0 +1,9 @@
+// layerjkr: umbrella header - adhesive (JKR) contact of thin elastic layers.
+#pragma once
+
+#include "layerjkr/contact.hpp"
+#include "layerjkr/error.hpp"
+#include "layerjkr/jkr.hpp"
+#include "layerjkr/model.hpp"
+#include "layerjkr/profile.hpp"
+#include "layerjkr/scene.hpp"

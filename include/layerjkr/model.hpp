@@ -1,0 +1,114 @@
+// layerjkr: elastic media and the non-adhesive (Hertz-type) contact models.
+//
+// A ContactModel maps a contact radius a [m] to the non-adhesive state
+//   P_H(a) [N], delta_H(a) [m], S(a) = dP_H/d delta_H [N/m], S'(a) = dS/da [N/m^2].
+// S is also the flat-punch stiffness at radius a (paper, section 3), which is
+// what the JKR transform (jkr.hpp) needs.
+//
+// Models, their parameters and validity (see README "Models"):
+//   Winkler (K [N/m^3])            eq. (41): leading order of a thin bonded layer, a >> h.
+//   two-term (K, G [N/m], any sign) eqs. (43)-(45) with the corrected force (docs/erratum.md):
+//                                  P_H = pi K [a^2 f - 2M] + pi G a [f' - a f''],  S = pi K a^2.
+//   full foundation (K, G > 0)     Pasternak (or Filonenko-Borodich with G -> T) on the whole
+//                                  plane with the decaying exterior solution (theory.md s.3).
+//   half-space (E, nu)             Galin / Sneddon, any profile; S = 2 E* a.
+//   ODE route                      the same foundations with P_H obtained by integrating
+//                                  dP_H/da = S(a) d delta_H/da (independent of the moment M).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "layerjkr/profile.hpp"
+
+namespace layerjkr {
+
+/// Non-adhesive state at one contact radius (SI units).
+struct HertzState {
+  double a = 0.0;        ///< contact radius [m]
+  double P_H = 0.0;      ///< force [N]
+  double delta_H = 0.0;  ///< approach (indentation) [m]
+  double S = 0.0;        ///< contact stiffness dP_H/d delta_H [N/m]
+  double dS_da = 0.0;    ///< dS/da [N/m^2]
+};
+
+/// A medium plus a solution method for a given indenter profile.
+class ContactModel {
+ public:
+  explicit ContactModel(ProfilePtr profile);
+  virtual ~ContactModel() = default;
+
+  /// Non-adhesive state at contact radius a (0 < a, a admissible for the profile).
+  virtual HertzState state(double a) const = 0;
+
+  /// Short model name, e.g. "winkler", "two_term", "full_foundation", "half_space".
+  virtual std::string name() const = 0;
+
+  const Profile& profile() const { return *profile_; }
+  const ProfilePtr& profile_ptr() const { return profile_; }
+
+ private:
+  ProfilePtr profile_;
+};
+
+using ContactModelPtr = std::shared_ptr<const ContactModel>;
+
+/// Winkler foundation p = K w; K [N/m^3] > 0. Cost: one profile evaluation per point.
+ContactModelPtr make_winkler(ProfilePtr profile, double K);
+
+/// Two-term asymptotic thin layer / asymptotic Pasternak model p = K w - G lap w inside
+/// the contact with p(a) = 0. K > 0 [N/m^3]; G [N/m] finite, any sign (G < 0 for a
+/// bonded layer with nu > 1/4). G = 0 reduces exactly to Winkler.
+ContactModelPtr make_two_term(ProfilePtr profile, double K, double G);
+
+/// Full Pasternak foundation (or Filonenko-Borodich with G = tension T) with the
+/// decaying exterior solution w = c K0(lam r)/K0(lam a), lam = sqrt(K/G). K > 0, G > 0;
+/// G <= 0 throws (use make_two_term, the asymptotic model, instead).
+ContactModelPtr make_full_foundation(ProfilePtr profile, double K, double G);
+
+/// Elastic half-space with plane-strain modulus E* = E/(1 - nu^2) for any profile
+/// (Sneddon's form of Galin's eq. (21)); closed forms for paraboloid (Hertz), sphere,
+/// cone and power law, adaptive quadrature otherwise. E > 0 [Pa], nu in (-1, 0.5].
+ContactModelPtr make_half_space(ProfilePtr profile, double E, double nu);
+
+/// Which foundation the ODE route integrates.
+enum class FoundationKind { asymptotic, full };
+
+/// The ODE route: delta_H from the local edge condition, S from the flat punch, and
+/// P_H(a) = int_0^a S(s) delta_H'(s) ds by GSL's adaptive QAGP (split at profile kinks),
+/// relative tolerance `rel_tol`. Independent of the closed-form moment; used to verify
+/// the closed forms and for profiles whose moment is expensive. kind = full needs G > 0.
+ContactModelPtr make_ode_foundation(ProfilePtr profile, double K, double G, FoundationKind kind,
+                                    double rel_tol = 1e-12);
+
+/// How a thin layer is attached to its rigid base.
+enum class Base { bonded, frictionless };
+
+/// An isotropic elastic layer of thickness h on a rigid base.
+struct ElasticLayer {
+  double E = 0.0;   ///< Young's modulus [Pa], > 0
+  double nu = 0.0;  ///< Poisson's ratio, in (-1, 0.5)
+  double h = 0.0;   ///< thickness [m], > 0
+  Base base = Base::bonded;
+};
+
+/// Foundation constants of a thin layer, with warnings about validity.
+struct ThinLayerConstants {
+  double K = 0.0;  ///< [N/m^3]
+  double G = 0.0;  ///< [N/m]
+  std::vector<std::string> warnings;
+};
+
+/// Thin-layer constants (theory.md s.2):
+///   bonded:       K = E(1-nu)/[h(1+nu)(1-2nu)],  G = h E nu(1-4nu)/[3(1+nu)(1-2nu)^2]
+///   frictionless: K = E/[h(1-nu^2)],             G = 0 (no h^2 term)
+/// Throws DomainError for E <= 0, h <= 0, nu <= -1 or nu >= 0.5. For a bonded layer
+/// with nu > 0.45 a warning says that the compressible expansion is non-uniform and
+/// needs a/h well above sqrt(nu(4nu-1)/(3(1-2nu)(1-nu))).
+ThinLayerConstants thin_layer_constants(const ElasticLayer& layer);
+
+/// Plane-strain modulus E* = E/(1-nu^2) [Pa]; E > 0, nu in (-1, 0.5].
+double effective_modulus(double E, double nu);
+
+}  // namespace layerjkr

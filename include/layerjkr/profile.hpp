@@ -1,0 +1,98 @@
+// layerjkr: axisymmetric rigid indenter profiles z = f(r).
+//
+// A profile is the gap between the indenter and the undeformed flat surface at
+// polar radius r, measured from the apex: f(0) = 0 always (profiles built from
+// data or callables subtract f(0) exactly, so an offset never costs precision).
+// All lengths are in metres.
+//
+// Every profile supplies f and its first three derivatives (exact closed forms
+// where they exist, forward-mode automatic differentiation for callables), the
+// moment M(a) = int_0^a f(r) r dr and the two Sneddon integrals used by the
+// half-space solution. Profiles are immutable and safe to share across threads.
+#pragma once
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace layerjkr {
+
+/// f and its derivatives at one radius r. Units: f [m], df [-], d2f [1/m], d3f [1/m^2].
+struct ProfileDerivatives {
+  double f = 0.0;
+  double df = 0.0;
+  double d2f = 0.0;
+  double d3f = 0.0;
+};
+
+/// Sneddon's half-space integrals at contact radius a (dimensionless):
+///   I0(a) = int_0^{pi/2} f'(a sin t) dt,  I2(a) = int_0^{pi/2} f'(a sin t) sin^2 t dt,
+/// so that delta_H = a I0 and P_H = 2 E* a^2 I2 (equivalent to Galin's eq. (21)).
+struct SneddonIntegrals {
+  double I0 = 0.0;
+  double I2 = 0.0;
+};
+
+class Profile {
+ public:
+  virtual ~Profile() = default;
+
+  /// f, f', f'', f''' at radius r in [0, max_radius()]. Throws DomainError outside.
+  virtual ProfileDerivatives derivatives(double r) const = 0;
+
+  /// f(r) [m]. Same domain as derivatives().
+  virtual double f(double r) const { return derivatives(r).f; }
+
+  /// M(a) = int_0^a f(r) r dr [m^4]. Closed form where one exists; otherwise adaptive
+  /// Gauss-Kronrod quadrature to 1e-13 relative (or exact piecewise Gauss for tables).
+  virtual double moment(double a) const;
+
+  /// Sneddon integrals I0, I2 at a (closed form where known, else adaptive quadrature
+  /// to 1e-13 relative).
+  virtual SneddonIntegrals sneddon(double a) const;
+
+  /// Largest admissible contact radius [m]; +inf if unbounded. A sphere returns R
+  /// (exclusive), a table its last radius (inclusive); see contains().
+  virtual double max_radius() const { return std::numeric_limits<double>::infinity(); }
+
+  /// True if r is an admissible contact radius for this profile.
+  virtual bool contains(double r) const;
+
+  /// A typical length [m] used only to seed root brackets (never changes a result).
+  virtual double length_scale() const = 0;
+
+  /// Radii in (0, a) where f'' or f''' is discontinuous (table knots); quadratures
+  /// split there.
+  virtual std::vector<double> breakpoints(double a) const;
+
+  /// Human-readable description, e.g. "paraboloid(R=0.01)".
+  virtual std::string describe() const = 0;
+
+  /// Throws DomainError naming `function` unless a > 0 and contains(a).
+  void require_contact_radius(const char* function, double a) const;
+};
+
+using ProfilePtr = std::shared_ptr<const Profile>;
+
+/// f = r^2 / (2R). R [m] > 0.
+ProfilePtr make_paraboloid(double R);
+
+/// Exact spherical cap f = R - sqrt(R^2 - r^2), for contact radii a < R. R [m] > 0.
+ProfilePtr make_sphere(double R);
+
+/// Cone f = r cot(alpha) with semi-angle alpha [rad] in (0, pi/2).
+ProfilePtr make_cone(double semi_angle_rad);
+
+/// Power law f = B r^d with B > 0 [m^(1-d)] and d >= 1.
+ProfilePtr make_power_law(double B, double d);
+
+/// Measured profile from a table (r_i [m], z_i [m]): r strictly increasing from
+/// r_0 = 0, z non-decreasing, all finite, at least 3 points. z_0 is subtracted
+/// exactly. The table is mirrored to r < 0 and interpolated with GSL's Steffen
+/// spline, which is monotone between knots (no overshoot), C1, and has f'(0) = 0
+/// (a measured tip is rounded at its apex). f'' is piecewise linear, f''' piecewise
+/// constant. Contact radii up to the last r are admissible.
+ProfilePtr make_table_profile(std::vector<double> r, std::vector<double> z);
+
+}  // namespace layerjkr

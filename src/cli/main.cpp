@@ -1,0 +1,150 @@
+// layerjkr command-line tool: a thin layer over the public API.
+//   layerjkr curve SCENE.json (--at a1,a2,... | --a-max A --points N)
+//   layerjkr summary SCENE.json
+// Exit codes: 0 success, 2 invalid scene or arguments, 1 internal failure.
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "layerjkr/layerjkr.hpp"
+
+namespace {
+
+using layerjkr::format_double;
+
+std::vector<double> parse_radii(const std::string& text) {
+  std::vector<double> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    const char* begin = item.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(begin, &end);
+    if (item.empty() || end == begin || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+      throw layerjkr::InputError("--at: '" + item + "' is not a finite number");
+    if (!(v > 0.0))
+      throw layerjkr::InputError("--at: contact radius " + item + " must be > 0");
+    out.push_back(v);
+  }
+  if (out.empty()) throw layerjkr::InputError("--at: give at least one contact radius");
+  return out;
+}
+
+void print_warnings(const std::vector<std::string>& warnings) {
+  for (const auto& w : warnings) std::cerr << "layerjkr: warning: " << w << "\n";
+}
+
+int run_curve(const std::string& path, const std::string& at, double a_max, int points) {
+  const layerjkr::Scene scene = layerjkr::load_scene(path);
+  const layerjkr::BuiltScene built = layerjkr::build_scene(scene);
+  std::vector<double> radii;
+  if (!at.empty()) {
+    radii = parse_radii(at);
+  } else {
+    if (!(a_max > 0.0) || !std::isfinite(a_max))
+      throw layerjkr::InputError("--a-max = " + format_double(a_max) + " must be finite and > 0");
+    if (points < 1) throw layerjkr::InputError("--points = " + std::to_string(points) + " must be >= 1");
+    for (int i = 1; i <= points; ++i) radii.push_back(a_max * i / points);
+  }
+  const layerjkr::JkrSolution solution(built.model, scene.w);
+  // Compute everything before printing so a failure never leaves partial output.
+  std::string out = "a,P,delta,P_H,delta_H,S\n";
+  for (const auto& s : solution.curve(radii))
+    out += format_double(s.a) + "," + format_double(s.P) + "," + format_double(s.delta) + "," +
+           format_double(s.hertz.P_H) + "," + format_double(s.hertz.delta_H) + "," +
+           format_double(s.hertz.S) + "\n";
+  print_warnings(built.warnings);
+  std::cout << out;
+  return 0;
+}
+
+int run_summary(const std::string& path) {
+  const layerjkr::Scene scene = layerjkr::load_scene(path);
+  const layerjkr::BuiltScene built = layerjkr::build_scene(scene);
+  const layerjkr::JkrSolution solution(built.model, scene.w);
+  const layerjkr::ContactSummary s = layerjkr::summarize(solution);
+  nlohmann::ordered_json j;
+  j["model"] = s.model;
+  j["profile"] = scene.profile->describe();
+  j["w"] = s.w;
+  auto opt = [](const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nullptr; };
+  j["pull_off_force"] = s.pull_off ? nlohmann::ordered_json(s.pull_off->P) : nullptr;
+  j["pull_off_radius"] = s.pull_off ? nlohmann::ordered_json(s.pull_off->a) : nullptr;
+  j["pull_off_delta"] = s.pull_off ? nlohmann::ordered_json(s.pull_off->delta) : nullptr;
+  j["zero_load_radius"] = opt(s.zero_load_radius);
+  if (s.fixed_grips)
+    j["fixed_grips_critical"] = {{"force", s.fixed_grips->P},
+                                 {"radius", s.fixed_grips->a},
+                                 {"delta", s.fixed_grips->delta}};
+  else
+    j["fixed_grips_critical"] = nullptr;
+  if (built.has_foundation_constants) {
+    j["K"] = built.K;
+    j[scene.medium.type == layerjkr::MediumType::filonenko_borodich ? "T" : "G"] = built.G;
+  }
+  if (built.has_effective_modulus) j["E_star"] = built.E_star;
+  j["warnings"] = built.warnings;
+  print_warnings(built.warnings);
+  std::cout << j.dump(2) << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"layerjkr: adhesive (JKR) contact of thin elastic layers"};
+  app.require_subcommand(1);
+  std::string scene_path, at;
+  double a_max = 0.0;
+  int points = 0;
+
+  CLI::App* curve = app.add_subcommand(
+      "curve", "Adhesive curve at given contact radii: CSV a,P,delta,P_H,delta_H,S (SI)");
+  curve->add_option("scene", scene_path, "Scene JSON file")->required();
+  auto* at_opt = curve->add_option("--at", at, "Comma-separated contact radii [m]");
+  auto* max_opt = curve->add_option("--a-max", a_max, "Largest contact radius of an even grid [m]");
+  auto* points_opt = curve->add_option("--points", points, "Number of grid points a_max*i/N, i=1..N");
+  max_opt->needs(points_opt);
+  points_opt->needs(max_opt);
+  at_opt->excludes(max_opt);
+
+  CLI::App* summary = app.add_subcommand(
+      "summary", "JSON summary: pull-off, zero-load radius, fixed-grips critical point, K, G");
+  summary->add_option("scene", scene_path, "Scene JSON file")->required();
+
+  try {
+    app.parse(argc, argv);
+    if (*curve && at.empty() && !*max_opt)
+      throw CLI::RequiredError("curve needs --at or --a-max with --points");
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "layerjkr: " << e.what() << "\nRun 'layerjkr --help' for usage.\n";
+    return 2;
+  }
+
+  try {
+    if (*curve) return run_curve(scene_path, at, a_max, points);
+    return run_summary(scene_path);
+  } catch (const layerjkr::NumericalError& e) {
+    std::cerr << "layerjkr: numerical failure: " << e.what() << "\n";
+    return 1;
+  } catch (const layerjkr::Error& e) {
+    std::cerr << "layerjkr: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "layerjkr: internal error: " << e.what() << "\n";
+    return 1;
+  }
+}

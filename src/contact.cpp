@@ -1,0 +1,259 @@
+// Critical points and inverse lookups on the adhesive curve, searched in ln a.
+#include "layerjkr/contact.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+
+#include <boost/math/differentiation/finite_difference.hpp>
+#include <boost/math/tools/minima.hpp>
+#include <boost/math/tools/roots.hpp>
+
+#include "layerjkr/error.hpp"
+
+namespace layerjkr {
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}
+
+void JkrOptions::Validate() const {
+  const char* fn = "JkrOptions::Validate";
+  if (scan_points < 8) throw DomainError(fn, "scan_points", scan_points, ">= 8");
+  if (!(scan_decades > 0.0) || !std::isfinite(scan_decades))
+    throw DomainError(fn, "scan_decades", scan_decades, "finite and > 0");
+  if (max_windows < 1) throw DomainError(fn, "max_windows", max_windows, ">= 1");
+  if (max_bracket_steps < 10)
+    throw DomainError(fn, "max_bracket_steps", max_bracket_steps, ">= 10");
+}
+
+JkrSolution::JkrSolution(ContactModelPtr model, double w, JkrOptions options)
+    : model_(std::move(model)), w_(w), options_(options) {
+  if (!model_) throw Error("layerjkr::JkrSolution: the model is null");
+  detail::require_non_negative("JkrSolution", "w", w);
+  options_.Validate();
+}
+
+AdhesiveState JkrSolution::at(double a) const { return jkr_transform(model_->state(a), w_); }
+
+std::vector<AdhesiveState> JkrSolution::curve(const std::vector<double>& radii) const {
+  std::vector<AdhesiveState> out;
+  out.reserve(radii.size());
+  for (double a : radii) out.push_back(at(a));
+  return out;
+}
+
+double JkrSolution::upper_radius() const {
+  const Profile& p = model_->profile();
+  const double m = p.max_radius();
+  if (!std::isfinite(m)) return kInf;
+  return p.contains(m) ? m : m * (1.0 - 1e-9);  // open bound (sphere: a < R)
+}
+
+double JkrSolution::seed_radius() const {
+  return std::min(model_->profile().length_scale(), 0.5 * upper_radius());
+}
+
+// Minimum of P(a) (force) or delta(a) over (0, a_hi]: log-grid scan, stepping the window
+// down while the minimum sits at its lower edge, then Brent on the bracketing cells. A
+// minimum is accepted only if it beats the lower edge by more than the rounding noise
+// of the two terms of (19); otherwise the curve is monotone there (e.g. Winkler's
+// delta(a)) and the search goes on below.
+std::optional<double> JkrSolution::minimise(bool force, double a_hi) const {
+  auto value = [&](double x) {
+    const AdhesiveState s = at(std::exp(x));
+    return force ? s.P : s.delta;
+  };
+  auto noise = [&](double x) {
+    const AdhesiveState s = at(std::exp(x));
+    const double terms = force ? std::abs(s.hertz.P_H) + std::abs(s.hertz.P_H - s.P)
+                               : std::abs(s.hertz.delta_H) + std::abs(s.hertz.delta_H - s.delta);
+    return 64.0 * std::numeric_limits<double>::epsilon() * terms;
+  };
+  const int n = options_.scan_points;
+  double top = std::log(a_hi);
+  const double span = options_.scan_decades * std::log(10.0);
+  for (int window = 0; window < options_.max_windows; ++window) {
+    const double lo = top - span, step = span / (n - 1);
+    std::vector<double> v(static_cast<std::size_t>(n));
+    int best = 0;
+    for (int i = 0; i < n; ++i) {
+      v[static_cast<std::size_t>(i)] = value(lo + i * step);
+      if (v[static_cast<std::size_t>(i)] < v[static_cast<std::size_t>(best)]) best = i;
+    }
+    const double x_best = lo + best * step;
+    if (best == 0 || v.front() - v[static_cast<std::size_t>(best)] <= noise(lo) + noise(x_best)) {
+      top = lo + step;
+      continue;
+    }
+    const double left = lo + (best - 1) * step;
+    const double right = lo + std::min(best + 1, n - 1) * step;
+    // Brent locates a minimum only to sqrt(eps); the root of the derivative (6th-order
+    // finite differences, error ~eps^(6/7)) pins it to ~1e-13, which matters wherever
+    // the other coordinate is not stationary (P at the fixed-grips point).
+    auto slope = [&](double x) {
+      return boost::math::differentiation::finite_difference_derivative<decltype(value), double, 6>(
+          value, x);
+    };
+    const double s_left = slope(left), s_right = slope(right);
+    if (s_left < 0.0 && s_right > 0.0) {
+      std::uintmax_t iterations = 200;
+      const auto r = boost::math::tools::toms748_solve(
+          slope, left, right, s_left, s_right, boost::math::tools::eps_tolerance<double>(50),
+          iterations);
+      return std::exp(0.5 * (r.first + r.second));
+    }
+    std::uintmax_t iterations = 200;
+    const auto r = boost::math::tools::brent_find_minima(value, left, right,
+                                                         std::numeric_limits<double>::digits / 2,
+                                                         iterations);
+    return std::exp(r.first);
+  }
+  return std::nullopt;
+}
+
+// Smallest a above a_lo (or, for a_lo = 0, the crossing nearest the seed) where the
+// increasing quantity P(a) or delta(a) reaches target; nullopt if it cannot be bracketed.
+std::optional<double> JkrSolution::first_root(bool force, double target, double a_lo) const {
+  auto g = [&](double a) {
+    const AdhesiveState s = at(a);
+    return (force ? s.P : s.delta) - target;
+  };
+  const double upper = upper_radius();
+  double lo, g_lo, hi = 0.0, g_hi = 0.0;
+  bool have_hi = false;
+  if (a_lo > 0.0) {
+    lo = a_lo;
+    g_lo = g(lo);
+    if (g_lo >= 0.0) return g_lo == 0.0 ? std::optional<double>(lo) : std::nullopt;
+  } else {
+    lo = seed_radius();
+    g_lo = g(lo);
+    int steps = 0;
+    while (g_lo >= 0.0) {
+      if (g_lo == 0.0) return lo;
+      hi = lo, g_hi = g_lo, have_hi = true;
+      if (++steps > options_.max_bracket_steps) return std::nullopt;
+      lo *= 0.5;
+      g_lo = g(lo);
+    }
+  }
+  for (int steps = 0; !have_hi; ++steps) {
+    if (steps > options_.max_bracket_steps || lo >= upper) return std::nullopt;
+    const double next = std::min(2.0 * lo, upper);
+    const double g_next = g(next);
+    if (g_next >= 0.0) {
+      hi = next, g_hi = g_next, have_hi = true;
+    } else {
+      lo = next, g_lo = g_next;
+    }
+  }
+  if (g_hi == 0.0) return hi;
+  std::uintmax_t iterations = 200;
+  const auto r = boost::math::tools::toms748_solve(
+      g, lo, hi, g_lo, g_hi, boost::math::tools::eps_tolerance<double>(50), iterations);
+  return 0.5 * (r.first + r.second);
+}
+
+std::optional<double> JkrSolution::zero_load_radius() const {
+  if (w_ == 0.0) return 0.0;
+  return first_root(true, 0.0, 0.0);
+}
+
+std::optional<CriticalPoint> JkrSolution::pull_off() const {
+  if (w_ == 0.0) return std::nullopt;
+  const std::optional<double> a0 = zero_load_radius();
+  const double a_hi = a0 ? *a0 : upper_radius();
+  if (!std::isfinite(a_hi)) return std::nullopt;
+  const std::optional<double> a = minimise(true, a_hi);
+  if (!a) return std::nullopt;
+  const AdhesiveState s = at(*a);
+  return CriticalPoint{s.a, s.P, s.delta};
+}
+
+std::optional<CriticalPoint> JkrSolution::fixed_grips_critical() const {
+  if (w_ == 0.0) return std::nullopt;
+  // On the fixed-grips critical point dP/da = -S' sqrt(4 pi w a / S') < 0, so it lies
+  // below the pull-off radius.
+  const std::optional<CriticalPoint> po = pull_off();
+  const double a_hi = po ? po->a : upper_radius();
+  if (!std::isfinite(a_hi)) return std::nullopt;
+  const std::optional<double> a = minimise(false, a_hi);
+  if (!a) return std::nullopt;
+  const AdhesiveState s = at(*a);
+  return CriticalPoint{s.a, s.P, s.delta};
+}
+
+double JkrSolution::contact_radius_at_force(double P) const {
+  detail::require_finite("JkrSolution::contact_radius_at_force", "P", P);
+  double a_lo = 0.0;
+  if (w_ == 0.0) {
+    if (P < 0.0)
+      throw DomainError("JkrSolution::contact_radius_at_force", "P", P, ">= 0 for w = 0");
+    if (P == 0.0) return 0.0;
+  } else if (const auto po = pull_off()) {
+    if (P < po->P)
+      throw DomainError("JkrSolution::contact_radius_at_force", "P", P,
+                        ">= the pull-off force " + format_double(po->P));
+    a_lo = po->a;
+  }
+  const std::optional<double> a = first_root(true, P, a_lo);
+  if (!a)
+    throw DomainError("JkrSolution::contact_radius_at_force", "P", P,
+                      "forces reachable by " + model_->profile().describe());
+  return *a;
+}
+
+double JkrSolution::contact_radius_at_delta(double delta) const {
+  detail::require_finite("JkrSolution::contact_radius_at_delta", "delta", delta);
+  double a_lo = 0.0;
+  if (const auto fg = fixed_grips_critical()) {
+    if (delta < fg->delta)
+      throw DomainError("JkrSolution::contact_radius_at_delta", "delta", delta,
+                        ">= the fixed-grips critical approach " + format_double(fg->delta));
+    a_lo = fg->a;
+  }
+  const std::optional<double> a = first_root(false, delta, a_lo);
+  if (!a)
+    throw DomainError("JkrSolution::contact_radius_at_delta", "delta", delta,
+                      "approaches reachable on the stable branch of " + model_->name());
+  return *a;
+}
+
+double JkrSolution::force_at_delta(double delta) const {
+  const double a = contact_radius_at_delta(delta);
+  if (a == 0.0) return 0.0;
+  return at(a).P;
+}
+
+ContactSummary summarize(const JkrSolution& solution) {
+  ContactSummary s;
+  s.model = solution.model().name();
+  s.w = solution.w();
+  s.zero_load_radius = solution.zero_load_radius();
+  s.pull_off = solution.pull_off();
+  s.fixed_grips = solution.fixed_grips_critical();
+  return s;
+}
+
+std::string ContactSummary::BriefReport() const {
+  std::ostringstream out;
+  auto point = [&](const char* label, const std::optional<CriticalPoint>& p) {
+    out << label;
+    if (p)
+      out << "P = " << format_double(p->P) << " N at a = " << format_double(p->a)
+          << " m, delta = " << format_double(p->delta) << " m\n";
+    else
+      out << "none\n";
+  };
+  out << "layerjkr contact summary: model " << model << ", w = " << format_double(w)
+      << " J/m^2\n";
+  out << "  zero-load contact radius: "
+      << (zero_load_radius ? format_double(*zero_load_radius) + " m" : std::string("none"))
+      << "\n";
+  point("  pull-off (load control):  ", pull_off);
+  point("  critical (fixed grips):   ", fixed_grips);
+  return out.str();
+}
+
+}  // namespace layerjkr

@@ -1,0 +1,287 @@
+// Strict JSON scene reader: every key is known, every value checked and named.
+#include "layerjkr/scene.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <boost/math/constants/constants.hpp>
+#include <nlohmann/json.hpp>
+
+#include "layerjkr/error.hpp"
+
+namespace layerjkr {
+namespace {
+
+using json = nlohmann::json;
+
+std::string show(const json& v) {
+  std::string s = v.dump();
+  return s.size() > 80 ? s.substr(0, 77) + "..." : s;
+}
+
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw InputError(source_ + ": " + key + " " + what);
+  }
+
+  const json& object(const json& parent, const std::string& key, const std::string& path) const {
+    if (!parent.contains(key)) fail(path, "is missing");
+    const json& v = parent.at(key);
+    if (!v.is_object()) fail(path, "must be a JSON object, got " + show(v));
+    return v;
+  }
+
+  void only_keys(const json& obj, const std::string& path, std::set<std::string> allowed) const {
+    for (const auto& item : obj.items())
+      if (!allowed.count(item.key())) {
+        std::string list;
+        for (const auto& k : allowed) list += (list.empty() ? "" : ", ") + k;
+        fail(path + "." + item.key(), "is not a known key here (known: " + list + ")");
+      }
+  }
+
+  double number(const json& obj, const std::string& key, const std::string& path) const {
+    if (!obj.contains(key)) fail(path + "." + key, "is missing");
+    return as_number(obj.at(key), path + "." + key);
+  }
+
+  double as_number(const json& v, const std::string& path) const {
+    if (!v.is_number()) fail(path, "must be a number, got " + show(v));
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail(path, "must be finite, got " + show(v));
+    return d;
+  }
+
+  std::string string(const json& obj, const std::string& key, const std::string& path) const {
+    if (!obj.contains(key)) fail(path + "." + key, "is missing");
+    const json& v = obj.at(key);
+    if (!v.is_string()) fail(path + "." + key, "must be a string, got " + show(v));
+    return v.get<std::string>();
+  }
+
+  std::vector<double> numbers(const json& obj, const std::string& key,
+                              const std::string& path) const {
+    if (!obj.contains(key)) fail(path + "." + key, "is missing");
+    const json& v = obj.at(key);
+    if (!v.is_array()) fail(path + "." + key, "must be an array of numbers, got " + show(v));
+    std::vector<double> out;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      out.push_back(as_number(v[i], path + "." + key + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+
+  // Runs a library factory; its DomainError is re-thrown naming the scene key.
+  template <class F>
+  auto checked(const std::string& path, F make) const {
+    try {
+      return make();
+    } catch (const DomainError& e) {
+      throw InputError(source_ + ": " + path + ": " + e.what());
+    }
+  }
+
+  const std::string& source() const { return source_; }
+
+ private:
+  std::string source_;
+};
+
+ProfilePtr read_indenter(const Reader& in, const json& root) {
+  const json& ind = in.object(root, "indenter", "indenter");
+  const std::string shape = in.string(ind, "shape", "indenter");
+  if (shape == "paraboloid" || shape == "sphere") {
+    in.only_keys(ind, "indenter", {"shape", "R"});
+    const double R = in.number(ind, "R", "indenter");
+    return in.checked("indenter.R", [&] {
+      return shape == "sphere" ? make_sphere(R) : make_paraboloid(R);
+    });
+  }
+  if (shape == "cone") {
+    in.only_keys(ind, "indenter", {"shape", "semi_angle_deg"});
+    const double deg = in.number(ind, "semi_angle_deg", "indenter");
+    if (!(deg > 0.0 && deg < 90.0))
+      in.fail("indenter.semi_angle_deg", "= " + format_double(deg) + " is invalid; valid range: (0, 90)");
+    return make_cone(deg * boost::math::constants::degree<double>());
+  }
+  if (shape == "power_law") {
+    in.only_keys(ind, "indenter", {"shape", "B", "d"});
+    const double B = in.number(ind, "B", "indenter"), d = in.number(ind, "d", "indenter");
+    return in.checked("indenter", [&] { return make_power_law(B, d); });
+  }
+  if (shape == "table") {
+    in.only_keys(ind, "indenter", {"shape", "r", "z"});
+    auto r = in.numbers(ind, "r", "indenter");
+    auto z = in.numbers(ind, "z", "indenter");
+    return in.checked("indenter", [&] { return make_table_profile(std::move(r), std::move(z)); });
+  }
+  in.fail("indenter.shape", "= \"" + shape +
+                                "\" is unknown (known: paraboloid, sphere, cone, power_law, table)");
+}
+
+MediumSpec read_medium(const Reader& in, const json& root) {
+  const json& med = in.object(root, "medium", "medium");
+  const std::string type = in.string(med, "type", "medium");
+  MediumSpec m;
+  if (type == "winkler") {
+    in.only_keys(med, "medium", {"type", "K"});
+    m.type = MediumType::winkler;
+    m.K = in.number(med, "K", "medium");
+  } else if (type == "pasternak") {
+    in.only_keys(med, "medium", {"type", "K", "G"});
+    m.type = MediumType::pasternak;
+    m.K = in.number(med, "K", "medium");
+    m.G = in.number(med, "G", "medium");
+  } else if (type == "filonenko_borodich") {
+    in.only_keys(med, "medium", {"type", "K", "T"});
+    m.type = MediumType::filonenko_borodich;
+    m.K = in.number(med, "K", "medium");
+    m.T = in.number(med, "T", "medium");
+  } else if (type == "layer") {
+    in.only_keys(med, "medium", {"type", "E", "nu", "h", "base"});
+    m.type = MediumType::layer;
+    m.E = in.number(med, "E", "medium");
+    m.nu = in.number(med, "nu", "medium");
+    m.h = in.number(med, "h", "medium");
+    const std::string base = med.contains("base") ? in.string(med, "base", "medium") : "bonded";
+    if (base == "bonded")
+      m.base = Base::bonded;
+    else if (base == "frictionless")
+      m.base = Base::frictionless;
+    else
+      in.fail("medium.base", "= \"" + base + "\" is unknown (known: bonded, frictionless)");
+  } else if (type == "half_space") {
+    in.only_keys(med, "medium", {"type", "E", "nu"});
+    m.type = MediumType::half_space;
+    m.E = in.number(med, "E", "medium");
+    m.nu = in.number(med, "nu", "medium");
+  } else {
+    in.fail("medium.type", "= \"" + type +
+                               "\" is unknown (known: winkler, pasternak, filonenko_borodich, "
+                               "layer, half_space)");
+  }
+  return m;
+}
+
+// Allowed model names per medium; the first is the default ("" = required).
+std::vector<std::string> models_for(MediumType t) {
+  switch (t) {
+    case MediumType::winkler: return {"winkler"};
+    case MediumType::half_space: return {"half_space"};
+    case MediumType::layer: return {"", "leading", "two_term"};
+    case MediumType::pasternak:
+    case MediumType::filonenko_borodich: return {"", "asymptotic", "full"};
+  }
+  return {};
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& source) {
+  Reader in(source);
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw InputError(source + ": not valid JSON (" + e.what() + ")");
+  }
+  if (!root.is_object()) in.fail("the scene", "must be a JSON object, got " + show(root));
+  in.only_keys(root, "scene", {"indenter", "medium", "model", "solver", "w"});
+  Scene s;
+  s.profile = read_indenter(in, root);
+  s.medium = read_medium(in, root);
+
+  const std::vector<std::string> allowed = models_for(s.medium.type);
+  std::string list;
+  for (const auto& m : allowed)
+    if (!m.empty()) list += (list.empty() ? "" : ", ") + m;
+  const std::string medium_name = root["medium"]["type"].get<std::string>();
+  if (root.contains("model")) {
+    s.model = in.string(root, "model", "scene");
+    bool ok = false;
+    for (const auto& m : allowed) ok = ok || (!m.empty() && m == s.model);
+    if (!ok)
+      in.fail("model", "= \"" + s.model + "\" is not available for medium '" + medium_name +
+                           "' (available: " + list + ")");
+  } else if (allowed.front().empty()) {
+    in.fail("model", "is missing; medium '" + medium_name + "' needs one of: " + list);
+  } else {
+    s.model = allowed.front();
+  }
+
+  if (root.contains("solver")) {
+    s.solver = in.string(root, "solver", "scene");
+    if (s.solver != "closed_form" && s.solver != "ode")
+      in.fail("solver", "= \"" + s.solver + "\" is unknown (known: closed_form, ode)");
+    if (s.solver == "ode" && s.medium.type == MediumType::half_space)
+      in.fail("solver", "= \"ode\" is available for foundation models only, not half_space");
+  }
+  if (root.contains("w")) {
+    s.w = in.as_number(root.at("w"), "w");
+    if (s.w < 0.0) in.fail("w", "= " + format_double(s.w) + " is invalid; valid range: >= 0");
+  }
+  // Build once so every invalid value is reported at parse time.
+  (void)build_scene(s);
+  return s;
+}
+
+Scene load_scene(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path + ": cannot open the scene file");
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) throw InputError(path + ": cannot read the scene file");
+  return parse_scene(text.str(), path);
+}
+
+BuiltScene build_scene(const Scene& s) {
+  Reader in("scene");
+  BuiltScene b;
+  const MediumSpec& m = s.medium;
+  double K = m.K, G = 0.0;
+  bool full = false;
+  switch (m.type) {
+    case MediumType::half_space:
+      b.model = in.checked("medium", [&] { return make_half_space(s.profile, m.E, m.nu); });
+      b.has_effective_modulus = true;
+      b.E_star = effective_modulus(m.E, m.nu);
+      return b;
+    case MediumType::winkler:
+      break;
+    case MediumType::pasternak:
+    case MediumType::filonenko_borodich:
+      G = m.type == MediumType::pasternak ? m.G : m.T;
+      full = s.model == "full";
+      break;
+    case MediumType::layer: {
+      const ThinLayerConstants c =
+          in.checked("medium", [&] { return thin_layer_constants({m.E, m.nu, m.h, m.base}); });
+      K = c.K;
+      G = s.model == "leading" ? 0.0 : c.G;
+      b.warnings = c.warnings;
+      b.has_effective_modulus = true;
+      b.E_star = effective_modulus(m.E, m.nu);
+      b.G = c.G;
+      break;
+    }
+  }
+  b.has_foundation_constants = true;
+  b.K = K;
+  if (m.type != MediumType::layer) b.G = G;
+  b.model = in.checked("medium", [&]() -> ContactModelPtr {
+    if (s.solver == "ode")
+      return make_ode_foundation(s.profile, K, G,
+                                 full ? FoundationKind::full : FoundationKind::asymptotic);
+    if (full) return make_full_foundation(s.profile, K, G);
+    if (G == 0.0) return make_winkler(s.profile, K);
+    return make_two_term(s.profile, K, G);
+  });
+  return b;
+}
+
+}  // namespace layerjkr
