@@ -10,10 +10,15 @@ namespace {
 
 class CallableProfile final : public Profile {
  public:
-  CallableProfile(std::function<ProfileJet(const ProfileJet&)> g, double length_scale,
+  CallableProfile(std::function<double(double)> value,
+                  std::function<ProfileJet(const ProfileJet&)> g, double length_scale,
                   double max_radius, std::string name)
-      : g_(std::move(g)), scale_(length_scale), max_(max_radius), name_(std::move(name)) {
-    f0_ = static_cast<double>(g_(boost::math::differentiation::make_fvar<double, 3>(0.0)));
+      : value_(std::move(value)),
+        g_(std::move(g)),
+        scale_(length_scale),
+        max_(max_radius),
+        name_(std::move(name)) {
+    f0_ = value_(0.0);
     if (!std::isfinite(f0_))
       throw DomainError("make_callable_profile", "f(0)", f0_, "finite");
   }
@@ -30,11 +35,19 @@ class CallableProfile final : public Profile {
     return d;
   }
 
+  double f(double r) const override {
+    if (!contains(r)) throw DomainError(name_, "r", r, "[0, " + format_double(max_) + "]");
+    const double v = value_(r) - f0_;
+    if (!std::isfinite(v)) throw DomainError(name_, "r (callable is not finite there)", r, "radii where f is finite");
+    return v;
+  }
+
   double max_radius() const override { return max_; }
   double length_scale() const override { return scale_; }
   std::string describe() const override { return name_; }
 
  private:
+  std::function<double(double)> value_;
   std::function<ProfileJet(const ProfileJet&)> g_;
   double scale_, max_;
   std::string name_;
@@ -43,14 +56,15 @@ class CallableProfile final : public Profile {
 
 }  // namespace
 
-ProfilePtr make_callable_profile_erased(std::function<ProfileJet(const ProfileJet&)> f,
+ProfilePtr make_callable_profile_erased(std::function<double(double)> value,
+                                        std::function<ProfileJet(const ProfileJet&)> f,
                                         double length_scale, double max_radius,
                                         std::string name) {
-  if (!f) throw Error("layerjkr::make_callable_profile: the callable is empty");
+  if (!f || !value) throw Error("layerjkr::make_callable_profile: the callable is empty");
   detail::require_positive("make_callable_profile", "length_scale", length_scale);
   if (std::isnan(max_radius) || !(max_radius > 0.0))
     throw DomainError("make_callable_profile", "max_radius", max_radius, "> 0 (may be +inf)");
-  return std::make_shared<CallableProfile>(std::move(f), length_scale, max_radius,
+  return std::make_shared<CallableProfile>(std::move(value), std::move(f), length_scale, max_radius,
                                            std::move(name));
 }
 

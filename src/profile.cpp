@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include <boost/math/constants/constants.hpp>
-#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/special_functions/atanh.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 
@@ -192,6 +191,7 @@ void Profile::require_contact_radius(const char* function, double a) const {
 }
 
 double Profile::moment(double a) const {
+  if (a == 0.0) return 0.0;
   require_contact_radius("Profile::moment", a);
   return detail::integrate_split([this](double r) { return f(r) * r; }, 0.0, a,
                                  breakpoints(a), "Profile::moment");

@@ -1,9 +1,15 @@
-// Measured tip table: mirrored Steffen spline (GSL), exact piecewise moments.
+// Measured tip table: mirrored C2 cubic spline (GSL), exact piecewise moments.
+//
+// Why C2 and not a monotone C1 spline (Steffen, Akima): the two-term model uses f''(a),
+// so with a C1 interpolant delta_H(a) and P_H(a) would jump at every knot. The cubic
+// spline is instead checked to be monotone on every segment (exactly: f' is a
+// quadratic there), and a table it cannot follow monotonically is rejected.
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_spline.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include <boost/math/quadrature/gauss.hpp>
@@ -33,9 +39,10 @@ class TableProfile final : public Profile {
       y[n - 1 - i] = z[i];
       y[n - 1 + i] = z[i];
     }
-    spline_.reset(gsl_spline_alloc(gsl_interp_steffen, x.size()));
+    spline_.reset(gsl_spline_alloc(gsl_interp_cspline, x.size()));
     if (!spline_ || gsl_spline_init(spline_.get(), x.data(), y.data(), x.size()) != GSL_SUCCESS)
       throw NumericalError("layerjkr::make_table_profile: GSL could not build the spline");
+    require_monotone();
     // Cumulative moments at the knots; 3-point Gauss is exact for cubic * r.
     cumulative_.assign(n, 0.0);
     for (std::size_t i = 0; i + 1 < n; ++i)
@@ -87,6 +94,30 @@ class TableProfile final : public Profile {
   }
 
  private:
+  // On [r_i, r_i + h]: f'(r_i + t) = d + c t + k t^2 / 2 with k = f''' constant.
+  void require_monotone() const {
+    constexpr double kRounding = 64.0 * std::numeric_limits<double>::epsilon();
+    for (std::size_t i = 0; i + 1 < r_.size(); ++i) {
+      const double lo = r_[i], h = r_[i + 1] - lo;
+      const ProfileDerivatives p = derivatives(0.5 * (lo + r_[i + 1]));
+      const double k = p.d3f;
+      const double c = p.d2f - k * 0.5 * h;
+      const double d = p.df - c * 0.5 * h - k * 0.125 * h * h;
+      auto slope = [&](double t) { return d + c * t + 0.5 * k * t * t; };
+      double lowest = std::min(slope(0.0), slope(h));
+      double where = slope(0.0) < slope(h) ? lo : lo + h;
+      if (k != 0.0 && -c / k > 0.0 && -c / k < h && slope(-c / k) < lowest)
+        lowest = slope(-c / k), where = lo - c / k;
+      const double scale = std::abs(d) + std::abs(c) * h + std::abs(k) * h * h;
+      if (lowest < -kRounding * scale)
+        throw DomainError("make_table_profile",
+                          "interpolated slope f'(" + format_double(where) + ")", lowest,
+                          ">= 0: the C2 spline through the table decreases between r[" +
+                              std::to_string(i) + "] and r[" + std::to_string(i + 1) +
+                              "]; smooth or resample the measured profile");
+    }
+  }
+
   void check(double r) const {
     if (!contains(r))
       throw DomainError("TableProfile", "r", r, "[0, " + format_double(r_.back()) + "]");

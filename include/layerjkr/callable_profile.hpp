@@ -25,9 +25,12 @@ namespace layerjkr {
 /// Third-order forward-mode dual number used for callable profiles.
 using ProfileJet = boost::math::differentiation::autodiff_fvar<double, 3>;
 
-/// Builds a profile from a type-erased callable on ProfileJet. length_scale [m] > 0
-/// seeds root brackets; max_radius [m] > 0 bounds admissible contact radii.
-ProfilePtr make_callable_profile_erased(std::function<ProfileJet(const ProfileJet&)> f,
+/// Builds a profile from type-erased callables: `value` on double (f itself, and f(0),
+/// which autodiff of e.g. pow(r, 2.5) cannot give) and `jet` on ProfileJet (the
+/// derivatives). length_scale [m] > 0 seeds root brackets; max_radius [m] > 0 bounds
+/// admissible contact radii.
+ProfilePtr make_callable_profile_erased(std::function<double(double)> value,
+                                        std::function<ProfileJet(const ProfileJet&)> jet,
                                         double length_scale, double max_radius,
                                         std::string name);
 
@@ -36,9 +39,9 @@ template <class F>
 ProfilePtr make_callable_profile(F f, double length_scale,
                                  double max_radius = std::numeric_limits<double>::infinity(),
                                  std::string name = "callable") {
-  return make_callable_profile_erased(
-      [g = std::move(f)](const ProfileJet& r) { return ProfileJet(g(r)); }, length_scale,
-      max_radius, std::move(name));
+  return make_callable_profile_erased([f](double r) { return static_cast<double>(f(r)); },
+                                     [f](const ProfileJet& r) { return ProfileJet(f(r)); },
+                                     length_scale, max_radius, std::move(name));
 }
 
 }  // namespace layerjkr

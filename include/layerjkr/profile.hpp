@@ -89,10 +89,12 @@ ProfilePtr make_power_law(double B, double d);
 
 /// Measured profile from a table (r_i [m], z_i [m]): r strictly increasing from
 /// r_0 = 0, z non-decreasing, all finite, at least 3 points. z_0 is subtracted
-/// exactly. The table is mirrored to r < 0 and interpolated with GSL's Steffen
-/// spline, which is monotone between knots (no overshoot), C1, and has f'(0) = 0
-/// (a measured tip is rounded at its apex). f'' is piecewise linear, f''' piecewise
-/// constant. Contact radii up to the last r are admissible.
+/// exactly. The table is mirrored to r < 0 (so f'(0) = 0: a measured tip is rounded
+/// at its apex) and interpolated with GSL's natural cubic spline, which is C2 - the
+/// two-term model needs a continuous f''. The spline is verified to be monotone on
+/// every segment; a table it cannot follow monotonically throws DomainError. f''' is
+/// piecewise constant; moments are exact (Gauss-Legendre per segment). Contact radii
+/// up to the last r are admissible.
 ProfilePtr make_table_profile(std::vector<double> r, std::vector<double> z);
 
 }  // namespace layerjkr
