@@ -187,7 +187,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   json root;
   try {
     root = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax errors and number overflow (1e999)
     throw InputError(source + ": not valid JSON (" + e.what() + ")");
   }
   if (!root.is_object()) in.fail("the scene", "must be a JSON object, got " + show(root));

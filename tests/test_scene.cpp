@@ -1,1 +1,98 @@
+// Scene JSON reader: every shape and medium, and every kind of bad input.
+#include <catch2/catch.hpp>
 
+#include <string>
+
+#include "layerjkr/contact.hpp"
+#include "layerjkr/error.hpp"
+#include "layerjkr/scene.hpp"
+
+using namespace layerjkr;
+
+namespace {
+std::string scene(const std::string& indenter, const std::string& medium,
+                  const std::string& extra = "") {
+  return R"({"indenter": )" + indenter + R"(, "medium": )" + medium + extra + "}";
+}
+const std::string kPara = R"({"shape": "paraboloid", "R": 0.01})";
+const std::string kLayer = R"({"type": "layer", "E": 3e6, "nu": 0.3, "h": 1e-4, "base": "bonded"})";
+}  // namespace
+
+TEST_CASE("valid scenes build the expected models", "[scene]") {
+  struct Case { std::string indenter, medium, extra, model; };
+  const std::vector<Case> cases{
+      {kPara, kLayer, R"(, "model": "two_term", "w": 0.05)", "two_term"},
+      {kPara, kLayer, R"(, "model": "leading")", "winkler"},
+      {R"({"shape": "sphere", "R": 0.01})", R"({"type": "winkler", "K": 1e10})", "", "winkler"},
+      {R"({"shape": "cone", "semi_angle_deg": 70})", R"({"type": "half_space", "E": 1e6, "nu": 0.5})", "", "half_space"},
+      {R"({"shape": "power_law", "B": 10, "d": 2.5})", R"({"type": "pasternak", "K": 1e10, "G": 5})", R"(, "model": "full")", "full_foundation"},
+      {kPara, R"({"type": "pasternak", "K": 1e10, "G": -5})", R"(, "model": "asymptotic")", "two_term"},
+      {kPara, R"({"type": "filonenko_borodich", "K": 1e10, "T": 5})", R"(, "model": "full", "solver": "ode")", "ode(full_foundation)"},
+      {R"({"shape": "table", "r": [0, 1e-4, 2e-4, 3e-4], "z": [0, 5e-7, 2e-6, 4.5e-6]})",
+       R"({"type": "layer", "E": 1e6, "nu": 0.49, "h": 1e-5, "base": "frictionless"})", R"(, "model": "two_term")", "winkler"},
+  };
+  for (const auto& c : cases) {
+    const Scene s = parse_scene(scene(c.indenter, c.medium, c.extra));
+    const BuiltScene b = build_scene(s);
+    INFO(c.medium << c.extra);
+    CHECK(b.model->name() == c.model);
+  }
+  const Scene s = parse_scene(scene(kPara, kLayer, R"(, "model": "two_term", "w": 0.05)"));
+  CHECK(s.w == 0.05);
+  const BuiltScene b = build_scene(s);
+  CHECK(b.K == Approx(3e6 * 0.7 / (1e-4 * 1.3 * 0.4)).epsilon(1e-14));
+  CHECK(b.G < 0.0);
+  CHECK(b.E_star == Approx(3e6 / 0.91).epsilon(1e-14));
+  CHECK(build_scene(parse_scene(scene(kPara, R"({"type": "layer", "E": 3e6, "nu": 0.49, "h": 1e-4})", R"(, "model": "two_term")"))).warnings.size() == 1);
+}
+
+TEST_CASE("invalid scenes name the key and the value", "[scene][errors]") {
+  struct Case { std::string text, expected; };
+  const std::vector<Case> cases{
+      {"{", "not valid JSON"},
+      {"[1, 2]", "must be a JSON object"},
+      {"", "not valid JSON"},
+      {R"({"medium": )" + kLayer + R"(, "model": "two_term"})", "indenter is missing"},
+      {scene(kPara, kLayer, R"(, "model": "two_term", "colour": "red")"), "scene.colour is not a known key"},
+      {scene(R"({"shape": "paraboloid", "R": 0.01, "Rr": 1})", kLayer, R"(, "model": "two_term")"), "indenter.Rr is not a known key"},
+      {scene(R"({"shape": "paraboloid", "R": "big"})", kLayer, R"(, "model": "two_term")"), "indenter.R must be a number, got \"big\""},
+      {scene(R"({"shape": "paraboloid"})", kLayer, R"(, "model": "two_term")"), "indenter.R is missing"},
+      {scene(R"({"shape": "paraboloid", "R": -0.01})", kLayer, R"(, "model": "two_term")"), "R = -0.01"},
+      {scene(R"({"shape": "ellipsoid", "R": 1})", kLayer, R"(, "model": "two_term")"), "indenter.shape = \"ellipsoid\" is unknown"},
+      {scene(R"({"shape": 3})", kLayer), "indenter.shape must be a string, got 3"},
+      {scene(R"({"shape": "cone", "semi_angle_deg": 90})", kLayer, R"(, "model": "two_term")"), "semi_angle_deg = 90"},
+      {scene(R"({"shape": "power_law", "B": 1, "d": 0.5})", kLayer, R"(, "model": "two_term")"), "d = 0.5"},
+      {scene(R"({"shape": "table", "r": [0, 2, 1], "z": [0, 1, 2]})", kLayer, R"(, "model": "two_term")"), "r[2] = 1"},
+      {scene(R"({"shape": "table", "r": [0, 1, "x"], "z": [0, 1, 2]})", kLayer, R"(, "model": "two_term")"), "indenter.r[2] must be a number"},
+      {scene(R"({"shape": "table", "r": 5, "z": [0, 1, 2]})", kLayer, R"(, "model": "two_term")"), "indenter.r must be an array"},
+      {scene(kPara, R"({"type": "layer", "E": 3e6, "nu": 0.5, "h": 1e-4})", R"(, "model": "two_term")"), "nu = 0.5"},
+      {scene(kPara, R"({"type": "layer", "E": 3e6, "nu": 0.3, "h": 0})", R"(, "model": "two_term")"), "h = 0"},
+      {scene(kPara, R"({"type": "layer", "E": -3e6, "nu": 0.3, "h": 1e-4})", R"(, "model": "two_term")"), "E = -3000000"},
+      {scene(kPara, R"({"type": "layer", "E": 3e6, "nu": 0.3, "h": 1e-4, "base": "glued"})", R"(, "model": "two_term")"), "medium.base = \"glued\""},
+      {scene(kPara, kLayer), "model is missing; medium 'layer' needs one of: leading, two_term"},
+      {scene(kPara, kLayer, R"(, "model": "full")"), "model = \"full\" is not available for medium 'layer'"},
+      {scene(kPara, R"({"type": "pasternak", "K": 1e10, "G": -5})", R"(, "model": "full")"), "G (or tension T) = -5"},
+      {scene(kPara, R"({"type": "pasternak", "K": 1e10})", R"(, "model": "full")"), "medium.G is missing"},
+      {scene(kPara, R"({"type": "winkler", "K": 0})"), "K = 0"},
+      {scene(kPara, R"({"type": "elastic", "K": 1})"), "medium.type = \"elastic\" is unknown"},
+      {scene(kPara, R"({"type": "half_space", "E": 1e6, "nu": 0.7})"), "nu = 0.69999999999999996"},
+      {scene(kPara, R"({"type": "half_space", "E": 1e6, "nu": 0.3})", R"(, "solver": "ode")"), "foundation models only"},
+      {scene(kPara, kLayer, R"(, "model": "two_term", "solver": "fast")"), "solver = \"fast\""},
+      {scene(kPara, kLayer, R"(, "model": "two_term", "w": -0.1)"), "w = -0.10000000000000001"},
+      {scene(kPara, kLayer, R"(, "model": "two_term", "w": "0.1")"), "w must be a number"},
+      {scene(kPara, kLayer, R"(, "model": "two_term", "w": 1e999)"), "not valid JSON"},
+  };
+  for (const auto& c : cases) {
+    INFO(c.text);
+    CHECK_THROWS_AS(parse_scene(c.text), InputError);
+    CHECK_THROWS_WITH(parse_scene(c.text), Catch::Contains(c.expected));
+  }
+  CHECK_THROWS_WITH(load_scene("/nonexistent/scene.json"), Catch::Contains("cannot open"));
+}
+
+TEST_CASE("a bundled scene file loads and solves", "[scene]") {
+  const Scene s = load_scene(std::string(LAYERJKR_SOURCE_DIR) + "/data/scenes/sphere_pdms_film_two_term.json");
+  const JkrSolution jkr(build_scene(s).model, s.w);
+  REQUIRE(jkr.pull_off());
+  CHECK(jkr.pull_off()->P == Approx(-2 * M_PI * 0.05 * 0.01).epsilon(1e-10));
+}

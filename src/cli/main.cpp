@@ -121,6 +121,12 @@ int main(int argc, char** argv) {
       "summary", "JSON summary: pull-off, zero-load radius, fixed-grips critical point, K, G");
   summary->add_option("scene", scene_path, "Scene JSON file")->required();
 
+  if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "curve" &&
+      std::string(argv[1]) != "summary") {
+    std::cerr << "layerjkr: unknown command '" << argv[1]
+              << "' (known: curve, summary)\nRun 'layerjkr --help' for usage.\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
     if (*curve && at.empty() && !*max_opt)
