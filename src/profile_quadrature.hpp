@@ -51,7 +51,11 @@ double integrate_split(G g, double lo, double hi, std::vector<double> cuts,
   if (!std::isfinite(sum) || error_sum > 1e-9 * l1_sum)
     throw NumericalError(std::string("layerjkr::") + function +
                          ": adaptive quadrature did not converge (estimated error " +
-                         format_double(error_sum) + ", L1 norm " + format_double(l1_sum) + ")");
+                         format_double(error_sum) + ", L1 norm " + format_double(l1_sum) +
+                         "); a callable profile may be losing precision to cancellation - "
+                         "write e.g. sqrt(r^2+b^2)-b as r^2/(sqrt(r^2+b^2)+b)");
+  // Callers pass dimensionless variables (t = r/a, or an angle): tanh-sinh's endpoint
+  // thresholds are absolute and stall on physical intervals such as [0, 1e-7 m].
   return sum;
 }
 

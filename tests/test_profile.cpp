@@ -153,3 +153,16 @@ TEST_CASE("profile factories reject invalid parameters with named errors", "[pro
   const auto bad = make_callable_profile([](auto r) { using std::log; return log(r + 1.0) * 0.0 + 1.0 / (r - 1e-3); }, 1e-3);
   CHECK_THROWS_AS(bad->derivatives(1e-3), DomainError);
 }
+
+TEST_CASE("default quadratures keep full accuracy from nm to m (scaled variables)", "[profile]") {
+  // Regression: on [0, 2e-7 m] tanh-sinh stalled at a 4e-9 error estimate and threw.
+  for (double R : {1e-8, 2e-7, 1e-3, 1.0}) {
+    const auto callable = make_callable_profile([R](auto r) { return r * r / (2.0 * R); }, R);
+    const auto exact = make_paraboloid(R);
+    for (double a : {1e-3 * R, 0.1 * R, 3.0 * R}) {
+      INFO("R=" << R << " a=" << a);
+      CHECK(rel_err(callable->moment(a), exact->moment(a)) < 1e-14);
+      CHECK(rel_err(callable->sneddon(a).I2, exact->sneddon(a).I2) < 1e-14);
+    }
+  }
+}
