@@ -1,0 +1,75 @@
+// Cost of one non-adhesive state per model and profile, of the JKR transform over a
+// 200-point curve, and of the critical-point search. Medians go in README:
+//   build/bin/bench_models --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+#include "layerjkr/callable_profile.hpp"
+#include "layerjkr/layerjkr.hpp"
+
+namespace {
+
+using namespace layerjkr;
+
+const ThinLayerConstants kFilm = thin_layer_constants({3e6, 0.2, 1e-4, Base::bonded});
+
+ProfilePtr table() {
+  std::vector<double> r, z;
+  for (int i = 0; i <= 40; ++i) {
+    r.push_back(5e-3 * i / 40);
+    z.push_back(1e-2 - std::sqrt(1e-4 - r.back() * r.back()));
+  }
+  return make_table_profile(r, z);
+}
+
+ProfilePtr callable() {
+  return make_callable_profile([](auto r) { return r * r / 2e-2; }, 1e-2, INFINITY, "callable");
+}
+
+void run_state(benchmark::State& st, const ContactModelPtr& model) {
+  double a = 5e-4;
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(model->state(a));
+    a = a == 5e-4 ? 5.0001e-4 : 5e-4;  // defeat caching by the compiler
+  }
+}
+
+#define STATE_BENCH(name, expr)                                 \
+  void BM_State_##name(benchmark::State& st) { run_state(st, expr); } \
+  BENCHMARK(BM_State_##name)
+
+STATE_BENCH(Winkler_Paraboloid, make_winkler(make_paraboloid(1e-2), kFilm.K));
+STATE_BENCH(TwoTerm_Paraboloid, make_two_term(make_paraboloid(1e-2), kFilm.K, kFilm.G));
+STATE_BENCH(TwoTerm_Sphere, make_two_term(make_sphere(1e-2), kFilm.K, kFilm.G));
+STATE_BENCH(TwoTerm_Table, make_two_term(table(), kFilm.K, kFilm.G));
+STATE_BENCH(TwoTerm_Callable, make_two_term(callable(), kFilm.K, kFilm.G));
+STATE_BENCH(FullFoundation_Paraboloid, make_full_foundation(make_paraboloid(1e-2), kFilm.K, kFilm.G));
+STATE_BENCH(HalfSpace_Paraboloid, make_half_space(make_paraboloid(1e-2), 3e6, 0.3));
+STATE_BENCH(HalfSpace_Sphere, make_half_space(make_sphere(1e-2), 3e6, 0.3));
+STATE_BENCH(HalfSpace_Table, make_half_space(table(), 3e6, 0.3));
+STATE_BENCH(Ode_TwoTerm_Paraboloid,
+            make_ode_foundation(make_paraboloid(1e-2), kFilm.K, kFilm.G, FoundationKind::asymptotic));
+STATE_BENCH(Ode_Full_Paraboloid,
+            make_ode_foundation(make_paraboloid(1e-2), kFilm.K, kFilm.G, FoundationKind::full));
+
+void BM_Curve200_TwoTerm_Sphere(benchmark::State& st) {
+  const JkrSolution jkr(make_two_term(make_sphere(1e-2), kFilm.K, kFilm.G), 0.05);
+  std::vector<double> radii;
+  for (int i = 1; i <= 200; ++i) radii.push_back(1e-3 * i / 200);
+  for (auto _ : st) benchmark::DoNotOptimize(jkr.curve(radii));
+}
+BENCHMARK(BM_Curve200_TwoTerm_Sphere);
+
+void BM_Summary(benchmark::State& st, ContactModelPtr model) {
+  const JkrSolution jkr(std::move(model), 0.05);
+  for (auto _ : st) benchmark::DoNotOptimize(summarize(jkr));
+}
+BENCHMARK_CAPTURE(BM_Summary, TwoTerm_Paraboloid, make_two_term(make_paraboloid(1e-2), kFilm.K, kFilm.G));
+BENCHMARK_CAPTURE(BM_Summary, HalfSpace_Paraboloid, make_half_space(make_paraboloid(1e-2), 3e6, 0.3));
+BENCHMARK_CAPTURE(BM_Summary, FullFoundation_Sphere, make_full_foundation(make_sphere(1e-2), kFilm.K, kFilm.G));
+
+}  // namespace
+
+BENCHMARK_MAIN();

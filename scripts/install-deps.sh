@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages layerjkr builds, tests and plots with.
+# Runs apt-get directly as root (CI, containers) and through sudo otherwise.
+set -euo pipefail
+packages=(cmake ninja-build g++ libeigen3-dev libgsl-dev libboost-dev libceres-dev libmetis-dev
+          catch2 libcli11-dev nlohmann-json3-dev libbenchmark-dev gnuplot-nox)
+as_root=()
+[ "$(id -u)" -eq 0 ] || as_root=(sudo)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  "${as_root[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
