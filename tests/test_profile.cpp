@@ -3,7 +3,6 @@
 
 #include <cmath>
 
-#include <boost/math/quadrature/gauss_kronrod.hpp>
 
 #include "layerjkr/callable_profile.hpp"
 #include "layerjkr/error.hpp"
