@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -29,8 +30,11 @@ std::string slurp(const std::string& path) {
   return s.str();
 }
 
+// ctest runs test cases as parallel processes in one directory: names carry the pid.
+std::string unique(const std::string& name) { return std::to_string(getpid()) + "_" + name; }
+
 Run run(const std::string& args) {
-  const std::string out = "layerjkr_cli_test.out", err = "layerjkr_cli_test.err";
+  const std::string out = unique("cli.out"), err = unique("cli.err");
   const std::string cmd = std::string(LAYERJKR_CLI_PATH) + " " + args + " >" + out + " 2>" + err + " </dev/null";
   const int status = std::system(cmd.c_str());
   Run r;
@@ -41,8 +45,9 @@ Run run(const std::string& args) {
 }
 
 std::string write_file(const std::string& name, const std::string& text) {
-  std::ofstream(name) << text;
-  return name;
+  const std::string path = unique(name);
+  std::ofstream(path) << text;
+  return path;
 }
 
 const std::string kScene = std::string(LAYERJKR_SOURCE_DIR) + "/data/scenes/sphere_pdms_film_two_term.json";
