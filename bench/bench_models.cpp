@@ -54,6 +54,21 @@ STATE_BENCH(Ode_TwoTerm_Paraboloid,
 STATE_BENCH(Ode_Full_Paraboloid,
             make_ode_foundation(make_paraboloid(1e-2), kFilm.K, kFilm.G, FoundationKind::full));
 
+// Exact layer: one contact radius (two Nystrom solves, fine and coarse, for the error
+// estimate) at a/h = 1, 10, 50; the kernel table is built once outside the loop.
+void BM_State_Exact(benchmark::State& st) {
+  static const auto model = make_exact_layer(make_paraboloid(1.0), {1.0, 0.3, 1.0, Base::bonded});
+  const double a = static_cast<double>(st.range(0));
+  for (auto _ : st) benchmark::DoNotOptimize(model->state(a));
+}
+BENCHMARK(BM_State_Exact)->Arg(1)->Arg(10)->Arg(50)->Unit(benchmark::kMillisecond);
+
+void BM_ExactKernelTable(benchmark::State& st) {
+  for (auto _ : st)
+    benchmark::DoNotOptimize(ExactLayerKernel({1.0, 0.3, 1.0, Base::bonded}));
+}
+BENCHMARK(BM_ExactKernelTable)->Unit(benchmark::kMillisecond);
+
 void BM_Curve200_TwoTerm_Sphere(benchmark::State& st) {
   const JkrSolution jkr(make_two_term(make_sphere(1e-2), kFilm.K, kFilm.G), 0.05);
   std::vector<double> radii;

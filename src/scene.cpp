@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "layerjkr/error.hpp"
+#include "layerjkr/exact_layer.hpp"
 
 namespace layerjkr {
 namespace {
@@ -173,7 +174,7 @@ std::vector<std::string> models_for(MediumType t) {
   switch (t) {
     case MediumType::winkler: return {"winkler"};
     case MediumType::half_space: return {"half_space"};
-    case MediumType::layer: return {"", "leading", "two_term"};
+    case MediumType::layer: return {"", "leading", "two_term", "exact"};
     case MediumType::pasternak:
     case MediumType::filonenko_borodich: return {"", "asymptotic", "full"};
   }
@@ -259,6 +260,14 @@ BuiltScene build_scene(const Scene& s) {
       full = s.model == "full";
       break;
     case MediumType::layer: {
+      if (s.model == "exact") {  // nu = 0.5 is valid here: no thin-layer expansion
+        b.model = in.checked("medium", [&] {
+          return make_exact_layer(s.profile, {m.E, m.nu, m.h, m.base});
+        });
+        b.has_effective_modulus = true;
+        b.E_star = effective_modulus(m.E, m.nu);
+        return b;
+      }
       const ThinLayerConstants c =
           in.checked("medium", [&] { return thin_layer_constants({m.E, m.nu, m.h, m.base}); });
       K = c.K;

@@ -3,6 +3,7 @@
 
 #include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
+#include "layerjkr/exact_layer.hpp"
 #include "layerjkr/jkr.hpp"
 #include "layerjkr/model.hpp"
 #include "layerjkr/profile.hpp"

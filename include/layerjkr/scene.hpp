@@ -9,7 +9,7 @@
 //                 | table {r: [...], z: [...]}
 // medium.type:    winkler {K} | pasternak {K, G} | filonenko_borodich {K, T}
 //                 | layer {E, nu, h, base: bonded|frictionless} | half_space {E, nu}
-// model:          layer: leading | two_term;  pasternak, filonenko_borodich: asymptotic |
+// model:          layer: leading | two_term | exact (nu may be 0.5);  pasternak, filonenko_borodich: asymptotic |
 //                 full;  winkler: winkler (default);  half_space: half_space (default)
 // solver:         closed_form (default) | ode  (foundation models only)
 // w:              work of adhesion [J/m^2], >= 0 (absent = 0)

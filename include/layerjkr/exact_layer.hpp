@@ -1,0 +1,91 @@
+// layerjkr: the exact elastic layer - frictionless axisymmetric indentation of a layer
+// (E, nu, h) bonded to, or lying frictionless on, a rigid base (theory.md s.4).
+//
+// The contact is reduced to a second-kind Fredholm equation for an auxiliary function
+// g on [0, a]:
+//   g(x) - (1/pi) int_0^a g(t) [F(x-t) + F(x+t)] dt = (E*/pi) D(x),
+//   F(s) = (1/h) Ft(|s|/h),  Ft(sigma) = int_0^inf [1 - L(u)] cos(u sigma) du,
+//   D(x) = delta - x I0(x)   (I0: the profile's Sneddon integral).
+// By linearity g = (E*/pi)(delta phi0 - phi_f), with phi0 the flat-punch solution.
+// Then delta_H = phi_f(a)/phi0(a) (from g(a) = 0), S = 2E* int phi0,
+// S' = 2E* phi0(a)^2 and P_H = 2E* (delta_H int phi0 - int phi_f).
+//
+// Numerics, all in units of h:
+// * Ft = (closed-form transform of e^{-2u}(1 + c u), which carries Ft's slow 1/sigma^2
+//   tail) + (transform of the smooth remainder, by GSL's QAWF). The remainder is tabulated
+//   once per layer on a graded grid and interpolated with a cubic spline.
+// * Nystrom method with composite Gauss-Legendre panels no wider than `panel_width` h,
+//   and a dense LU solve (Eigen).
+// * Every state is computed twice, on n and n/2 panels. The difference is the returned
+//   error estimate, as quadrature::tanh_sinh does.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "layerjkr/model.hpp"
+
+namespace layerjkr {
+
+struct ExactLayerOptions {
+  /// Largest contact radius the kernel table must cover, in units of h (> 0, <= 1000).
+  double max_a_over_h = 100.0;
+  /// Gauss-Legendre nodes per panel (4..20).
+  int points_per_panel = 8;
+  /// Panel width in units of h (0 < width <= 2).
+  double panel_width = 0.5;
+  /// Minimum number of panels (>= 2).
+  int min_panels = 4;
+  /// Kernel-table spacing in sigma near the origin (1e-4..0.2); it grows like sigma
+  /// beyond sigma = 10.
+  double table_spacing = 0.025;
+  /// Throws DomainError naming the first invalid field.
+  void Validate() const;
+};
+
+/// One non-adhesive state with error estimates (|fine - coarse| over relative size).
+struct ExactLayerState {
+  HertzState state;
+  double P_H_error = 0.0;      ///< estimated relative error of P_H
+  double delta_H_error = 0.0;  ///< estimated relative error of delta_H
+  int unknowns = 0;            ///< Nystrom nodes of the fine solve
+};
+
+/// The kernel table for one layer (E, nu, h, base). Building it is the expensive step
+/// (~0.1 s); queries reuse it. nu in (-1, 0.5] (0.5: incompressible, bonded or
+/// frictionless), E > 0, h > 0.
+class ExactLayerKernel {
+ public:
+  ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions options = {});
+  ~ExactLayerKernel();
+  ExactLayerKernel(const ExactLayerKernel&) = delete;
+  ExactLayerKernel& operator=(const ExactLayerKernel&) = delete;
+
+  /// Ft(sigma) for sigma >= 0 (dimensionless; sigma <= 2 max_a_over_h).
+  double kernel(double sigma) const;
+  /// E* = E/(1 - nu^2) [Pa].
+  double effective_modulus() const { return E_star_; }
+  const ElasticLayer& layer() const { return layer_; }
+  const ExactLayerOptions& options() const { return options_; }
+
+  /// Non-adhesive state at contact radius a for `profile`, with error estimates.
+  ExactLayerState solve(const Profile& profile, double a) const;
+
+  /// Flat-punch factor P/(2 E* a delta) at a/h (> 0).
+  double flat_punch_factor(double a_over_h) const;
+
+ private:
+  struct Table;
+  ElasticLayer layer_;
+  ExactLayerOptions options_;
+  double E_star_;
+  std::unique_ptr<Table> table_;
+};
+
+/// ContactModel "exact": the exact layer for a profile. The kernel table is built in
+/// the constructor; state(a) costs one Nystrom solve pair (ms to s, see README).
+ContactModelPtr make_exact_layer(ProfilePtr profile, const ElasticLayer& layer,
+                                 ExactLayerOptions options = {});
+
+}  // namespace layerjkr

@@ -1,0 +1,249 @@
+// Exact elastic layer: kernel table (GSL QAWF + spline) and Nystrom solve (Eigen).
+#include "layerjkr/exact_layer.hpp"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_spline.h>
+
+#include <cmath>
+#include <exception>
+
+#include <Eigen/Dense>
+#include <boost/math/constants/constants.hpp>
+
+#include "gsl_support.hpp"
+#include "layerjkr/error.hpp"
+
+namespace layerjkr {
+namespace {
+
+constexpr double kPi = boost::math::constants::pi<double>();
+constexpr double kBeta = 2.0;  // decay rate of the subtracted model e^{-beta u}(1 + gamma u)
+
+// q(u) = 1 - L(u), written with E = exp(-2u): no overflow and no cancellation.
+double one_minus_L(double u, double kappa, bool bonded) {
+  const double E = std::exp(-2.0 * u);
+  if (bonded) {
+    const double s = 1.0 + 2.0 * u;
+    return E * (2.0 * kappa * E + s * s + kappa * kappa) /
+           (kappa * (1.0 + E * E) + (4.0 * u * u + 1.0 + kappa * kappa) * E);
+  }
+  const double one_minus_E = -std::expm1(-2.0 * u);
+  return 2.0 * E * (one_minus_E + 2.0 * u) / (-std::expm1(-4.0 * u) + 4.0 * u * E);
+}
+
+// q'(0) = -L'(0): bonded -4(kappa-1)/(kappa+1)^2 (0 when incompressible), frictionless -1/2.
+double slope_at_zero(double kappa, bool bonded) {
+  return bonded ? -4.0 * (kappa - 1.0) / ((kappa + 1.0) * (kappa + 1.0)) : -0.5;
+}
+
+struct Remainder {
+  double kappa, gamma;
+  bool bonded;
+};
+
+double remainder(double u, void* p) {
+  const auto* r = static_cast<const Remainder*>(p);
+  return one_minus_L(u, r->kappa, r->bonded) - std::exp(-kBeta * u) * (1.0 + r->gamma * u);
+}
+
+struct SplineFree {
+  void operator()(gsl_spline* s) const { gsl_spline_free(s); }
+};
+struct GlFree {
+  void operator()(gsl_integration_glfixed_table* t) const { gsl_integration_glfixed_table_free(t); }
+};
+
+}  // namespace
+
+struct ExactLayerKernel::Table {
+  double gamma = 0.0, sigma_max = 0.0;
+  std::unique_ptr<gsl_spline, SplineFree> spline;
+  std::unique_ptr<gsl_integration_glfixed_table, GlFree> gl;
+};
+
+void ExactLayerOptions::Validate() const {
+  const char* fn = "ExactLayerOptions::Validate";
+  if (!(max_a_over_h > 0.0 && max_a_over_h <= 1000.0))
+    throw DomainError(fn, "max_a_over_h", max_a_over_h, "(0, 1000]");
+  if (points_per_panel < 4 || points_per_panel > 20)
+    throw DomainError(fn, "points_per_panel", points_per_panel, "[4, 20]");
+  if (!(panel_width > 0.0 && panel_width <= 2.0))
+    throw DomainError(fn, "panel_width", panel_width, "(0, 2]");
+  if (min_panels < 2) throw DomainError(fn, "min_panels", min_panels, ">= 2");
+  if (!(table_spacing >= 1e-4 && table_spacing <= 0.2))
+    throw DomainError(fn, "table_spacing", table_spacing, "[1e-4, 0.2]");
+}
+
+ExactLayerKernel::ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions options)
+    : layer_(layer), options_(options), table_(std::make_unique<Table>()) {
+  detail::silence_gsl_errors();
+  options_.Validate();
+  detail::require_positive("ExactLayerKernel", "h", layer.h);
+  E_star_ = layerjkr::effective_modulus(layer.E, layer.nu);  // validates E, nu in (-1, 0.5]
+  const bool bonded = layer.base == Base::bonded;
+  const double kappa = 3.0 - 4.0 * layer.nu;
+  Remainder rem{kappa, slope_at_zero(kappa, bonded) + kBeta, bonded};
+  table_->gamma = rem.gamma;
+  table_->sigma_max = 2.0 * options_.max_a_over_h + 1.0;
+
+  // Graded grid: spacing table_spacing up to sigma = 10, then growing like sigma (the remainder
+  // varies on an O(1) scale and decays like sigma^-4).
+  std::vector<double> sigma{0.0}, value;
+  while (sigma.back() < table_->sigma_max)
+    sigma.push_back(sigma.back() + options_.table_spacing * std::max(1.0, sigma.back() / 10.0));
+  constexpr std::size_t kLimit = 2000;
+  gsl_integration_workspace* ws = gsl_integration_workspace_alloc(kLimit);
+  gsl_integration_workspace* cycles = gsl_integration_workspace_alloc(kLimit);
+  gsl_function fn{&remainder, &rem};
+  int status = GSL_SUCCESS;
+  for (double s : sigma) {
+    double result = 0.0, abserr = 0.0;
+    if (s == 0.0) {
+      status = gsl_integration_qagiu(&fn, 0.0, 1e-15, 1e-12, kLimit, ws, &result, &abserr);
+    } else {
+      gsl_integration_qawo_table* wf =
+          gsl_integration_qawo_table_alloc(s, 1.0, GSL_INTEG_COSINE, 50);
+      status = gsl_integration_qawf(&fn, 0.0, 1e-15, kLimit, ws, cycles, wf, &result, &abserr);
+      gsl_integration_qawo_table_free(wf);
+    }
+    if (status != GSL_SUCCESS) break;
+    value.push_back(result);
+  }
+  gsl_integration_workspace_free(ws);
+  gsl_integration_workspace_free(cycles);
+  if (status != GSL_SUCCESS)
+    throw NumericalError(std::string("layerjkr::ExactLayerKernel: kernel transform failed (") +
+                         gsl_strerror(status) + ")");
+  // Ft is even in sigma: mirror the table so the spline sees that (a natural spline
+  // on [0, ...] would force Ft''(0) = 0 and lose two orders near the origin).
+  std::vector<double> x(2 * sigma.size() - 1), y(2 * sigma.size() - 1);
+  const std::size_t n = sigma.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    x[n - 1 - i] = -sigma[i];
+    x[n - 1 + i] = sigma[i];
+    y[n - 1 - i] = value[i];
+    y[n - 1 + i] = value[i];
+  }
+  table_->spline.reset(gsl_spline_alloc(gsl_interp_cspline, x.size()));
+  gsl_spline_init(table_->spline.get(), x.data(), y.data(), x.size());
+  table_->gl.reset(
+      gsl_integration_glfixed_table_alloc(static_cast<std::size_t>(options_.points_per_panel)));
+}
+
+ExactLayerKernel::~ExactLayerKernel() = default;
+
+double ExactLayerKernel::kernel(double sigma) const {
+  sigma = std::abs(sigma);
+  if (!(sigma <= table_->sigma_max))
+    throw DomainError("ExactLayerKernel::kernel", "sigma", sigma,
+                      "[0, " + format_double(table_->sigma_max) +
+                          "]; raise ExactLayerOptions::max_a_over_h");
+  const double b2 = kBeta * kBeta, s2 = sigma * sigma, d = b2 + s2;
+  const double model = kBeta / d + table_->gamma * (b2 - s2) / (d * d);
+  return model + gsl_spline_eval(table_->spline.get(), sigma, nullptr);
+}
+
+namespace {
+
+struct NystromResult {
+  double int_phi0, int_phif, phi0_end, phif_end;
+  int unknowns;
+};
+
+}  // namespace
+
+ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const {
+  profile.require_contact_radius("exact_layer", a);
+  const double rho = a / layer_.h;
+  if (!(rho <= options_.max_a_over_h))
+    throw DomainError("exact_layer", "a/h", rho,
+                      "(0, " + format_double(options_.max_a_over_h) +
+                          "] (ExactLayerOptions::max_a_over_h)");
+  const int n_fine = std::max(options_.min_panels,
+                              static_cast<int>(std::ceil(rho / options_.panel_width)));
+  auto nystrom = [&](int panels) {
+    const int m = options_.points_per_panel, n = panels * m;
+    Eigen::VectorXd xi(n), w(n);
+    for (int p = 0; p < panels; ++p)
+      for (int k = 0; k < m; ++k) {
+        double x = 0.0, wk = 0.0;
+        gsl_integration_glfixed_point(double(p) / panels, double(p + 1) / panels,
+                                      static_cast<std::size_t>(k), &x, &wk, table_->gl.get());
+        xi(p * m + k) = x;
+        w(p * m + k) = wk;
+      }
+    // Dimensionless x = a xi: A = I - (rho/pi) W [Ft(rho|xi-tau|) + Ft(rho(xi+tau))].
+    auto row = [&](double x, int j) {
+      return (rho / kPi) * w(j) * (kernel(rho * (x - xi(j))) + kernel(rho * (x + xi(j))));
+    };
+    Eigen::MatrixXd A(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) A(i, j) = (i == j ? 1.0 : 0.0) - row(xi(i), j);
+    Eigen::MatrixXd rhs(n, 2);
+    for (int i = 0; i < n; ++i) {
+      const double x = a * xi(i);
+      rhs(i, 0) = 1.0;
+      rhs(i, 1) = x * profile.sneddon(x).I0;  // x int_0^x f'(r)/sqrt(x^2 - r^2) dr
+    }
+    const Eigen::MatrixXd phi = A.partialPivLu().solve(rhs);
+    // Nystrom interpolation to the edge xi = 1.
+    double end0 = 1.0, endf = a * profile.sneddon(a).I0;
+    for (int j = 0; j < n; ++j) {
+      const double k = row(1.0, j);
+      end0 += k * phi(j, 0);
+      endf += k * phi(j, 1);
+    }
+    return NystromResult{w.dot(phi.col(0)), w.dot(phi.col(1)), end0, endf, n};
+  };
+  auto to_state = [&](const NystromResult& r) {
+    HertzState s;
+    s.a = a;
+    s.delta_H = r.phif_end / r.phi0_end;
+    s.S = 2.0 * E_star_ * a * r.int_phi0;
+    s.P_H = 2.0 * E_star_ * a * (s.delta_H * r.int_phi0 - r.int_phif);
+    s.dS_da = 2.0 * E_star_ * r.phi0_end * r.phi0_end;
+    return s;
+  };
+  const NystromResult fine = nystrom(n_fine);
+  const NystromResult coarse = nystrom(std::max(2, n_fine / 2));
+  ExactLayerState out;
+  out.state = to_state(fine);
+  const HertzState c = to_state(coarse);
+  out.P_H_error = std::abs(out.state.P_H - c.P_H) / std::abs(out.state.P_H);
+  out.delta_H_error = std::abs(out.state.delta_H - c.delta_H) / std::abs(out.state.delta_H);
+  out.unknowns = fine.unknowns;
+  if (!std::isfinite(out.state.P_H) || !std::isfinite(out.state.delta_H))
+    throw NumericalError("layerjkr::exact_layer: the Nystrom solve is not finite at a = " +
+                         format_double(a));
+  return out;
+}
+
+double ExactLayerKernel::flat_punch_factor(double a_over_h) const {
+  detail::require_positive("ExactLayerKernel::flat_punch_factor", "a_over_h", a_over_h);
+  const auto flat = make_paraboloid(1.0);  // any profile: only phi0 enters S
+  const double a = a_over_h * layer_.h;
+  return solve(*flat, a).state.S / (2.0 * E_star_ * a);
+}
+
+namespace {
+
+class ExactLayerModel final : public ContactModel {
+ public:
+  ExactLayerModel(ProfilePtr p, const ElasticLayer& layer, ExactLayerOptions o)
+      : ContactModel(std::move(p)), kernel_(layer, o) {}
+  HertzState state(double a) const override { return kernel_.solve(profile(), a).state; }
+  std::string name() const override { return "exact"; }
+
+ private:
+  ExactLayerKernel kernel_;
+};
+
+}  // namespace
+
+ContactModelPtr make_exact_layer(ProfilePtr profile, const ElasticLayer& layer,
+                                 ExactLayerOptions options) {
+  return std::make_shared<ExactLayerModel>(std::move(profile), layer, options);
+}
+
+}  // namespace layerjkr

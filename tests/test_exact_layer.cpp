@@ -1,0 +1,137 @@
+// The exact layer solver: published flat-punch factors, refinement, and both limits.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include <boost/math/differentiation/finite_difference.hpp>
+
+#include "layerjkr/contact.hpp"
+#include "layerjkr/error.hpp"
+#include "layerjkr/exact_layer.hpp"
+#include "test_support.hpp"
+
+using namespace layerjkr;
+using test::rel_err;
+
+namespace {
+ExactLayerOptions fine_options(double max_a_over_h) {
+  ExactLayerOptions o;
+  o.max_a_over_h = max_a_over_h;
+  o.points_per_panel = 12;
+  o.panel_width = 0.25;
+  o.table_spacing = 0.0125;
+  return o;
+}
+ExactLayerOptions range(double max_a_over_h) {
+  ExactLayerOptions o;
+  o.max_a_over_h = max_a_over_h;
+  return o;
+}
+}  // namespace
+
+TEST_CASE("flat-punch factors match the published table (theory.md s.4)", "[exact]") {
+  const ExactLayerKernel k03({1.0, 0.3, 1.0, Base::bonded}, range(6)),
+      k05({1.0, 0.5, 1.0, Base::bonded}, range(6));
+  const double a_over_h[] = {0.2, 1.0, 5.0};
+  const double nu03[] = {1.2066, 2.4835, 10.0998}, nu05[] = {1.2806, 3.6187, 50.1397};
+  for (int i = 0; i < 3; ++i) {
+    INFO("a/h=" << a_over_h[i]);
+    CHECK(std::abs(k03.flat_punch_factor(a_over_h[i]) - nu03[i]) < 6e-5);
+    CHECK(std::abs(k05.flat_punch_factor(a_over_h[i]) - nu05[i]) < 6e-5);
+  }
+}
+
+TEST_CASE("exact layer converges under refinement to better than 1e-6", "[exact]") {
+  const auto p = make_paraboloid(100.0);
+  for (double nu : {0.0, 0.3, 0.49, 0.5}) {
+    for (Base base : {Base::bonded, Base::frictionless}) {
+      const ElasticLayer layer{2.0, nu, 1.0, base};
+      const ExactLayerKernel normal(layer, range(20)), fine(layer, fine_options(20));
+      for (double a : {0.01, 1.0, 20.0}) {
+        const ExactLayerState s = normal.solve(*p, a), r = fine.solve(*p, a);
+        INFO("nu=" << nu << " bonded=" << (base == Base::bonded) << " a/h=" << a);
+        CHECK(rel_err(s.state.P_H, r.state.P_H) < 1e-7);
+        CHECK(rel_err(s.state.delta_H, r.state.delta_H) < 1e-7);
+        CHECK(s.P_H_error < 1e-6);
+        CHECK(s.delta_H_error < 1e-6);
+      }
+    }
+  }
+}
+
+TEST_CASE("exact layer: thick limit is the half-space, with an O(a/h) shift", "[exact]") {
+  const double R = 50.0, nu = 0.3, Es = 1.0 / (1 - nu * nu);
+  const auto p = make_paraboloid(R);
+  const ExactLayerKernel k({1.0, nu, 1.0, Base::bonded}, range(1));
+  double previous = 0.0;
+  for (double a : {1e-2, 1e-3, 1e-4}) {
+    const HertzState s = k.solve(*p, a).state;
+    const double e_delta = rel_err(s.delta_H, a * a / R);
+    INFO("a/h=" << a << " delta error " << e_delta);
+    CHECK(rel_err(s.P_H, 4 * Es * a * a * a / (3 * R)) < 2 * a * a);
+    if (previous > 0.0) CHECK(rel_err(previous / e_delta, 10.0) < 0.05);  // linear in a/h
+    previous = e_delta;
+  }
+  // Sneddon flat punch, S = 2 E* a, at a/h -> 0.
+  CHECK(rel_err(k.flat_punch_factor(1e-4), 1.0) < 2e-4);
+}
+
+TEST_CASE("exact layer: thin limit approaches Winkler as theory.md s.6 reports", "[exact]") {
+  const ThinLayerConstants c = thin_layer_constants({1.0, 0.3, 1.0, Base::bonded});
+  const auto p = make_paraboloid(1000.0);
+  const ExactLayerKernel k({1.0, 0.3, 1.0, Base::bonded}, range(20));
+  const double a_over_h[] = {2.0, 5.0, 8.0, 20.0}, ratio[] = {1.30, 1.10, 1.06, 1.025};
+  for (int i = 0; i < 4; ++i) {
+    const double exact = k.solve(*p, a_over_h[i]).state.P_H;
+    const double winkler = make_winkler(p, c.K)->state(a_over_h[i]).P_H;
+    INFO("a/h=" << a_over_h[i]);
+    CHECK(std::abs(exact / winkler - ratio[i]) < 0.005);
+  }
+}
+
+TEST_CASE("exact layer satisfies S = dP_H/d delta_H and S' = 2 E* phi0(a)^2", "[exact]") {
+  for (double nu : {0.3, 0.5}) {
+    const auto model = make_exact_layer(make_sphere(30.0), {1.0, nu, 1.0, Base::bonded}, range(10));
+    for (double a : {0.3, 2.0, 7.0}) {
+      auto along = [&](auto field) {
+        auto g = [&](double x) { return field(model->state(std::exp(x))); };
+        return boost::math::differentiation::finite_difference_derivative<decltype(g), double, 6>(
+                   g, std::log(a)) / a;
+      };
+      const HertzState s = model->state(a);
+      const double dP = along([](const HertzState& h) { return h.P_H; });
+      const double dd = along([](const HertzState& h) { return h.delta_H; });
+      const double dS = along([](const HertzState& h) { return h.S; });
+      INFO("nu=" << nu << " a/h=" << a);
+      CHECK(rel_err(dP / dd, s.S) < 1e-6);
+      CHECK(rel_err(dS, s.dS_da) < 1e-6);
+    }
+  }
+}
+
+TEST_CASE("exact layer JKR: thick layers give the classical -3/2 pi w R", "[exact][contact]") {
+  // w R^2 / (E* h^3) = 1e-7: the contact is far smaller than the layer.
+  const double R = 1e-3, w = 1e-4, h = 1e-2;
+  const JkrSolution jkr(make_exact_layer(make_paraboloid(R), {1e5, 0.4, h, Base::bonded}, range(1)), w);
+  const auto po = jkr.pull_off();
+  REQUIRE(po);
+  CHECK(rel_err(po->P, -1.5 * M_PI * w * R) < 1e-3);
+  CHECK(po->P < -1.5 * M_PI * w * R);  // a finite layer pulls off slightly harder
+}
+
+TEST_CASE("exact layer rejects invalid input", "[exact][errors]") {
+  const auto p = make_paraboloid(1.0);
+  CHECK_THROWS_WITH(ExactLayerKernel({1.0, 0.51, 1.0, Base::bonded}), Catch::Contains("nu = 0.51"));
+  CHECK_THROWS_WITH(ExactLayerKernel({1.0, 0.3, -1.0, Base::bonded}), Catch::Contains("h = -1"));
+  CHECK_THROWS_WITH(ExactLayerKernel({0.0, 0.3, 1.0, Base::bonded}), Catch::Contains("E = 0"));
+  ExactLayerOptions o;
+  o.points_per_panel = 2;
+  CHECK_THROWS_WITH(o.Validate(), Catch::Contains("points_per_panel = 2"));
+  o = ExactLayerOptions{};
+  o.max_a_over_h = 0.0;
+  CHECK_THROWS_WITH(o.Validate(), Catch::Contains("max_a_over_h = 0"));
+  const ExactLayerKernel k({1.0, 0.3, 1.0, Base::bonded}, range(5));
+  CHECK_THROWS_WITH(k.solve(*p, 6.0), Catch::Contains("a/h = 6") && Catch::Contains("max_a_over_h"));
+  CHECK_THROWS_AS(k.solve(*p, 0.0), DomainError);
+  CHECK_THROWS_AS(k.flat_punch_factor(-1.0), DomainError);
+}
