@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <exception>
+#include <limits>
 
 #include <Eigen/Dense>
 #include <boost/math/constants/constants.hpp>
@@ -206,13 +207,15 @@ ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const 
     return s;
   };
   const NystromResult fine = nystrom(n_fine);
-  const NystromResult coarse = nystrom(std::max(2, n_fine / 2));
   ExactLayerState out;
   out.state = to_state(fine);
-  const HertzState c = to_state(coarse);
-  out.P_H_error = std::abs(out.state.P_H - c.P_H) / std::abs(out.state.P_H);
-  out.delta_H_error = std::abs(out.state.delta_H - c.delta_H) / std::abs(out.state.delta_H);
   out.unknowns = fine.unknowns;
+  out.P_H_error = out.delta_H_error = std::numeric_limits<double>::quiet_NaN();
+  if (options_.estimate_error) {
+    const HertzState c = to_state(nystrom(std::max(2, n_fine / 2)));
+    out.P_H_error = std::abs(out.state.P_H - c.P_H) / std::abs(out.state.P_H);
+    out.delta_H_error = std::abs(out.state.delta_H - c.delta_H) / std::abs(out.state.delta_H);
+  }
   if (!std::isfinite(out.state.P_H) || !std::isfinite(out.state.delta_H))
     throw NumericalError("layerjkr::exact_layer: the Nystrom solve is not finite at a = " +
                          format_double(a));

@@ -1,0 +1,171 @@
+// What this teaches: what each thin-layer model costs and how wrong it is, measured
+// against the exact layer solver - the numbers behind README's "which model do I need".
+//
+// How the data is made: nothing is measured in a lab. A rigid paraboloid with R = 100 h
+// (the paper's Appendix A ratio) indents a layer (E = 1, h = 1: the errors are
+// dimensionless) for nu in {0, 0.2, 0.25, 0.3, 0.4, 0.45, 0.49, 0.5} on a bonded and a
+// frictionless base. At each a/h the non-adhesive P_H and delta_H of every applicable
+// model are compared with the exact solver's (accurate to < 1e-8). For adhesion, w is set so that
+// the Winkler pull-off radius is the target a/h (w = K a^4 / (8 R^2)), and each model's
+// pull-off force is compared with the exact one (targets a/h <= 20: the exact search
+// costs ~150 solves). Costs are medians of repeated wall-clock timings on this machine.
+//
+// Run: build/bin/model_tradeoff [OUTPUT_DIR]   (about two minutes on 2 cores)
+// Writes model_tradeoff.csv, model_tradeoff_pulloff.csv and, with gnuplot,
+// model_tradeoff.png.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "layerjkr/layerjkr.hpp"
+
+using namespace layerjkr;
+
+namespace {
+
+template <class F>
+double median_seconds(F f, int repeats, int inner) {
+  std::vector<double> t;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < inner; ++i) f();
+    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / inner);
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+struct Named {
+  std::string name;
+  ContactModelPtr model;
+};
+
+// The asymptotic models that apply to this layer (none at nu = 0.5).
+std::vector<Named> asymptotic_models(const ProfilePtr& p, const ElasticLayer& layer) {
+  if (layer.nu >= 0.5) return {};
+  const ThinLayerConstants c = thin_layer_constants(layer);
+  std::vector<Named> out{{"winkler", make_winkler(p, c.K)}};
+  if (c.G != 0.0) out.push_back({"two_term", make_two_term(p, c.K, c.G)});
+  if (c.G > 0.0) out.push_back({"full_foundation", make_full_foundation(p, c.K, c.G)});
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string dir = argc > 1 ? argv[1] : ".";
+  const double h = 1.0, R = 100.0;
+  const auto paraboloid = make_paraboloid(R);
+  const std::vector<double> nus{0.0, 0.2, 0.25, 0.3, 0.4, 0.45, 0.49, 0.5};
+  const std::vector<double> ratios{0.5, 1, 2, 4, 5, 10, 20, 50, 100};
+  const std::vector<double> pulloff_ratios{0.5, 1, 2, 5, 10, 20};
+
+  std::ofstream csv(dir + "/model_tradeoff.csv"), pcsv(dir + "/model_tradeoff_pulloff.csv");
+  csv << "nu,base,a_over_h,model,P_rel_err,delta_rel_err,seconds_per_point\n";
+  pcsv << "nu,base,a_over_h_target,model,pull_off_rel_err,pull_off_force,pull_off_a_over_h\n";
+  csv.precision(6);
+  pcsv.precision(6);
+
+  std::printf("relative error against the exact layer, %%, at a/h = 0.5 1 2 4 5 10 20 50 100\n");
+  std::printf("%-5s %-12s %-16s %-2s\n", "nu", "base", "model", "of");
+  for (Base base : {Base::bonded, Base::frictionless}) {
+    const char* base_name = base == Base::bonded ? "bonded" : "frictionless";
+    for (double nu : nus) {
+      const ElasticLayer layer{1.0, nu, h, base};
+      ExactLayerOptions options;
+      options.estimate_error = false;
+      const auto exact = make_exact_layer(paraboloid, layer, options);
+      const auto models = asymptotic_models(paraboloid, layer);
+      std::vector<std::string> rows(2 * models.size());
+      for (std::size_t m = 0; m < models.size(); ++m) {
+        char head[64];
+        std::snprintf(head, sizeof head, "%-5.2f %-12s %-16s P ", nu, base_name, models[m].name.c_str());
+        rows[2 * m] = head;
+        std::snprintf(head, sizeof head, "%-5s %-12s %-16s d ", "", "", "");
+        rows[2 * m + 1] = head;
+      }
+      for (double r : ratios) {
+        const double a = r * h;
+        const HertzState e = exact->state(a);
+        const double t_exact = median_seconds([&] { (void)exact->state(a); }, 3, 1);
+        csv << nu << ',' << base_name << ',' << r << ",exact,0,0," << t_exact << '\n';
+        for (std::size_t m = 0; m < models.size(); ++m) {
+          const HertzState s = models[m].model->state(a);
+          const double eP = s.P_H / e.P_H - 1, ed = s.delta_H / e.delta_H - 1;
+          const double t = median_seconds([&] { (void)models[m].model->state(a); }, 5, 2000);
+          csv << nu << ',' << base_name << ',' << r << ',' << models[m].name << ',' << eP << ','
+              << ed << ',' << t << '\n';
+          char cell[16];
+          std::snprintf(cell, sizeof cell, " %+7.2f", 100 * eP);
+          rows[2 * m] += cell;
+          std::snprintf(cell, sizeof cell, " %+7.2f", 100 * ed);
+          rows[2 * m + 1] += cell;
+        }
+      }
+      for (const auto& row : rows) std::printf("%s\n", row.c_str());
+      if (models.empty()) std::printf("%-5.2f %-12s (no asymptotic model: exact only)\n", nu, base_name);
+
+      // Adhesion: pull-off forces against the exact layer's.
+      if (models.empty()) continue;
+      const double K = thin_layer_constants(layer).K;
+      for (double r : pulloff_ratios) {
+        const double w = K * std::pow(r * h, 4) / (8 * R * R);
+        const auto po_exact = JkrSolution(exact, w).pull_off();
+        if (!po_exact) continue;
+        pcsv << nu << ',' << base_name << ',' << r << ",exact,0," << po_exact->P << ','
+             << po_exact->a / h << '\n';
+        for (const auto& m : models) {
+          const auto po = JkrSolution(m.model, w).pull_off();
+          if (!po) continue;
+          pcsv << nu << ',' << base_name << ',' << r << ',' << m.name << ','
+               << po->P / po_exact->P - 1 << ',' << po->P << ',' << po->a / h << '\n';
+        }
+      }
+    }
+  }
+  csv.close();
+  pcsv.close();
+  std::printf("\nwrote %s/model_tradeoff.csv and %s/model_tradeoff_pulloff.csv\n", dir.c_str(),
+              dir.c_str());
+
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+    const std::string gp_path = dir + "/model_tradeoff.gp", data = dir + "/model_tradeoff.csv";
+    std::ofstream gp(gp_path);
+    gp << "set terminal pngcairo size 1200,520 font 'DejaVu Sans,11'\n"
+       << "set output '" << dir << "/model_tradeoff.png'\nset datafile separator ','\n"
+       << "set logscale xy\nset grid\nset xlabel 'a/h'\nset ylabel '|relative error of P_H|'\n"
+       << "set yrange [1e-4:2]\nset key bottom left\n"
+       << "set multiplot layout 1,2 title 'Thin-layer models against the exact layer "
+          "(paraboloid, R = 100 h)'\n";
+    // column 5: P error, column 6: delta error
+    auto series = [&](int column, const char* base, const char* model, double nu,
+                      const char* style, const char* title) {
+      char s[512];
+      std::snprintf(s, sizeof s,
+                    "'%s' u ((stringcolumn(2) eq '%s' && stringcolumn(4) eq '%s' && "
+                    "abs($1-%g) < 1e-9) ? $3 : 1/0):(abs($%d)) w p %s t '%s'",
+                    data.c_str(), base, model, nu, column, style, title);
+      return std::string(s);
+    };
+    gp << "set title 'force P_H'\nplot "
+       << series(5, "bonded", "winkler", 0.3, "ps 1.5 lc rgb '#1f77b4' pt 7", "Winkler = two-term, bonded, nu = 0.3") << ", \\\n "
+       << series(5, "bonded", "winkler", 0.45, "ps 1.5 lc rgb '#9467bd' pt 6", "Winkler = two-term, bonded, nu = 0.45") << ", \\\n "
+       << series(5, "frictionless", "winkler", 0.3, "ps 1.5 lc rgb '#ff7f0e' pt 9", "Winkler, frictionless, any nu") << ", \\\n "
+       << series(5, "bonded", "full_foundation", 0.2, "ps 1.5 lc rgb '#2ca02c' pt 5", "full foundation, bonded, nu = 0.2") << "\n"
+       << "set title 'approach delta_H'\nset ylabel '|relative error of delta_H|'\nplot "
+       << series(6, "bonded", "winkler", 0.3, "ps 1.5 lc rgb '#1f77b4' pt 7", "Winkler, bonded, nu = 0.3") << ", \\\n "
+       << series(6, "bonded", "two_term", 0.3, "ps 1.5 lc rgb '#d62728' pt 5", "two-term, bonded, nu = 0.3") << ", \\\n "
+       << series(6, "bonded", "two_term", 0.45, "ps 1.5 lc rgb '#9467bd' pt 4", "two-term, bonded, nu = 0.45") << ", \\\n "
+       << series(6, "bonded", "full_foundation", 0.2, "ps 1.5 lc rgb '#2ca02c' pt 5", "full foundation, bonded, nu = 0.2") << "\n"
+       << "unset multiplot\n";
+    gp.close();
+    if (std::system(("gnuplot '" + gp_path + "'").c_str()) == 0)
+      std::printf("wrote %s/model_tradeoff.png\n", dir.c_str());
+  }
+  return 0;
+}
