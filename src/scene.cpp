@@ -11,7 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "layerjkr/error.hpp"
+#include "layerjkr/contact.hpp"
 #include "layerjkr/exact_layer.hpp"
+#include "layerjkr/model_choice.hpp"
 
 namespace layerjkr {
 namespace {
@@ -174,7 +176,7 @@ std::vector<std::string> models_for(MediumType t) {
   switch (t) {
     case MediumType::winkler: return {"winkler"};
     case MediumType::half_space: return {"half_space"};
-    case MediumType::layer: return {"", "leading", "two_term", "exact"};
+    case MediumType::layer: return {"", "leading", "two_term", "exact", "auto"};
     case MediumType::pasternak:
     case MediumType::filonenko_borodich: return {"", "asymptotic", "full"};
   }
@@ -192,7 +194,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     throw InputError(source + ": not valid JSON (" + e.what() + ")");
   }
   if (!root.is_object()) in.fail("the scene", "must be a JSON object, got " + show(root));
-  in.only_keys(root, "scene", {"indenter", "medium", "model", "solver", "w"});
+  in.only_keys(root, "scene", {"indenter", "medium", "model", "solver", "w", "tolerance"});
   Scene s;
   s.profile = read_indenter(in, root);
   s.medium = read_medium(in, root);
@@ -226,9 +228,36 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     s.w = in.as_number(root.at("w"), "w");
     if (s.w < 0.0) in.fail("w", "= " + format_double(s.w) + " is invalid; valid range: >= 0");
   }
+  if (s.model == "auto") {
+    if (!root.contains("tolerance"))
+      in.fail("tolerance", "is missing; model \"auto\" needs a relative error target in (0, 1)");
+    s.tolerance = in.as_number(root.at("tolerance"), "tolerance");
+    if (!(s.tolerance > 0.0 && s.tolerance < 1.0))
+      in.fail("tolerance", "= " + format_double(s.tolerance) + " is invalid; valid range: (0, 1)");
+    if (s.solver != "closed_form") in.fail("solver", "must be closed_form with model \"auto\"");
+    // Validate the layer without building the (expensive) exact kernel.
+    in.checked("medium", [&] {
+      detail::require_positive("layer", "h", s.medium.h);
+      return effective_modulus(s.medium.E, s.medium.nu);
+    });
+    return s;
+  }
+  if (root.contains("tolerance"))
+    in.fail("tolerance", "is only used with model \"auto\" (model is \"" + s.model + "\")");
   // Build once so every invalid value is reported at parse time.
   (void)build_scene(s);
   return s;
+}
+
+double summary_reference_radius(const Scene& s) {
+  const MediumSpec& m = s.medium;
+  if (m.type != MediumType::layer) return 0.0;
+  if (s.w > 0.0 && m.nu < 0.5) {
+    const ThinLayerConstants c = thin_layer_constants({m.E, m.nu, m.h, m.base});
+    if (const auto po = JkrSolution(make_winkler(s.profile, c.K), s.w).pull_off())
+      return 0.5 * po->a;
+  }
+  return m.h;
 }
 
 Scene load_scene(const std::string& path) {
@@ -240,7 +269,7 @@ Scene load_scene(const std::string& path) {
   return parse_scene(text.str(), path);
 }
 
-BuiltScene build_scene(const Scene& s) {
+BuiltScene build_scene(const Scene& s, double a_min) {
   Reader in("scene");
   BuiltScene b;
   const MediumSpec& m = s.medium;
@@ -260,6 +289,28 @@ BuiltScene build_scene(const Scene& s) {
       full = s.model == "full";
       break;
     case MediumType::layer: {
+      if (s.model == "auto") {
+        if (!(a_min > 0.0) || !std::isfinite(a_min))
+          throw DomainError("build_scene", "a_min (smallest contact radius of interest)", a_min,
+                            "finite and > 0 for model auto");
+        const ModelChoice choice = in.checked("medium", [&] {
+          return choose_layer_model(s.profile, {m.E, m.nu, m.h, m.base}, s.tolerance, a_min);
+        });
+        b.model = choice.contact_model;
+        b.automatic = true;
+        b.chosen_model = choice.model;
+        b.estimated_error = choice.estimated_error;
+        b.reference_radius = choice.reference_radius;
+        b.has_effective_modulus = true;
+        b.E_star = effective_modulus(m.E, m.nu);
+        if (m.nu < 0.5) {
+          const ThinLayerConstants c = thin_layer_constants({m.E, m.nu, m.h, m.base});
+          b.has_foundation_constants = true;
+          b.K = c.K;
+          b.G = c.G;
+        }
+        return b;
+      }
       if (s.model == "exact") {  // nu = 0.5 is valid here: no thin-layer expansion
         b.model = in.checked("medium", [&] {
           return make_exact_layer(s.profile, {m.E, m.nu, m.h, m.base});

@@ -6,5 +6,6 @@
 #include "layerjkr/exact_layer.hpp"
 #include "layerjkr/jkr.hpp"
 #include "layerjkr/model.hpp"
+#include "layerjkr/model_choice.hpp"
 #include "layerjkr/profile.hpp"
 #include "layerjkr/scene.hpp"

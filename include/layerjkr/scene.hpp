@@ -9,7 +9,8 @@
 //                 | table {r: [...], z: [...]}
 // medium.type:    winkler {K} | pasternak {K, G} | filonenko_borodich {K, T}
 //                 | layer {E, nu, h, base: bonded|frictionless} | half_space {E, nu}
-// model:          layer: leading | two_term | exact (nu may be 0.5);  pasternak, filonenko_borodich: asymptotic |
+// model:          layer: leading | two_term | exact (nu may be 0.5) | auto (needs
+//                 "tolerance": the cheapest model whose measured error is within it);  pasternak, filonenko_borodich: asymptotic |
 //                 full;  winkler: winkler (default);  half_space: half_space (default)
 // solver:         closed_form (default) | ode  (foundation models only)
 // w:              work of adhesion [J/m^2], >= 0 (absent = 0)
@@ -41,6 +42,7 @@ struct Scene {
   std::string model;                  ///< resolved model name
   std::string solver = "closed_form"; ///< closed_form | ode
   double w = 0.0;                     ///< [J/m^2]
+  double tolerance = 0.0;             ///< relative error target of model "auto", in (0, 1)
 };
 
 /// The scene turned into a contact model, with the constants it used.
@@ -52,6 +54,11 @@ struct BuiltScene {
   bool has_effective_modulus = false;
   double E_star = 0.0;  ///< [Pa], layers and half-space
   std::vector<std::string> warnings;
+  /// Model "auto": what was chosen, its estimated error, and at which radius [m].
+  bool automatic = false;
+  std::string chosen_model;
+  double estimated_error = 0.0;
+  double reference_radius = 0.0;
 };
 
 /// Parses a scene from JSON text; `source` names it in error messages.
@@ -60,7 +67,12 @@ Scene parse_scene(const std::string& json_text, const std::string& source = "sce
 /// Reads and parses a scene file. Throws InputError if it cannot be read.
 Scene load_scene(const std::string& path);
 
-/// Builds the contact model of a parsed scene.
-BuiltScene build_scene(const Scene& scene);
+/// Builds the contact model of a parsed scene. Model "auto" chooses for contact radii
+/// >= a_min [m] (required > 0 for "auto", ignored otherwise).
+BuiltScene build_scene(const Scene& scene, double a_min = 0.0);
+
+/// The radius model "auto" should be chosen at for a summary: half the Winkler pull-off
+/// radius (which covers the fixed-grips point), or h when there is no adhesion.
+double summary_reference_radius(const Scene& scene);
 
 }  // namespace layerjkr

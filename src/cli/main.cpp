@@ -2,6 +2,7 @@
 //   layerjkr curve SCENE.json (--at a1,a2,... | --a-max A --points N)
 //   layerjkr summary SCENE.json
 // Exit codes: 0 success, 2 invalid scene or arguments, 1 internal failure.
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -43,9 +44,15 @@ void print_warnings(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) std::cerr << "layerjkr: warning: " << w << "\n";
 }
 
+void print_choice(const layerjkr::BuiltScene& built) {
+  if (built.automatic)
+    std::cerr << "layerjkr: auto chose model '" << built.chosen_model << "' (estimated error "
+              << format_double(built.estimated_error) << " for a >= "
+              << format_double(built.reference_radius) << " m)\n";
+}
+
 int run_curve(const std::string& path, const std::string& at, double a_max, int points) {
   const layerjkr::Scene scene = layerjkr::load_scene(path);
-  const layerjkr::BuiltScene built = layerjkr::build_scene(scene);
   std::vector<double> radii;
   if (!at.empty()) {
     radii = parse_radii(at);
@@ -55,6 +62,8 @@ int run_curve(const std::string& path, const std::string& at, double a_max, int 
     if (points < 1) throw layerjkr::InputError("--points = " + std::to_string(points) + " must be >= 1");
     for (int i = 1; i <= points; ++i) radii.push_back(a_max * i / points);
   }
+  const layerjkr::BuiltScene built =
+      layerjkr::build_scene(scene, *std::min_element(radii.begin(), radii.end()));
   const layerjkr::JkrSolution solution(built.model, scene.w);
   // Compute everything before printing so a failure never leaves partial output.
   std::string out = "a,P,delta,P_H,delta_H,S\n";
@@ -63,13 +72,15 @@ int run_curve(const std::string& path, const std::string& at, double a_max, int 
            format_double(s.hertz.P_H) + "," + format_double(s.hertz.delta_H) + "," +
            format_double(s.hertz.S) + "\n";
   print_warnings(built.warnings);
+  print_choice(built);
   std::cout << out;
   return 0;
 }
 
 int run_summary(const std::string& path) {
   const layerjkr::Scene scene = layerjkr::load_scene(path);
-  const layerjkr::BuiltScene built = layerjkr::build_scene(scene);
+  const layerjkr::BuiltScene built =
+      layerjkr::build_scene(scene, layerjkr::summary_reference_radius(scene));
   const layerjkr::JkrSolution solution(built.model, scene.w);
   const layerjkr::ContactSummary s = layerjkr::summarize(solution);
   nlohmann::ordered_json j;
@@ -92,8 +103,14 @@ int run_summary(const std::string& path) {
     j[scene.medium.type == layerjkr::MediumType::filonenko_borodich ? "T" : "G"] = built.G;
   }
   if (built.has_effective_modulus) j["E_star"] = built.E_star;
+  if (built.automatic)
+    j["model_choice"] = {{"model", built.chosen_model},
+                         {"estimated_error", built.estimated_error},
+                         {"tolerance", scene.tolerance},
+                         {"reference_radius", built.reference_radius}};
   j["warnings"] = built.warnings;
   print_warnings(built.warnings);
+  print_choice(built);
   std::cout << j.dump(2) << "\n";
   return 0;
 }

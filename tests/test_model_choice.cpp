@@ -1,0 +1,89 @@
+// Model "auto": the error estimates bound the real error off the measured grid, and the
+// choice is the cheapest model within tolerance.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "layerjkr/error.hpp"
+#include "layerjkr/exact_layer.hpp"
+#include "layerjkr/model_choice.hpp"
+#include "layerjkr/scene.hpp"
+#include "test_support.hpp"
+
+using namespace layerjkr;
+
+TEST_CASE("estimated errors bound the measured error at off-grid nu and a/h", "[auto]") {
+  const auto p = make_paraboloid(100.0);
+  for (Base base : {Base::bonded, Base::frictionless}) {
+    for (double nu : {0.05, 0.15, 0.22, 0.27, 0.35, 0.42, 0.47}) {
+      const ElasticLayer layer{1.0, nu, 1.0, base};
+      ExactLayerOptions o;
+      o.max_a_over_h = 40;
+      o.estimate_error = false;
+      const ExactLayerKernel exact(layer, o);
+      const ThinLayerConstants c = thin_layer_constants(layer);
+      for (double r : {0.7, 3.0, 7.0, 15.0, 35.0}) {
+        const HertzState e = exact.solve(*p, r).state;
+        struct M { const char* name; ContactModelPtr model; };
+        std::vector<M> models{{"winkler", make_winkler(p, c.K)}, {"two_term", make_two_term(p, c.K, c.G)}};
+        if (c.G > 0) models.push_back({"full_foundation", make_full_foundation(p, c.K, c.G)});
+        for (const auto& m : models) {
+          const HertzState s = m.model->state(r);
+          const double actual = std::max(std::abs(s.P_H / e.P_H - 1), std::abs(s.delta_H / e.delta_H - 1));
+          const double estimate = estimated_model_error(m.name, layer, r);
+          INFO(m.name << " nu=" << nu << " bonded=" << (base == Base::bonded) << " a/h=" << r
+                      << " actual=" << actual << " estimate=" << estimate);
+          CHECK(actual <= estimate);
+          CHECK(estimate < 25 * actual + 0.02);  // conservative, not vacuous
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("estimates beyond the measured domain are infinite", "[auto]") {
+  const ElasticLayer bonded{1.0, 0.3, 1.0, Base::bonded};
+  CHECK(std::isinf(estimated_model_error("winkler", bonded, 0.3)));  // a/h < 0.5
+  CHECK(std::isinf(estimated_model_error("winkler", {1.0, 0.495, 1.0, Base::bonded}, 10.0)));
+  CHECK(std::isinf(estimated_model_error("winkler", {1.0, -0.2, 1.0, Base::bonded}, 10.0)));
+  CHECK(std::isinf(estimated_model_error("full_foundation", bonded, 10.0)));  // G < 0
+  // Beyond a/h = 100 the O(h/a) law scales the last measurement.
+  CHECK(estimated_model_error("winkler", bonded, 1000.0) ==
+        Approx(estimated_model_error("winkler", bonded, 100.0) / 10));
+  CHECK_THROWS_AS(estimated_model_error("hertz", bonded, 10.0), DomainError);
+  CHECK_THROWS_AS(estimated_model_error("winkler", bonded, -1.0), DomainError);
+}
+
+TEST_CASE("choose_layer_model picks the cheapest model within tolerance", "[auto]") {
+  const auto p = make_paraboloid(100.0);
+  const ElasticLayer nu03{1.0, 0.3, 1.0, Base::bonded}, nu02{1.0, 0.2, 1.0, Base::bonded};
+  CHECK(choose_layer_model(p, nu03, 0.05, 50.0).model == "winkler");
+  CHECK(choose_layer_model(p, nu03, 0.05, 1.0).model == "exact");
+  CHECK(choose_layer_model(p, nu02, 0.03, 10.0).model == "full_foundation");
+  CHECK(choose_layer_model(p, nu02, 0.2, 10.0).model == "winkler");
+  CHECK(choose_layer_model(p, {1.0, 0.5, 1.0, Base::bonded}, 0.5, 50.0).model == "exact");
+  const ModelChoice c = choose_layer_model(p, nu03, 0.05, 50.0);
+  CHECK(c.estimated_error <= 0.05);
+  CHECK(c.reference_radius == 50.0);
+  CHECK(c.contact_model->name() == "winkler");
+  CHECK_THROWS_WITH(choose_layer_model(p, nu03, 0.0, 1.0), Catch::Contains("tolerance = 0"));
+  CHECK_THROWS_WITH(choose_layer_model(p, nu03, 0.1, 0.0), Catch::Contains("a_min = 0"));
+}
+
+TEST_CASE("scenes with model auto need a tolerance and a radius of interest", "[auto][scene]") {
+  const std::string head = R"({"indenter": {"shape": "paraboloid", "R": 0.01},
+      "medium": {"type": "layer", "E": 3e6, "nu": 0.3, "h": 1e-4}, "model": "auto")";
+  CHECK_THROWS_WITH(parse_scene(head + "}"), Catch::Contains("tolerance is missing"));
+  CHECK_THROWS_WITH(parse_scene(head + R"(, "tolerance": 1.5})"), Catch::Contains("tolerance = 1.5"));
+  CHECK_THROWS_WITH(parse_scene(head + R"(, "tolerance": "tight"})"), Catch::Contains("tolerance must be a number"));
+  CHECK_THROWS_WITH(parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 0.01},
+      "medium": {"type": "layer", "E": 3e6, "nu": 0.3, "h": 1e-4}, "model": "leading", "tolerance": 0.1})"),
+                    Catch::Contains("tolerance is only used with model \"auto\""));
+  const Scene s = parse_scene(head + R"(, "tolerance": 0.05, "w": 0.05})");
+  CHECK_THROWS_WITH(build_scene(s), Catch::Contains("a_min"));
+  const BuiltScene far = build_scene(s, 5e-3);  // a/h = 50
+  CHECK(far.automatic);
+  CHECK(far.chosen_model == "winkler");
+  CHECK(far.estimated_error <= 0.05);
+  CHECK(build_scene(s, summary_reference_radius(s)).chosen_model == "exact");
+}
