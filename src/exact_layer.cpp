@@ -10,6 +10,8 @@
 #include <limits>
 
 #include <Eigen/Dense>
+#include <boost/math/differentiation/finite_difference.hpp>
+#include <boost/math/quadrature/tanh_sinh.hpp>
 #include <boost/math/constants/constants.hpp>
 
 #include "gsl_support.hpp"
@@ -60,7 +62,6 @@ struct GlFree {
 struct ExactLayerKernel::Table {
   double gamma = 0.0, sigma_max = 0.0;
   std::unique_ptr<gsl_spline, SplineFree> spline;
-  std::unique_ptr<gsl_integration_glfixed_table, GlFree> gl;
 };
 
 void ExactLayerOptions::Validate() const {
@@ -128,8 +129,6 @@ ExactLayerKernel::ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions 
   }
   table_->spline.reset(gsl_spline_alloc(gsl_interp_cspline, x.size()));
   gsl_spline_init(table_->spline.get(), x.data(), y.data(), x.size());
-  table_->gl.reset(
-      gsl_integration_glfixed_table_alloc(static_cast<std::size_t>(options_.points_per_panel)));
 }
 
 ExactLayerKernel::~ExactLayerKernel() = default;
@@ -145,12 +144,73 @@ double ExactLayerKernel::kernel(double sigma) const {
   return model + gsl_spline_eval(table_->spline.get(), sigma, nullptr);
 }
 
+double ExactLayerKernel::kernel_derivative(double sigma) const {
+  const double x = std::abs(sigma);
+  if (!(x <= table_->sigma_max))
+    throw DomainError("ExactLayerKernel::kernel_derivative", "sigma", sigma,
+                      "[0, " + format_double(table_->sigma_max) + "]");
+  const double b2 = kBeta * kBeta, s2 = x * x, d = b2 + s2;
+  const double model = -2.0 * kBeta * x / (d * d) +
+                       table_->gamma * (-2.0 * x / (d * d) - 4.0 * x * (b2 - s2) / (d * d * d));
+  const double value = model + gsl_spline_eval_deriv(table_->spline.get(), x, nullptr);
+  return sigma < 0.0 ? -value : value;
+}
+
 namespace {
 
-struct NystromResult {
-  double int_phi0, int_phif, phi0_end, phif_end;
-  int unknowns;
+// phi0 (flat punch) and phi_f (profile) on the Nystrom nodes, in xi = x/a in [0, 1].
+struct Nystrom {
+  Eigen::VectorXd xi, w;
+  Eigen::MatrixXd phi;  // columns: phi0, phi_f
+  double rho = 0.0, end0 = 0.0, endf = 0.0;
 };
+
+Nystrom nystrom_solve(const ExactLayerKernel& k, const Profile& profile, double a, int panels,
+                      int m) {
+  Nystrom out;
+  const double rho = a / k.layer().h;
+  out.rho = rho;
+  const int n = panels * m;
+  std::unique_ptr<gsl_integration_glfixed_table, GlFree> gl(
+      gsl_integration_glfixed_table_alloc(static_cast<std::size_t>(m)));
+  out.xi.resize(n);
+  out.w.resize(n);
+  for (int p = 0; p < panels; ++p)
+    for (int q = 0; q < m; ++q) {
+      double x = 0.0, wq = 0.0;
+      gsl_integration_glfixed_point(double(p) / panels, double(p + 1) / panels,
+                                    static_cast<std::size_t>(q), &x, &wq, gl.get());
+      out.xi(p * m + q) = x;
+      out.w(p * m + q) = wq;
+    }
+  // Dimensionless x = a xi: A = I - (rho/pi) W [Ft(rho|xi-tau|) + Ft(rho(xi+tau))].
+  auto row = [&](double x, int j) {
+    return (rho / kPi) * out.w(j) * (k.kernel(rho * (x - out.xi(j))) + k.kernel(rho * (x + out.xi(j))));
+  };
+  Eigen::MatrixXd A(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) A(i, j) = (i == j ? 1.0 : 0.0) - row(out.xi(i), j);
+  Eigen::MatrixXd rhs(n, 2);
+  for (int i = 0; i < n; ++i) {
+    const double x = a * out.xi(i);
+    rhs(i, 0) = 1.0;
+    rhs(i, 1) = x * profile.sneddon(x).I0;  // x int_0^x f'(r)/sqrt(x^2 - r^2) dr
+  }
+  out.phi = A.partialPivLu().solve(rhs);
+  // Nystrom interpolation to the edge xi = 1.
+  out.end0 = 1.0;
+  out.endf = a * profile.sneddon(a).I0;
+  for (int j = 0; j < n; ++j) {
+    const double kj = row(1.0, j);
+    out.end0 += kj * out.phi(j, 0);
+    out.endf += kj * out.phi(j, 1);
+  }
+  return out;
+}
+
+int panel_count(const ExactLayerOptions& o, double rho) {
+  return std::max(o.min_panels, static_cast<int>(std::ceil(rho / o.panel_width)));
+}
 
 }  // namespace
 
@@ -161,64 +221,83 @@ ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const 
     throw DomainError("exact_layer", "a/h", rho,
                       "(0, " + format_double(options_.max_a_over_h) +
                           "] (ExactLayerOptions::max_a_over_h)");
-  const int n_fine = std::max(options_.min_panels,
-                              static_cast<int>(std::ceil(rho / options_.panel_width)));
-  auto nystrom = [&](int panels) {
-    const int m = options_.points_per_panel, n = panels * m;
-    Eigen::VectorXd xi(n), w(n);
-    for (int p = 0; p < panels; ++p)
-      for (int k = 0; k < m; ++k) {
-        double x = 0.0, wk = 0.0;
-        gsl_integration_glfixed_point(double(p) / panels, double(p + 1) / panels,
-                                      static_cast<std::size_t>(k), &x, &wk, table_->gl.get());
-        xi(p * m + k) = x;
-        w(p * m + k) = wk;
-      }
-    // Dimensionless x = a xi: A = I - (rho/pi) W [Ft(rho|xi-tau|) + Ft(rho(xi+tau))].
-    auto row = [&](double x, int j) {
-      return (rho / kPi) * w(j) * (kernel(rho * (x - xi(j))) + kernel(rho * (x + xi(j))));
-    };
-    Eigen::MatrixXd A(n, n);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) A(i, j) = (i == j ? 1.0 : 0.0) - row(xi(i), j);
-    Eigen::MatrixXd rhs(n, 2);
-    for (int i = 0; i < n; ++i) {
-      const double x = a * xi(i);
-      rhs(i, 0) = 1.0;
-      rhs(i, 1) = x * profile.sneddon(x).I0;  // x int_0^x f'(r)/sqrt(x^2 - r^2) dr
-    }
-    const Eigen::MatrixXd phi = A.partialPivLu().solve(rhs);
-    // Nystrom interpolation to the edge xi = 1.
-    double end0 = 1.0, endf = a * profile.sneddon(a).I0;
-    for (int j = 0; j < n; ++j) {
-      const double k = row(1.0, j);
-      end0 += k * phi(j, 0);
-      endf += k * phi(j, 1);
-    }
-    return NystromResult{w.dot(phi.col(0)), w.dot(phi.col(1)), end0, endf, n};
-  };
-  auto to_state = [&](const NystromResult& r) {
+  const int n_fine = panel_count(options_, rho);
+  auto to_state = [&](const Nystrom& r) {
+    const double int0 = r.w.dot(r.phi.col(0)), intf = r.w.dot(r.phi.col(1));
     HertzState s;
     s.a = a;
-    s.delta_H = r.phif_end / r.phi0_end;
-    s.S = 2.0 * E_star_ * a * r.int_phi0;
-    s.P_H = 2.0 * E_star_ * a * (s.delta_H * r.int_phi0 - r.int_phif);
-    s.dS_da = 2.0 * E_star_ * r.phi0_end * r.phi0_end;
+    s.delta_H = r.endf / r.end0;
+    s.S = 2.0 * E_star_ * a * int0;
+    s.P_H = 2.0 * E_star_ * a * (s.delta_H * int0 - intf);
+    s.dS_da = 2.0 * E_star_ * r.end0 * r.end0;
     return s;
   };
-  const NystromResult fine = nystrom(n_fine);
+  const int m = options_.points_per_panel;
+  const Nystrom fine = nystrom_solve(*this, profile, a, n_fine, m);
   ExactLayerState out;
   out.state = to_state(fine);
-  out.unknowns = fine.unknowns;
+  out.unknowns = static_cast<int>(fine.xi.size());
   out.P_H_error = out.delta_H_error = std::numeric_limits<double>::quiet_NaN();
   if (options_.estimate_error) {
-    const HertzState c = to_state(nystrom(std::max(2, n_fine / 2)));
+    const HertzState c = to_state(nystrom_solve(*this, profile, a, std::max(2, n_fine / 2), m));
     out.P_H_error = std::abs(out.state.P_H - c.P_H) / std::abs(out.state.P_H);
     out.delta_H_error = std::abs(out.state.delta_H - c.delta_H) / std::abs(out.state.delta_H);
   }
   if (!std::isfinite(out.state.P_H) || !std::isfinite(out.state.delta_H))
     throw NumericalError("layerjkr::exact_layer: the Nystrom solve is not finite at a = " +
                          format_double(a));
+  return out;
+}
+
+std::vector<double> ExactLayerKernel::pressure(const Profile& profile, double a,
+                                               const std::vector<double>& radii) const {
+  profile.require_contact_radius("ExactLayerKernel::pressure", a);
+  const double rho = a / layer_.h;
+  if (!(rho <= options_.max_a_over_h))
+    throw DomainError("ExactLayerKernel::pressure", "a/h", rho,
+                      "(0, " + format_double(options_.max_a_over_h) + "]");
+  const Nystrom ny = nystrom_solve(*this, profile, a, panel_count(options_, rho),
+                                   options_.points_per_panel);
+  const double delta = ny.endf / ny.end0;
+  // d/dt [t I0(t)] for the profile column, by 6th-order differences in ln t.
+  auto rhs_f_slope = [&](double t) {
+    auto g = [&](double x) {
+      const double r = std::exp(x);
+      return r * profile.sneddon(r).I0;
+    };
+    return boost::math::differentiation::finite_difference_derivative<decltype(g), double, 6>(
+               g, std::log(t)) / t;
+  };
+  // g'(t) = (E*/pi) [delta phi0'(t) - phi_f'(t)] from the Nystrom interpolant.
+  auto g_slope = [&](double t) {
+    const double x = t / a;
+    double d0 = 0.0, df = rhs_f_slope(t);
+    for (Eigen::Index j = 0; j < ny.xi.size(); ++j) {
+      const double kj = (ny.rho / kPi) * ny.w(j) * (ny.rho / a) *
+                        (kernel_derivative(ny.rho * (x - ny.xi(j))) +
+                         kernel_derivative(ny.rho * (x + ny.xi(j))));
+      d0 += kj * ny.phi(j, 0);
+      df += kj * ny.phi(j, 1);
+    }
+    return (E_star_ / kPi) * (delta * d0 - df);
+  };
+  static thread_local boost::math::quadrature::tanh_sinh<double> rule;
+  std::vector<double> out;
+  for (double r : radii) {
+    if (!(r >= 0.0 && r < a))
+      throw DomainError("ExactLayerKernel::pressure", "r", r, "[0, a) with a = " + format_double(a));
+    // t^2 = r^2 + s^2 removes the inverse square root; s = u sqrt(a^2 - r^2), u in [0, 1].
+    const double smax = std::sqrt((a - r) * (a + r));
+    const double integral = rule.integrate(
+        [&](double u) {
+          // g' is odd and smooth, so g'(t)/t -> g''(0): below t0 = 1e-3 a its value at t0
+          // is used (error O(1e-6) on a 1e-3 sliver), which keeps ln t finite.
+          const double s = u * smax, t = std::max(std::sqrt(r * r + s * s), 1e-3 * a);
+          return g_slope(t) / t * smax;
+        },
+        0.0, 1.0, 1e-10);
+    out.push_back(-integral);
+  }
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <boost/math/differentiation/finite_difference.hpp>
+#include <boost/math/quadrature/tanh_sinh.hpp>
 
 #include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
@@ -134,4 +135,35 @@ TEST_CASE("exact layer rejects invalid input", "[exact][errors]") {
   CHECK_THROWS_WITH(k.solve(*p, 6.0), Catch::Contains("a/h = 6") && Catch::Contains("max_a_over_h"));
   CHECK_THROWS_AS(k.solve(*p, 0.0), DomainError);
   CHECK_THROWS_AS(k.flat_punch_factor(-1.0), DomainError);
+}
+
+TEST_CASE("exact layer pressure integrates to P_H and has the right limits", "[exact][pressure]") {
+  boost::math::quadrature::tanh_sinh<double> ts;
+  const auto p = make_paraboloid(100.0);
+  for (double nu : {0.3, 0.5}) {
+    const double Es = 1.0 / (1 - nu * nu);
+    const ExactLayerKernel k({1.0, nu, 1.0, Base::bonded}, range(25));
+    for (double a : {1e-3, 1.0, 5.0}) {
+      const double P = ts.integrate(
+          [&](double u) { return 2 * M_PI * a * a * u * k.pressure(*p, a, {a * u})[0]; }, 0.0, 1.0, 1e-9);
+      INFO("nu=" << nu << " a/h=" << a);
+      CHECK(rel_err(P, k.solve(*p, a).state.P_H) < 1e-8);
+    }
+    // Thick limit: Hertz, p = (2 E* / (pi R)) sqrt(a^2 - r^2).
+    const double a = 1e-3;
+    const auto pr = k.pressure(*p, a, {0.0, 0.5 * a, 0.9 * a});
+    for (int i = 0; i < 3; ++i) {
+      const double r = (i == 0 ? 0.0 : i == 1 ? 0.5 : 0.9) * a;
+      CHECK(rel_err(pr[i], 2 * Es / (M_PI * 100.0) * std::sqrt(a * a - r * r)) < 2e-3);
+    }
+  }
+  // Thin limit: the interior pressure approaches Winkler's K (delta - f(r)).
+  const ThinLayerConstants c = thin_layer_constants({1.0, 0.3, 1.0, Base::bonded});
+  const ExactLayerKernel k({1.0, 0.3, 1.0, Base::bonded}, range(25));
+  const double a = 20.0, delta = k.solve(*p, a).state.delta_H;
+  const auto pr = k.pressure(*p, a, {0.0, 10.0});
+  CHECK(rel_err(pr[0], c.K * delta) < 0.03);
+  CHECK(rel_err(pr[1], c.K * (delta - p->f(10.0))) < 0.03);
+  CHECK_THROWS_WITH(k.pressure(*p, a, {a}), Catch::Contains("r = 20"));
+  CHECK_THROWS_AS(k.pressure(*p, a, {-1.0}), DomainError);
 }

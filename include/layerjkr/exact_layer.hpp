@@ -64,8 +64,10 @@ class ExactLayerKernel {
   ExactLayerKernel(const ExactLayerKernel&) = delete;
   ExactLayerKernel& operator=(const ExactLayerKernel&) = delete;
 
-  /// Ft(sigma) for sigma >= 0 (dimensionless; sigma <= 2 max_a_over_h).
+  /// Ft(sigma), even in sigma (dimensionless; |sigma| <= 2 max_a_over_h + 1).
   double kernel(double sigma) const;
+  /// dFt/dsigma, odd in sigma.
+  double kernel_derivative(double sigma) const;
   /// E* = E/(1 - nu^2) [Pa].
   double effective_modulus() const { return E_star_; }
   const ElasticLayer& layer() const { return layer_; }
@@ -73,6 +75,13 @@ class ExactLayerKernel {
 
   /// Non-adhesive state at contact radius a for `profile`, with error estimates.
   ExactLayerState solve(const Profile& profile, double a) const;
+
+  /// Non-adhesive contact pressure p(r) [Pa] at radii r in [0, a) for contact radius a:
+  /// p(r) = -int_r^a g'(t) / sqrt(t^2 - r^2) dt (g(a) = 0), with g' from the Nystrom
+  /// interpolant and tanh-sinh quadrature in s = sqrt(t^2 - r^2). Integrates to P_H to
+  /// ~1e-8 (tests).
+  std::vector<double> pressure(const Profile& profile, double a,
+                               const std::vector<double>& radii) const;
 
   /// Flat-punch factor P/(2 E* a delta) at a/h (> 0).
   double flat_punch_factor(double a_over_h) const;
