@@ -52,7 +52,8 @@ struct Named {
 std::vector<Named> asymptotic_models(const ProfilePtr& p, const ElasticLayer& layer) {
   if (layer.nu >= 0.5) return {};
   const ThinLayerConstants c = thin_layer_constants(layer);
-  std::vector<Named> out{{"winkler", make_winkler(p, c.K)}};
+  std::vector<Named> out{{"winkler", make_winkler(p, c.K)},
+                         {"edge_corrected", make_edge_corrected(p, layer)}};
   if (c.G != 0.0) out.push_back({"two_term", make_two_term(p, c.K, c.G)});
   if (c.G > 0.0) out.push_back({"full_foundation", make_full_foundation(p, c.K, c.G)});
   return out;
@@ -105,6 +106,11 @@ int main(int argc, char** argv) {
         const double t_exact = median_seconds([&] { (void)exact->state(a); }, 3, 1);
         csv << nu << ',' << base_name << ',' << r << ",exact,0,0," << t_exact << '\n';
         for (std::size_t m = 0; m < models.size(); ++m) {
+          if (!(a > models[m].model->min_radius())) {  // edge_corrected with a + beta h <= 0
+            rows[2 * m] += "     n/a";
+            rows[2 * m + 1] += "     n/a";
+            continue;
+          }
           const HertzState s = models[m].model->state(a);
           const double eP = s.P_H / e.P_H - 1, ed = s.delta_H / e.delta_H - 1;
           const double t = median_seconds([&] { (void)models[m].model->state(a); }, 5, 2000);
@@ -162,7 +168,7 @@ int main(int argc, char** argv) {
     gp << "set terminal pngcairo size 1200,520 font 'DejaVu Sans,11'\n"
        << "set output '" << dir << "/model_tradeoff.png'\nset datafile separator ','\n"
        << "set logscale xy\nset grid\nset xlabel 'a/h'\nset ylabel '|relative error of P_H|'\n"
-       << "set yrange [1e-4:2]\nset key bottom left\n"
+       << "set yrange [1e-6:2]\nset key bottom left font ',9'\n"
        << "set multiplot layout 1,2 title 'Thin-layer models against the exact layer "
           "(paraboloid, R = 100 h)'\n";
     // column 5: P error, column 6: delta error
@@ -179,12 +185,14 @@ int main(int argc, char** argv) {
        << series(5, "bonded", "winkler", 0.3, "ps 1.5 lc rgb '#1f77b4' pt 7", "Winkler = two-term, bonded, nu = 0.3") << ", \\\n "
        << series(5, "bonded", "winkler", 0.45, "ps 1.5 lc rgb '#9467bd' pt 6", "Winkler = two-term, bonded, nu = 0.45") << ", \\\n "
        << series(5, "frictionless", "winkler", 0.3, "ps 1.5 lc rgb '#ff7f0e' pt 9", "Winkler, frictionless, any nu") << ", \\\n "
-       << series(5, "bonded", "full_foundation", 0.2, "ps 1.5 lc rgb '#2ca02c' pt 5", "full foundation, bonded, nu = 0.2") << "\n"
+       << series(5, "bonded", "full_foundation", 0.2, "ps 1.5 lc rgb '#2ca02c' pt 5", "full foundation, bonded, nu = 0.2") << ", \\\n "
+       << series(5, "bonded", "edge_corrected", 0.3, "ps 1.5 lc rgb '#8c564b' pt 13", "edge-corrected, bonded, nu = 0.3") << "\n"
        << "set title 'approach delta_H'\nset ylabel '|relative error of delta_H|'\nplot "
        << series(6, "bonded", "winkler", 0.3, "ps 1.5 lc rgb '#1f77b4' pt 7", "Winkler, bonded, nu = 0.3") << ", \\\n "
        << series(6, "bonded", "two_term", 0.3, "ps 1.5 lc rgb '#d62728' pt 5", "two-term, bonded, nu = 0.3") << ", \\\n "
        << series(6, "bonded", "two_term", 0.45, "ps 1.5 lc rgb '#9467bd' pt 4", "two-term, bonded, nu = 0.45") << ", \\\n "
-       << series(6, "bonded", "full_foundation", 0.2, "ps 1.5 lc rgb '#2ca02c' pt 5", "full foundation, bonded, nu = 0.2") << "\n"
+       << series(6, "bonded", "full_foundation", 0.2, "ps 1.5 lc rgb '#2ca02c' pt 5", "full foundation, bonded, nu = 0.2") << ", \\\n "
+       << series(6, "bonded", "edge_corrected", 0.3, "ps 1.5 lc rgb '#8c564b' pt 13", "edge-corrected, bonded, nu = 0.3") << "\n"
        << "unset multiplot\n";
     gp.close();
     if (std::system(("gnuplot '" + gp_path + "'").c_str()) == 0)

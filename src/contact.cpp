@@ -51,7 +51,8 @@ double JkrSolution::upper_radius() const {
 }
 
 double JkrSolution::seed_radius() const {
-  return std::min(model_->profile().length_scale(), 0.5 * upper_radius());
+  const double seed = std::min(model_->profile().length_scale(), 0.5 * upper_radius());
+  return std::max(seed, 2.0 * model_->min_radius());
 }
 
 // Minimum of P(a) (force) or delta(a) over (0, a_hi]: log-grid scan, stepping the window
@@ -73,8 +74,11 @@ std::optional<double> JkrSolution::minimise(bool force, double a_hi) const {
   const int n = options_.scan_points;
   double top = std::log(a_hi);
   const double span = options_.scan_decades * std::log(10.0);
+  const double a_min = model_->min_radius();
+  const double floor = a_min > 0.0 ? std::log(a_min * (1.0 + 1e-9)) : -kInf;
   for (int window = 0; window < options_.max_windows; ++window) {
-    const double lo = top - span, step = span / (n - 1);
+    if (!(top > floor)) break;
+    const double lo = std::max(top - span, floor), step = (top - lo) / (n - 1);
     std::vector<double> v(static_cast<std::size_t>(n));
     int best = 0;
     for (int i = 0; i < n; ++i) {
@@ -83,6 +87,7 @@ std::optional<double> JkrSolution::minimise(bool force, double a_hi) const {
     }
     const double x_best = lo + best * step;
     if (best == 0 || v.front() - v[static_cast<std::size_t>(best)] <= noise(lo) + noise(x_best)) {
+      if (lo == floor) break;  // monotone down to the model's smallest radius: no minimum
       top = lo + step;
       continue;
     }
@@ -133,8 +138,9 @@ std::optional<double> JkrSolution::first_root(bool force, double target, double 
     while (g_lo >= 0.0) {
       if (g_lo == 0.0) return lo;
       hi = lo, g_hi = g_lo, have_hi = true;
-      if (++steps > options_.max_bracket_steps) return std::nullopt;
-      lo *= 0.5;
+      const double floor = model_->min_radius() * (1.0 + 1e-9);
+      if (++steps > options_.max_bracket_steps || lo <= floor) return std::nullopt;
+      lo = std::max(0.5 * lo, floor);
       g_lo = g(lo);
     }
   }

@@ -65,9 +65,10 @@ double estimated_model_error(const std::string& model, const ElasticLayer& layer
   detail::require_positive("estimated_model_error", "h", layer.h);
   const bool bonded = layer.base == Base::bonded;
   const ThinLayerConstants c = thin_layer_constants(layer);  // validates E, nu, h
-  if (model != "winkler" && model != "two_term" && model != "full_foundation")
+  if (model != "winkler" && model != "edge_corrected" && model != "two_term" &&
+      model != "full_foundation")
     throw DomainError("estimated_model_error", "model (" + model + ")", 0.0,
-                      "one of winkler, two_term, full_foundation");
+                      "one of winkler, edge_corrected, two_term, full_foundation");
   if (model == "full_foundation" && !(c.G > 0.0)) return kInf;
   // With G = 0 (frictionless base, nu = 0 or 1/4) the two-term model is Winkler.
   if (model == "two_term" && c.G == 0.0) return estimated_model_error("winkler", layer, a);
@@ -92,13 +93,15 @@ ModelChoice choose_layer_model(ProfilePtr profile, const ElasticLayer& layer, do
   choice.reference_radius = a_min;
   if (layer.nu < 0.5) {
     const ThinLayerConstants c = thin_layer_constants(layer);
-    for (const char* m : {"winkler", "two_term", "full_foundation"}) {
+    for (const char* m : {"winkler", "edge_corrected", "two_term", "full_foundation"}) {
       const double e = estimated_model_error(m, layer, a_min);
       if (!(e <= tolerance)) continue;
       choice.model = m;
       choice.estimated_error = e;
       if (choice.model == "winkler")
         choice.contact_model = make_winkler(profile, c.K);
+      else if (choice.model == "edge_corrected")
+        choice.contact_model = make_edge_corrected(profile, layer);
       else if (choice.model == "two_term")
         choice.contact_model = make_two_term(profile, c.K, c.G);
       else

@@ -176,7 +176,7 @@ std::vector<std::string> models_for(MediumType t) {
   switch (t) {
     case MediumType::winkler: return {"winkler"};
     case MediumType::half_space: return {"half_space"};
-    case MediumType::layer: return {"", "leading", "two_term", "exact", "auto"};
+    case MediumType::layer: return {"", "leading", "two_term", "edge_corrected", "exact", "auto"};
     case MediumType::pasternak:
     case MediumType::filonenko_borodich: return {"", "asymptotic", "full"};
   }
@@ -309,6 +309,20 @@ BuiltScene build_scene(const Scene& s, double a_min) {
           b.K = c.K;
           b.G = c.G;
         }
+        return b;
+      }
+      if (s.model == "edge_corrected") {
+        const ThinLayerConstants c =
+            in.checked("medium", [&] { return thin_layer_constants({m.E, m.nu, m.h, m.base}); });
+        b.model = in.checked("medium", [&] {
+          return make_edge_corrected(s.profile, {m.E, m.nu, m.h, m.base});
+        });
+        b.warnings = c.warnings;
+        b.has_foundation_constants = true;
+        b.K = c.K;
+        b.G = c.G;
+        b.has_effective_modulus = true;
+        b.E_star = effective_modulus(m.E, m.nu);
         return b;
       }
       if (s.model == "exact") {  // nu = 0.5 is valid here: no thin-layer expansion

@@ -167,3 +167,36 @@ TEST_CASE("exact layer pressure integrates to P_H and has the right limits", "[e
   CHECK_THROWS_WITH(k.pressure(*p, a, {a}), Catch::Contains("r = 20"));
   CHECK_THROWS_AS(k.pressure(*p, a, {-1.0}), DomainError);
 }
+
+TEST_CASE("edge correction: beta as theory.md s.6 reports, 10x better than Winkler", "[exact][edge]") {
+  // theory.md s.6: beta ~ 0.12 (nu = 0.3), -0.11 (0.4), -0.55 (0.45), 0.18 (frictionless).
+  CHECK(edge_correction_beta({1.0, 0.3, 1.0, Base::bonded}) == Approx(0.12).margin(0.01));
+  CHECK(edge_correction_beta({1.0, 0.4, 1.0, Base::bonded}) == Approx(-0.11).margin(0.015));
+  CHECK(edge_correction_beta({1.0, 0.45, 1.0, Base::bonded}) == Approx(-0.55).margin(0.05));
+  CHECK(edge_correction_beta({1.0, 0.3, 1.0, Base::frictionless}) == Approx(0.18).margin(0.01));
+  const auto p = make_paraboloid(100.0);
+  for (const ElasticLayer layer : {ElasticLayer{1.0, 0.0, 1.0, Base::bonded},
+                                   ElasticLayer{1.0, 0.3, 1.0, Base::bonded},
+                                   ElasticLayer{1.0, 0.3, 1.0, Base::frictionless}}) {
+    const auto edge = make_edge_corrected(p, layer);
+    const auto winkler = make_winkler(p, thin_layer_constants(layer).K);
+    const ExactLayerKernel k(layer, range(12));
+    for (double a : {5.0, 10.0}) {
+      const HertzState e = k.solve(*p, a).state, c = edge->state(a), w = winkler->state(a);
+      INFO("nu=" << layer.nu << " a/h=" << a);
+      CHECK(std::abs(c.P_H / e.P_H - 1) < 0.1 * std::abs(w.P_H / e.P_H - 1));
+      CHECK(std::abs(c.delta_H / e.delta_H - 1) < 0.1 * std::abs(w.delta_H / e.delta_H - 1));
+      CHECK(c.a == a);
+    }
+    // Consistent: S = dP_H/d delta_H.
+    auto g = [&](auto field) {
+      auto f = [&](double x) { return field(edge->state(std::exp(x))); };
+      return boost::math::differentiation::finite_difference_derivative<decltype(f), double, 6>(f, std::log(3.0));
+    };
+    CHECK(rel_err(g([](const HertzState& s) { return s.P_H; }) / g([](const HertzState& s) { return s.delta_H; }),
+                  edge->state(3.0).S) < 1e-8);
+  }
+  CHECK_THROWS_WITH(edge_correction_beta({1.0, 0.5, 1.0, Base::bonded}), Catch::Contains("nu = 0.5"));
+  const auto neg = make_edge_corrected(p, {1.0, 0.45, 1.0, Base::bonded});  // beta h = -0.5
+  CHECK_THROWS_WITH(neg->state(0.4), Catch::Contains("effective radius"));
+}

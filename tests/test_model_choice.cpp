@@ -22,10 +22,12 @@ TEST_CASE("estimated errors bound the measured error at off-grid nu and a/h", "[
       o.estimate_error = false;
       const ExactLayerKernel exact(layer, o);
       const ThinLayerConstants c = thin_layer_constants(layer);
+      const auto edge = make_edge_corrected(p, layer);
       for (double r : {0.7, 3.0, 7.0, 15.0, 35.0}) {
         const HertzState e = exact.solve(*p, r).state;
         struct M { const char* name; ContactModelPtr model; };
         std::vector<M> models{{"winkler", make_winkler(p, c.K)}, {"two_term", make_two_term(p, c.K, c.G)}};
+        if (r >= 1.0) models.push_back({"edge_corrected", edge});  // a + beta h > 0 needs a/h > 0.5
         if (c.G > 0) models.push_back({"full_foundation", make_full_foundation(p, c.K, c.G)});
         for (const auto& m : models) {
           const HertzState s = m.model->state(r);
@@ -35,6 +37,7 @@ TEST_CASE("estimated errors bound the measured error at off-grid nu and a/h", "[
                       << " actual=" << actual << " estimate=" << estimate);
           CHECK(actual <= estimate);
           CHECK(estimate < 25 * actual + 0.02);  // conservative, not vacuous
+          if (m.name == std::string("edge_corrected")) CHECK(estimate < 25 * actual + 0.05);
         }
       }
     }
@@ -58,8 +61,10 @@ TEST_CASE("choose_layer_model picks the cheapest model within tolerance", "[auto
   const auto p = make_paraboloid(100.0);
   const ElasticLayer nu03{1.0, 0.3, 1.0, Base::bonded}, nu02{1.0, 0.2, 1.0, Base::bonded};
   CHECK(choose_layer_model(p, nu03, 0.05, 50.0).model == "winkler");
+  CHECK(choose_layer_model(p, nu03, 0.01, 20.0).model == "edge_corrected");
   CHECK(choose_layer_model(p, nu03, 0.05, 1.0).model == "exact");
-  CHECK(choose_layer_model(p, nu02, 0.03, 10.0).model == "full_foundation");
+  CHECK(choose_layer_model(p, nu02, 0.03, 10.0).model == "edge_corrected");
+  CHECK(choose_layer_model(p, nu02, 0.1, 0.5).model == "full_foundation");  // edge: 19 % in delta
   CHECK(choose_layer_model(p, nu02, 0.2, 10.0).model == "winkler");
   CHECK(choose_layer_model(p, {1.0, 0.5, 1.0, Base::bonded}, 0.5, 50.0).model == "exact");
   const ModelChoice c = choose_layer_model(p, nu03, 0.05, 50.0);

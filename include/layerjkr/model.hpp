@@ -45,6 +45,10 @@ class ContactModel {
   /// Short model name, e.g. "winkler", "two_term", "full_foundation", "half_space".
   virtual std::string name() const = 0;
 
+  /// Contact radii must exceed this [m] (0 for every model but edge_corrected with
+  /// beta < 0); searches for critical points and roots stay above it.
+  virtual double min_radius() const { return 0.0; }
+
   const Profile& profile() const { return *profile_; }
   const ProfilePtr& profile_ptr() const { return profile_; }
 

@@ -16,19 +16,19 @@
 
 namespace layerjkr {
 
-/// Estimated worst relative error of an asymptotic model ("winkler", "two_term",
-/// "full_foundation") for `layer` at contact radius a [m]; +inf where the model does not
+/// Estimated worst relative error of an asymptotic model ("winkler", "edge_corrected",
+/// "two_term", "full_foundation") for `layer` at contact radius a [m]; +inf where the model does not
 /// apply or was not measured. The exact solver's own error (< 1e-7) is not included.
 double estimated_model_error(const std::string& model, const ElasticLayer& layer, double a);
 
 struct ModelChoice {
-  std::string model;             ///< winkler | two_term | full_foundation | exact
+  std::string model;             ///< winkler | edge_corrected | two_term | full_foundation | exact
   double estimated_error = 0.0;  ///< from estimated_model_error (exact: 1e-7, its accuracy bound)
   double reference_radius = 0.0; ///< the contact radius the choice was made for [m]
   ContactModelPtr contact_model;
 };
 
-/// Cheapest model (winkler < two_term < full_foundation < exact) whose estimated error
+/// Cheapest model (winkler < edge_corrected < two_term < full_foundation < exact) whose estimated error
 /// at every contact radius >= a_min [m] is within `tolerance` (in (0, 1)). The error
 /// estimates fall with a/h, so the check is made at a_min.
 ModelChoice choose_layer_model(ProfilePtr profile, const ElasticLayer& layer, double tolerance,

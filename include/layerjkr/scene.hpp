@@ -9,7 +9,7 @@
 //                 | table {r: [...], z: [...]}
 // medium.type:    winkler {K} | pasternak {K, G} | filonenko_borodich {K, T}
 //                 | layer {E, nu, h, base: bonded|frictionless} | half_space {E, nu}
-// model:          layer: leading | two_term | exact (nu may be 0.5) | auto (needs
+// model:          layer: leading | two_term | edge_corrected | exact (nu may be 0.5) | auto (needs
 //                 "tolerance": the cheapest model whose measured error is within it);  pasternak, filonenko_borodich: asymptotic |
 //                 full;  winkler: winkler (default);  half_space: half_space (default)
 // solver:         closed_form (default) | ode  (foundation models only)
