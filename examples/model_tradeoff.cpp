@@ -168,7 +168,7 @@ int main(int argc, char** argv) {
     gp << "set terminal pngcairo size 1200,520 font 'DejaVu Sans,11'\n"
        << "set output '" << dir << "/model_tradeoff.png'\nset datafile separator ','\n"
        << "set logscale xy\nset grid\nset xlabel 'a/h'\nset ylabel '|relative error of P_H|'\n"
-       << "set yrange [1e-6:2]\nset key bottom left font ',9'\n"
+       << "set yrange [1e-6:2]\nset format y '10^{%L}'\nset key bottom left font ',9'\n"
        << "set multiplot layout 1,2 title 'Thin-layer models against the exact layer "
           "(paraboloid, R = 100 h)'\n";
     // column 5: P error, column 6: delta error
