@@ -60,6 +60,23 @@ TEST_CASE("exact layer converges under refinement to better than 1e-6", "[exact]
   }
 }
 
+TEST_CASE("exact layer stays within 1e-6 at a/h = 100, the end of its range", "[exact]") {
+  const auto p = make_paraboloid(1000.0);
+  for (double nu : {0.3, 0.5}) {
+    const ElasticLayer layer{1.0, nu, 1.0, Base::bonded};
+    ExactLayerOptions normal = range(100), finer = range(100);
+    normal.estimate_error = finer.estimate_error = false;
+    finer.points_per_panel = 10;
+    finer.panel_width = 0.4;
+    finer.table_spacing = 0.0125;
+    const HertzState a = ExactLayerKernel(layer, normal).solve(*p, 100.0).state;
+    const HertzState b = ExactLayerKernel(layer, finer).solve(*p, 100.0).state;
+    INFO("nu=" << nu);
+    CHECK(rel_err(a.P_H, b.P_H) < 1e-6);
+    CHECK(rel_err(a.delta_H, b.delta_H) < 1e-6);
+  }
+}
+
 TEST_CASE("exact layer: thick limit is the half-space, with an O(a/h) shift", "[exact]") {
   const double R = 50.0, nu = 0.3, Es = 1.0 / (1 - nu * nu);
   const auto p = make_paraboloid(R);
