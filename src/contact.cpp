@@ -45,7 +45,7 @@ std::vector<AdhesiveState> JkrSolution::curve(const std::vector<double>& radii) 
 
 double JkrSolution::upper_radius() const {
   const Profile& p = model_->profile();
-  const double m = p.max_radius();
+  const double m = model_->max_radius();
   if (!std::isfinite(m)) return kInf;
   return p.contains(m) ? m : m * (1.0 - 1e-9);  // open bound (sphere: a < R)
 }
@@ -206,7 +206,9 @@ double JkrSolution::contact_radius_at_force(double P) const {
   const std::optional<double> a = first_root(true, P, a_lo);
   if (!a)
     throw DomainError("JkrSolution::contact_radius_at_force", "P", P,
-                      "forces reachable by " + model_->profile().describe());
+                      "forces reachable by " + model_->name() + " with " +
+                          model_->profile().describe() + " (a <= " +
+                          format_double(model_->max_radius()) + " m)");
   return *a;
 }
 

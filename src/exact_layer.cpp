@@ -316,6 +316,10 @@ class ExactLayerModel final : public ContactModel {
       : ContactModel(std::move(p)), kernel_(layer, o) {}
   HertzState state(double a) const override { return kernel_.solve(profile(), a).state; }
   std::string name() const override { return "exact"; }
+  double max_radius() const override {
+    return std::min(profile().max_radius(),
+                    kernel_.options().max_a_over_h * kernel_.layer().h);
+  }
 
  private:
   ExactLayerKernel kernel_;

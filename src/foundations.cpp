@@ -71,6 +71,8 @@ ContactModel::ContactModel(ProfilePtr profile) : profile_(std::move(profile)) {
   if (!profile_) throw Error("layerjkr::ContactModel: the profile is null");
 }
 
+double ContactModel::max_radius() const { return profile_->max_radius(); }
+
 ContactModelPtr make_winkler(ProfilePtr profile, double K) {
   detail::require_positive("make_winkler", "K", K);
   return std::make_shared<TwoTerm>(std::move(profile), K, 0.0);

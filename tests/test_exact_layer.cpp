@@ -217,3 +217,16 @@ TEST_CASE("edge correction: beta as theory.md s.6 reports, 10x better than Winkl
   const auto neg = make_edge_corrected(p, {1.0, 0.45, 1.0, Base::bonded});  // beta h = -0.5
   CHECK_THROWS_WITH(neg->state(0.4), Catch::Contains("effective radius"));
 }
+
+TEST_CASE("exact-layer searches stay inside the solver's a/h range", "[exact][contact]") {
+  // Regression: the power law's bracket seed (its length scale, 240 h) lay beyond
+  // max_a_over_h, and the search threw instead of treating the bound as the domain edge.
+  const auto model = make_exact_layer(make_power_law(3e3, 2.5), {1e6, 0.3, 2e-5, Base::bonded}, range(100));
+  CHECK(model->max_radius() == Approx(100 * 2e-5));
+  const JkrSolution jkr(model, 0.01);
+  REQUIRE(jkr.zero_load_radius());
+  CHECK(*jkr.zero_load_radius() < 100 * 2e-5);
+  REQUIRE(jkr.pull_off());
+  CHECK(jkr.pull_off()->P < 0.0);
+  CHECK_THROWS_WITH(jkr.contact_radius_at_force(1e6), Catch::Contains("a <= 0.002"));
+}

@@ -49,6 +49,10 @@ class ContactModel {
   /// beta < 0); searches for critical points and roots stay above it.
   virtual double min_radius() const { return 0.0; }
 
+  /// Largest admissible contact radius [m]: the profile's, or less where the model is
+  /// bounded (exact layer: ExactLayerOptions::max_a_over_h * h).
+  virtual double max_radius() const;
+
   const Profile& profile() const { return *profile_; }
   const ProfilePtr& profile_ptr() const { return profile_; }
 
