@@ -50,6 +50,7 @@ class Paraboloid final : public Profile {
     return {a / R_, 2.0 * a / (3.0 * R_)};
   }
   double length_scale() const override { return R_; }
+  bool is_paraboloid() const override { return true; }
   std::string describe() const override { return "paraboloid(R=" + format_double(R_) + ")"; }
 
  private:
@@ -161,6 +162,7 @@ class PowerLaw final : public Profile {
     // f(L) = L; a scale-free cone (d = 1) uses an arbitrary seed.
     return d_ > 1.0 ? std::pow(B_, -1.0 / (d_ - 1.0)) : 1e-6;
   }
+  bool is_paraboloid() const override { return d_ == 2.0; }
   std::string describe() const override {
     return "power_law(B=" + format_double(B_) + ", d=" + format_double(d_) + ")";
   }

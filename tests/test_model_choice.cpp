@@ -44,6 +44,23 @@ TEST_CASE("estimated errors bound the measured error at off-grid nu and a/h", "[
   }
 }
 
+TEST_CASE("the paraboloid table is not trusted for other profiles", "[auto]") {
+  // Measured: with f = B r^4 Winkler's error at a/h = 1 exceeds the paraboloid estimate
+  // (0.586 vs 0.509 at nu = 0), so auto must not use it for such profiles.
+  const ElasticLayer layer{1.0, 0.0, 1.0, Base::bonded};
+  const auto quartic = make_power_law(1e-4, 4.0);
+  ExactLayerOptions o;
+  o.max_a_over_h = 2;
+  o.estimate_error = false;
+  const HertzState e = ExactLayerKernel(layer, o).solve(*quartic, 1.0).state;
+  const HertzState w = make_winkler(quartic, thin_layer_constants(layer).K)->state(1.0);
+  CHECK(std::abs(w.P_H / e.P_H - 1) > estimated_model_error("winkler", layer, 1.0));
+  CHECK(choose_layer_model(quartic, layer, 0.9, 1.0).model == "exact");
+  CHECK(choose_layer_model(make_cone(1.2), layer, 0.9, 50.0).model == "exact");
+  CHECK(choose_layer_model(make_sphere(1e3), layer, 0.9, 50.0).model == "exact");
+  CHECK(choose_layer_model(make_power_law(1.0 / 200, 2.0), layer, 0.9, 50.0).model == "winkler");
+}
+
 TEST_CASE("estimates beyond the measured domain are infinite", "[auto]") {
   const ElasticLayer bonded{1.0, 0.3, 1.0, Base::bonded};
   CHECK(std::isinf(estimated_model_error("winkler", bonded, 0.3)));  // a/h < 0.5

@@ -66,6 +66,10 @@ class Profile {
   /// split there.
   virtual std::vector<double> breakpoints(double a) const;
 
+  /// True if f = r^2/(2R) exactly (paraboloid, or power law with d = 2): the profile for
+  /// which model "auto"'s error table was measured.
+  virtual bool is_paraboloid() const { return false; }
+
   /// Human-readable description, e.g. "paraboloid(R=0.01)".
   virtual std::string describe() const = 0;
 
