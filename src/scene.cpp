@@ -296,58 +296,41 @@ BuiltScene build_scene(const Scene& s, double a_min) {
       full = s.model == "full";
       break;
     case MediumType::layer: {
+      const ElasticLayer layer{m.E, m.nu, m.h, m.base};
+      b.has_effective_modulus = true;
+      b.E_star = in.checked("medium", [&] { return effective_modulus(m.E, m.nu); });
+      // The thin-layer constants: needed by every asymptotic model, reported for auto
+      // where they exist, irrelevant to the exact solver (which allows nu = 0.5).
+      if (s.model != "exact" && !(s.model == "auto" && m.nu >= 0.5)) {
+        const ThinLayerConstants c = in.checked("medium", [&] { return thin_layer_constants(layer); });
+        b.has_foundation_constants = true;
+        b.K = c.K;
+        b.G = c.G;
+        if (s.model != "auto") b.warnings = c.warnings;
+      }
       if (s.model == "auto") {
         if (!(a_min > 0.0) || !std::isfinite(a_min))
           throw DomainError("build_scene", "a_min (smallest contact radius of interest)", a_min,
                             "finite and > 0 for model auto");
-        const ModelChoice choice = in.checked("medium", [&] {
-          return choose_layer_model(s.profile, {m.E, m.nu, m.h, m.base}, s.tolerance, a_min);
-        });
+        const ModelChoice choice = in.checked(
+            "medium", [&] { return choose_layer_model(s.profile, layer, s.tolerance, a_min); });
         b.model = choice.contact_model;
         b.automatic = true;
         b.chosen_model = choice.model;
         b.estimated_error = choice.estimated_error;
         b.reference_radius = choice.reference_radius;
-        b.has_effective_modulus = true;
-        b.E_star = effective_modulus(m.E, m.nu);
-        if (m.nu < 0.5) {
-          const ThinLayerConstants c = thin_layer_constants({m.E, m.nu, m.h, m.base});
-          b.has_foundation_constants = true;
-          b.K = c.K;
-          b.G = c.G;
-        }
+        return b;
+      }
+      if (s.model == "exact") {
+        b.model = in.checked("medium", [&] { return make_exact_layer(s.profile, layer); });
         return b;
       }
       if (s.model == "edge_corrected") {
-        const ThinLayerConstants c =
-            in.checked("medium", [&] { return thin_layer_constants({m.E, m.nu, m.h, m.base}); });
-        b.model = in.checked("medium", [&] {
-          return make_edge_corrected(s.profile, {m.E, m.nu, m.h, m.base});
-        });
-        b.warnings = c.warnings;
-        b.has_foundation_constants = true;
-        b.K = c.K;
-        b.G = c.G;
-        b.has_effective_modulus = true;
-        b.E_star = effective_modulus(m.E, m.nu);
+        b.model = in.checked("medium", [&] { return make_edge_corrected(s.profile, layer); });
         return b;
       }
-      if (s.model == "exact") {  // nu = 0.5 is valid here: no thin-layer expansion
-        b.model = in.checked("medium", [&] {
-          return make_exact_layer(s.profile, {m.E, m.nu, m.h, m.base});
-        });
-        b.has_effective_modulus = true;
-        b.E_star = effective_modulus(m.E, m.nu);
-        return b;
-      }
-      const ThinLayerConstants c =
-          in.checked("medium", [&] { return thin_layer_constants({m.E, m.nu, m.h, m.base}); });
-      K = c.K;
-      G = s.model == "leading" ? 0.0 : c.G;
-      b.warnings = c.warnings;
-      b.has_effective_modulus = true;
-      b.E_star = effective_modulus(m.E, m.nu);
-      b.G = c.G;
+      K = b.K;
+      G = s.model == "leading" ? 0.0 : b.G;
       break;
     }
   }
