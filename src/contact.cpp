@@ -61,12 +61,10 @@ double JkrSolution::seed_radius() const {
 // of the two terms of (19); otherwise the curve is monotone there (e.g. Winkler's
 // delta(a)) and the search goes on below.
 std::optional<double> JkrSolution::minimise(bool force, double a_hi) const {
-  auto value = [&](double x) {
-    const AdhesiveState s = at(std::exp(x));
-    return force ? s.P : s.delta;
-  };
-  auto noise = [&](double x) {
-    const AdhesiveState s = at(std::exp(x));
+  auto of = [force](const AdhesiveState& s) { return force ? s.P : s.delta; };
+  auto value = [&](double x) { return of(at(std::exp(x))); };
+  // Rounding noise of the two terms of (19), from a state the scan already holds.
+  auto noise = [force](const AdhesiveState& s) {
     const double terms = force ? std::abs(s.hertz.P_H) + std::abs(s.hertz.P_H - s.P)
                                : std::abs(s.hertz.delta_H) + std::abs(s.hertz.delta_H - s.delta);
     return 64.0 * std::numeric_limits<double>::epsilon() * terms;
@@ -79,20 +77,22 @@ std::optional<double> JkrSolution::minimise(bool force, double a_hi) const {
   for (int window = 0; window < options_.max_windows; ++window) {
     if (!(top > floor)) break;
     const double lo = std::max(top - span, floor), step = (top - lo) / (n - 1);
-    std::vector<double> v(static_cast<std::size_t>(n));
-    int best = 0;
+    std::vector<AdhesiveState> states;
+    states.reserve(static_cast<std::size_t>(n));
+    std::size_t best = 0;
     for (int i = 0; i < n; ++i) {
-      v[static_cast<std::size_t>(i)] = value(lo + i * step);
-      if (v[static_cast<std::size_t>(i)] < v[static_cast<std::size_t>(best)]) best = i;
+      states.push_back(at(std::exp(lo + i * step)));
+      if (of(states.back()) < of(states[best])) best = states.size() - 1;
     }
-    const double x_best = lo + best * step;
-    if (best == 0 || v.front() - v[static_cast<std::size_t>(best)] <= noise(lo) + noise(x_best)) {
+    const AdhesiveState& first = states.front();
+    if (best == 0 || of(first) - of(states[best]) <= noise(first) + noise(states[best])) {
       if (lo == floor) break;  // monotone down to the model's smallest radius: no minimum
       top = lo + step;
       continue;
     }
-    const double left = lo + (best - 1) * step;
-    const double right = lo + std::min(best + 1, n - 1) * step;
+    const int k = static_cast<int>(best);
+    const double left = lo + (k - 1) * step;
+    const double right = lo + std::min(k + 1, n - 1) * step;
     // Brent locates a minimum only to sqrt(eps); the root of the derivative (6th-order
     // finite differences, error ~eps^(6/7)) pins it to ~1e-13, which matters wherever
     // the other coordinate is not stationary (P at the fixed-grips point).

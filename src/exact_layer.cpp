@@ -208,6 +208,19 @@ Nystrom nystrom_solve(const ExactLayerKernel& k, const Profile& profile, double 
   return out;
 }
 
+// a/h for a query at contact radius a, after checking a against the profile and the
+// kernel table's range (ExactLayerOptions::max_a_over_h).
+double checked_a_over_h(const ExactLayerKernel& k, const char* function, const Profile& profile,
+                        double a) {
+  profile.require_contact_radius(function, a);
+  const double rho = a / k.layer().h;
+  if (!(rho <= k.options().max_a_over_h))
+    throw DomainError(function, "a/h", rho,
+                      "(0, " + format_double(k.options().max_a_over_h) +
+                          "] (ExactLayerOptions::max_a_over_h)");
+  return rho;
+}
+
 int panel_count(const ExactLayerOptions& o, double rho) {
   return std::max(o.min_panels, static_cast<int>(std::ceil(rho / o.panel_width)));
 }
@@ -215,12 +228,7 @@ int panel_count(const ExactLayerOptions& o, double rho) {
 }  // namespace
 
 ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const {
-  profile.require_contact_radius("exact_layer", a);
-  const double rho = a / layer_.h;
-  if (!(rho <= options_.max_a_over_h))
-    throw DomainError("exact_layer", "a/h", rho,
-                      "(0, " + format_double(options_.max_a_over_h) +
-                          "] (ExactLayerOptions::max_a_over_h)");
+  const double rho = checked_a_over_h(*this, "exact_layer", profile, a);
   const int n_fine = panel_count(options_, rho);
   auto to_state = [&](const Nystrom& r) {
     const double int0 = r.w.dot(r.phi.col(0)), intf = r.w.dot(r.phi.col(1));
@@ -251,11 +259,7 @@ ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const 
 
 std::vector<double> ExactLayerKernel::pressure(const Profile& profile, double a,
                                                const std::vector<double>& radii) const {
-  profile.require_contact_radius("ExactLayerKernel::pressure", a);
-  const double rho = a / layer_.h;
-  if (!(rho <= options_.max_a_over_h))
-    throw DomainError("ExactLayerKernel::pressure", "a/h", rho,
-                      "(0, " + format_double(options_.max_a_over_h) + "]");
+  const double rho = checked_a_over_h(*this, "ExactLayerKernel::pressure", profile, a);
   const Nystrom ny = nystrom_solve(*this, profile, a, panel_count(options_, rho),
                                    options_.points_per_panel);
   const double delta = ny.endf / ny.end0;

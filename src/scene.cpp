@@ -258,7 +258,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
 
 double summary_reference_radius(const Scene& s) {
   const MediumSpec& m = s.medium;
-  if (m.type != MediumType::layer) return 0.0;
+  if (s.model != "auto") return 0.0;  // only "auto" chooses by radius
   if (s.w > 0.0 && m.nu < 0.5) {
     const ThinLayerConstants c = thin_layer_constants({m.E, m.nu, m.h, m.base});
     if (const auto po = JkrSolution(make_winkler(s.profile, c.K), s.w).pull_off())

@@ -72,7 +72,8 @@ Scene load_scene(const std::string& path);
 BuiltScene build_scene(const Scene& scene, double a_min = 0.0);
 
 /// The radius model "auto" should be chosen at for a summary: half the Winkler pull-off
-/// radius (which covers the fixed-grips point), or h when there is no adhesion.
+/// radius (which covers the fixed-grips point), or h when there is no adhesion; 0 for
+/// scenes whose model is not "auto" (build_scene ignores it then).
 double summary_reference_radius(const Scene& scene);
 
 }  // namespace layerjkr
