@@ -2,8 +2,10 @@
 #pragma once
 
 #include "layerjkr/contact.hpp"
+#include "layerjkr/curve_data.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/exact_layer.hpp"
+#include "layerjkr/fit.hpp"
 #include "layerjkr/jkr.hpp"
 #include "layerjkr/model.hpp"
 #include "layerjkr/model_choice.hpp"

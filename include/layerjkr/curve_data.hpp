@@ -1,0 +1,75 @@
+// layerjkr: measured force curves - the data a fit consumes - and their CSV reader.
+//
+// A curve is a sequence of samples (delta_i [m], P_i [N]) in acquisition order, with
+// optional contact radii a_i [m] (JKR rigs measure them), weights and a segment label
+// (0 = approach/loading, 1 = retract/unloading). delta is the approach of the indenter
+// in any fixed frame: the fit's contact-point offset delta0 maps it to the model's
+// approach, delta_model = delta - delta0. P is positive when repulsive.
+//
+// CSV forms (header row; columns in any order; extra columns are an error):
+//   delta,P[,a][,weight][,segment]        the model's own variables
+//   tip_position,force[,weight][,segment] JPK / nanite export: delta = -tip_position
+//                                         (the tip moves to more negative values on approach)
+//   z,deflection[,weight][,segment]       raw AFM: delta = z_sign*z - deflection_sign*d,
+//                                         P = k * deflection_sign*d  (needs spring_constant)
+// Aliases: P <-> force; a unit suffix _m / _N (delta_m, force_N, tip_position_m, ...) is
+// accepted and means SI, so it cannot be combined with non-SI CsvOptions units.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace layerjkr {
+
+/// Which part of a curve a fit uses.
+enum class Branch { approach, retract, all };
+
+/// Parses "approach" | "retract" | "all"; throws InputError naming `what` otherwise.
+Branch parse_branch(const std::string& text, const std::string& what = "branch");
+const char* to_string(Branch branch);
+
+/// A measured force curve in SI units.
+struct CurveData {
+  std::vector<double> delta;   ///< approach [m], arbitrary offset
+  std::vector<double> P;       ///< force [N], positive = repulsive
+  std::vector<double> a;       ///< contact radius [m] (empty = not measured)
+  std::vector<double> weight;  ///< relative weights > 0 (empty = all 1)
+  std::vector<int> segment;    ///< 0 approach, 1 retract (empty = split at the largest delta)
+  std::string source = "curve";  ///< names the curve in error messages
+
+  std::size_t size() const { return delta.size(); }
+
+  /// Throws InputError naming the source, the column and the row unless all columns
+  /// have equal length, values are finite, a >= 0, weight > 0 and segment in {0, 1}.
+  void Validate() const;
+
+  /// Indices of the samples on `branch`, in acquisition order. Without a segment
+  /// column the curve is split at its largest delta (approach up to and including it).
+  std::vector<std::size_t> select(Branch branch) const;
+};
+
+/// Units and the raw-AFM conversion for CSV input.
+struct CsvOptions {
+  double length_unit = 1.0;  ///< metres per length unit in the file (1e-9 for nm), > 0
+  double force_unit = 1.0;   ///< newtons per force unit in the file (1e-9 for nN), > 0
+  double spring_constant = 0.0;  ///< cantilever stiffness [N/m]; required for z,deflection
+  double z_sign = 1.0;           ///< +1: z grows towards the sample; -1: it decreases
+  double deflection_sign = 1.0;  ///< +1: deflection > 0 when pushed away by the sample
+  /// Throws DomainError naming the first invalid field.
+  void Validate() const;
+};
+
+/// Parses a length/force unit pair "m,N" | "nm,nN" | "um,uN" | "nm,pN" ... into the
+/// options' multipliers; throws InputError for an unknown unit.
+void parse_units(const std::string& text, CsvOptions& options);
+
+/// Parses CSV text (see the forms above). `source` names the data in errors. Throws
+/// InputError for a bad header, a non-numeric or non-finite cell (naming row and
+/// column), a row with the wrong number of cells, or no data rows.
+CurveData parse_curve_csv(const std::string& text, const std::string& source,
+                          const CsvOptions& options = {});
+
+/// Reads and parses a CSV file.
+CurveData read_curve_csv(const std::string& path, const CsvOptions& options = {});
+
+}  // namespace layerjkr

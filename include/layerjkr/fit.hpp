@@ -1,0 +1,125 @@
+// layerjkr: identification of K, G, w (or E, w) from measured adhesive curves (Ceres).
+//
+//   layerjkr::FitOptions options;
+//   options.free = {FitParameter::E, FitParameter::w, FitParameter::delta0};
+//   layerjkr::FitSummary s = layerjkr::fit(curve, scene, options);
+//   std::cout << s.BriefReport();
+//
+// The forward model. The scene fixes the indenter, the medium and the model; the free
+// parameters replace the scene's values. A sample (delta_i, P_i) is predicted as
+//   P0 + P(a_i)  with delta(a_i) = delta_i - delta0 on the branch's stable part, else P0,
+// where P(a), delta(a) is the JKR curve of the scene (jkr.hpp). The stable part is
+// a >= a_0 (zero load) on approach: a soft cantilever snaps in at zero load, so the curve
+// is continuous at P0; and a >= a_po (pull-off) on retract: after pull-off the tip is
+// free. Samples with measured contact radii add residuals (a_model - a_i) / a_scale.
+//
+// Derivatives are exact: each a_i is found by safeguarded Newton iteration, and its
+// sensitivity follows by implicit differentiation, da/dx = (d target/dx - d delta/dx)/delta'(a),
+// evaluated with ceres::Jet. docs/fitting.md says why this beat latent a_i blocks.
+//
+// Families and their free parameters:
+//   foundation (winkler, pasternak / filonenko_borodich asymptotic and full, layer
+//     leading / two_term): K, G (T for Filonenko-Borodich), or E for a layer (K and G
+//     follow from E, nu, h), w, delta0, P0, and R for a paraboloid.
+//   hertz (half_space with a paraboloid): E, w, delta0, P0, R.
+//   tabulated (exact, edge_corrected, auto, half_space with any other profile): E, w,
+//     delta0, P0. The scene's model is evaluated once on a log grid of radii and splined
+//     (FitOptions::table_points_per_decade); its stiffness scales exactly with E.
+//
+// Internally parameters are dimensionless: log(K/K0), log(E/E0), log(R/R0),
+// G/(K0 L^2), sqrt(w/w0) (so w = 0 is a regular bound), delta0/L, P0/F, with L and F
+// the data's length and force scales; residuals are divided by F.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "layerjkr/curve_data.hpp"
+#include "layerjkr/scene.hpp"
+
+namespace layerjkr {
+
+enum class FitParameter { K, G, w, delta0, P0, E, R };
+
+/// "K", "G", "w", "delta0", "P0", "E", "R".
+const char* to_string(FitParameter p);
+/// Parses one name; throws InputError naming `what` and the known names.
+FitParameter parse_fit_parameter(const std::string& name, const std::string& what = "--free");
+/// Parses a comma-separated list, rejecting duplicates and unknown names.
+std::vector<FitParameter> parse_fit_parameters(const std::string& list,
+                                               const std::string& what = "--free");
+
+enum class LossType { none, huber, cauchy };
+
+struct FitOptions {
+  /// Parameters to identify (at least one, no duplicates). Others come from the scene
+  /// (delta0 = 0 and P0 = 0 unless freed).
+  std::vector<FitParameter> free;
+  Branch branch = Branch::approach;
+  /// Robust loss on force residuals; loss_scale [N] > 0 is where it departs from
+  /// least squares (required for huber and cauchy).
+  LossType loss = LossType::none;
+  double loss_scale = 0.0;
+  /// Ceres trust-region limits (>= 1, > 0).
+  int max_iterations = 200;
+  double function_tolerance = 1e-10;
+  double parameter_tolerance = 1e-10;
+  double gradient_tolerance = 1e-14;
+  /// Extra starts (>= 0) with delta0 and the stiffness perturbed around the data-driven
+  /// guess; the lowest cost wins.
+  int extra_starts = 0;
+  /// Standard errors and correlations (ceres::Covariance).
+  bool compute_covariance = true;
+  /// |correlation| above this marks a pair as not separable, in (0, 1).
+  double correlation_limit = 0.99;
+  /// Grid density of the tabulated family, >= 8.
+  int table_points_per_decade = 40;
+  /// Throws DomainError naming the first invalid field.
+  void Validate() const;
+};
+
+/// One parameter of the fitted model, in SI units.
+struct ParameterEstimate {
+  FitParameter parameter = FitParameter::K;
+  double value = 0.0;
+  /// Standard error scaled by the residual variance (as lmfit / nanite do); NaN when not
+  /// identifiable or not computed.
+  double stderr_ = 0.0;
+  double initial = 0.0;   ///< the data-driven start
+  bool at_bound = false;  ///< w ended at 0: its error bar is one-sided
+};
+
+struct FitSummary {
+  bool converged = false;
+  std::string termination;  ///< Ceres' termination message
+  int iterations = 0;
+  std::string model;        ///< the contact model that was fitted (e.g. "two_term")
+  std::string family;       ///< foundation | hertz | tabulated
+  std::vector<ParameterEstimate> parameters;  ///< the free parameters, in FitOptions order
+  /// Correlation matrix of the free parameters (row-major, NaN when not computed).
+  std::vector<std::vector<double>> correlation;
+  double rms_residual = 0.0;  ///< root-mean-square force residual [N] (unweighted)
+  double initial_cost = 0.0, final_cost = 0.0;  ///< Ceres costs (dimensionless)
+  std::size_t points = 0;             ///< samples on the branch
+  std::size_t points_in_contact = 0;  ///< of which the model puts in contact
+  bool identifiable = true;
+  /// Groups of parameters that cannot be separated (empty when identifiable).
+  std::vector<std::string> unidentifiable;
+  std::vector<std::string> warnings;
+  /// The data used and the fitted model at the same samples (for plots and residuals).
+  std::vector<double> delta, P, P_fit;
+  double solve_seconds = 0.0;
+
+  /// The estimate for p; throws Error if p was not free.
+  const ParameterEstimate& operator[](FitParameter p) const;
+  /// A few lines: status, estimates +- errors, rms, identifiability, warnings.
+  std::string BriefReport() const;
+};
+
+/// Fits `curve` with the model of `scene`. Throws InputError for data that cannot be
+/// fitted (fewer samples than free parameters, no sample beyond the estimated contact
+/// point, a parameter the model does not have) and DomainError for invalid options.
+/// Convergence failures are reported in the summary, not thrown.
+FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& options);
+
+}  // namespace layerjkr

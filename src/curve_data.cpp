@@ -1,0 +1,245 @@
+// CSV reader for measured curves: strict about every cell, explicit about conventions.
+#include "layerjkr/curve_data.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "layerjkr/error.hpp"
+
+namespace layerjkr {
+namespace {
+
+enum class Column { delta, force, a, weight, segment, tip_position, z, deflection };
+
+struct ColumnName {
+  Column column;
+  bool si_labelled;
+};
+
+// Recognised header names; a _m / _N suffix labels the column as SI.
+const std::map<std::string, ColumnName>& known_columns() {
+  static const std::map<std::string, ColumnName> names = {
+      {"delta", {Column::delta, false}},     {"delta_m", {Column::delta, true}},
+      {"P", {Column::force, false}},         {"P_N", {Column::force, true}},
+      {"force", {Column::force, false}},     {"force_N", {Column::force, true}},
+      {"a", {Column::a, false}},             {"a_m", {Column::a, true}},
+      {"weight", {Column::weight, false}},   {"segment", {Column::segment, false}},
+      {"tip_position", {Column::tip_position, false}},
+      {"tip_position_m", {Column::tip_position, true}},
+      {"z", {Column::z, false}},             {"z_m", {Column::z, true}},
+      {"deflection", {Column::deflection, false}},
+      {"deflection_m", {Column::deflection, true}}};
+  return names;
+}
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream in(line);
+  std::string cell;
+  while (std::getline(in, cell, ',')) cells.push_back(trim(cell));
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+std::string shorten(const std::string& s) {
+  std::string out;
+  for (char c : s.substr(0, 40)) out += (c >= 32 && c < 127) ? c : '?';
+  return s.size() > 40 ? out + "..." : out;
+}
+
+}  // namespace
+
+Branch parse_branch(const std::string& text, const std::string& what) {
+  if (text == "approach") return Branch::approach;
+  if (text == "retract") return Branch::retract;
+  if (text == "all") return Branch::all;
+  throw InputError(what + " = \"" + shorten(text) + "\" is unknown (known: approach, retract, all)");
+}
+
+const char* to_string(Branch branch) {
+  switch (branch) {
+    case Branch::approach: return "approach";
+    case Branch::retract: return "retract";
+    case Branch::all: return "all";
+  }
+  return "?";
+}
+
+void CurveData::Validate() const {
+  const std::size_t n = delta.size();
+  auto fail = [&](const std::string& what) { throw InputError(source + ": " + what); };
+  if (P.size() != n) fail("columns delta and P differ in length");
+  if (!a.empty() && a.size() != n) fail("column a has " + std::to_string(a.size()) + " rows, not " + std::to_string(n));
+  if (!weight.empty() && weight.size() != n) fail("column weight has the wrong length");
+  if (!segment.empty() && segment.size() != n) fail("column segment has the wrong length");
+  if (n == 0) fail("has no data rows");
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string row = " in row " + std::to_string(i + 1);
+    if (!std::isfinite(delta[i])) fail("delta = " + format_double(delta[i]) + row + " is not finite");
+    if (!std::isfinite(P[i])) fail("P = " + format_double(P[i]) + row + " is not finite");
+    if (!a.empty() && !(a[i] >= 0.0 && std::isfinite(a[i])))
+      fail("a = " + format_double(a[i]) + row + " is invalid; valid range: finite and >= 0");
+    if (!weight.empty() && !(weight[i] > 0.0 && std::isfinite(weight[i])))
+      fail("weight = " + format_double(weight[i]) + row + " is invalid; valid range: finite and > 0");
+    if (!segment.empty() && segment[i] != 0 && segment[i] != 1)
+      fail("segment = " + std::to_string(segment[i]) + row + " is invalid; valid values: 0 (approach), 1 (retract)");
+  }
+}
+
+std::vector<std::size_t> CurveData::select(Branch branch) const {
+  std::vector<std::size_t> idx;
+  const std::size_t n = size();
+  std::size_t split_at = n;  // first retract sample when there is no segment column
+  if (segment.empty() && n > 0)
+    split_at = static_cast<std::size_t>(std::max_element(delta.begin(), delta.end()) - delta.begin()) + 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool retract = segment.empty() ? i >= split_at : segment[i] == 1;
+    if (branch == Branch::all || retract == (branch == Branch::retract)) idx.push_back(i);
+  }
+  return idx;
+}
+
+void CsvOptions::Validate() const {
+  const char* fn = "CsvOptions";
+  detail::require_positive(fn, "length_unit", length_unit);
+  detail::require_positive(fn, "force_unit", force_unit);
+  detail::require_non_negative(fn, "spring_constant", spring_constant);
+  if (z_sign != 1.0 && z_sign != -1.0) throw DomainError(fn, "z_sign", z_sign, "+1 or -1");
+  if (deflection_sign != 1.0 && deflection_sign != -1.0)
+    throw DomainError(fn, "deflection_sign", deflection_sign, "+1 or -1");
+}
+
+void parse_units(const std::string& text, CsvOptions& options) {
+  static const std::map<std::string, double> lengths = {
+      {"m", 1.0}, {"mm", 1e-3}, {"um", 1e-6}, {"nm", 1e-9}, {"pm", 1e-12}};
+  static const std::map<std::string, double> forces = {
+      {"N", 1.0}, {"mN", 1e-3}, {"uN", 1e-6}, {"nN", 1e-9}, {"pN", 1e-12}};
+  const auto comma = text.find(',');
+  const std::string len = trim(text.substr(0, comma));
+  const std::string force = comma == std::string::npos ? "" : trim(text.substr(comma + 1));
+  if (comma == std::string::npos || !lengths.count(len) || !forces.count(force))
+    throw InputError("--units = \"" + shorten(text) +
+                     "\" is invalid; give LENGTH,FORCE with LENGTH in m, mm, um, nm, pm and "
+                     "FORCE in N, mN, uN, nN, pN (e.g. nm,nN)");
+  options.length_unit = lengths.at(len);
+  options.force_unit = forces.at(force);
+}
+
+CurveData parse_curve_csv(const std::string& text, const std::string& source,
+                          const CsvOptions& options) {
+  options.Validate();
+  auto fail = [&](const std::string& what) -> void { throw InputError(source + ": " + what); };
+  if (text.find('\0') != std::string::npos) fail("is not a text file (it contains NUL bytes)");
+  std::istringstream in(text);
+  std::string line;
+  std::size_t line_no = 0;
+  std::vector<std::string> header;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const std::string t = trim(line);
+    if (t.empty() || t[0] == '#') continue;
+    header = split(t);
+    break;
+  }
+  if (header.empty()) fail("is empty (expected a header row such as delta,P)");
+
+  std::map<Column, std::size_t> where;
+  bool si_labelled = false;
+  for (std::size_t c = 0; c < header.size(); ++c) {
+    const auto it = known_columns().find(header[c]);
+    if (it == known_columns().end())
+      fail("header column " + std::to_string(c + 1) + " '" + shorten(header[c]) +
+           "' is unknown (known: delta, P, force, a, weight, segment, tip_position, z, "
+           "deflection; optional _m/_N suffix)");
+    if (where.count(it->second.column))
+      fail("header names the same quantity twice ('" + header[c] + "')");
+    where[it->second.column] = c;
+    si_labelled = si_labelled || it->second.si_labelled;
+  }
+  if (si_labelled && (options.length_unit != 1.0 || options.force_unit != 1.0))
+    fail("the header labels its columns as SI (_m/_N) but non-SI units were requested");
+  const int length_forms = int(where.count(Column::delta)) + int(where.count(Column::tip_position)) +
+                           int(where.count(Column::z));
+  if (length_forms != 1)
+    fail("needs exactly one of the columns delta, tip_position, z (header: " + shorten(trim(line)) + ")");
+  const bool raw = where.count(Column::z) > 0;
+  if (raw) {
+    if (!where.count(Column::deflection)) fail("column z needs a deflection column");
+    if (where.count(Column::force)) fail("give either z,deflection or a force column, not both");
+    if (!(options.spring_constant > 0.0))
+      fail("z,deflection data need the cantilever spring constant (--spring-constant k [N/m])");
+  } else {
+    if (where.count(Column::deflection)) fail("column deflection is only used with z");
+    if (!where.count(Column::force)) fail("needs a force column (P or force)");
+  }
+  if (where.count(Column::a) && !where.count(Column::delta))
+    fail("column a is only accepted with the delta,P form");
+
+  CurveData d;
+  d.source = source;
+  const double L = options.length_unit, F = options.force_unit;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const std::string t = trim(line);
+    if (t.empty() || t[0] == '#') continue;
+    const std::vector<std::string> cells = split(t);
+    if (cells.size() != header.size())
+      fail("line " + std::to_string(line_no) + " has " + std::to_string(cells.size()) +
+           " cells, the header has " + std::to_string(header.size()));
+    std::vector<double> v(cells.size());
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const char* begin = cells[c].c_str();
+      char* end = nullptr;
+      errno = 0;
+      v[c] = std::strtod(begin, &end);
+      if (cells[c].empty() || end == begin || *end != '\0' || errno == ERANGE || !std::isfinite(v[c]))
+        fail("line " + std::to_string(line_no) + ", column '" + header[c] + "': '" +
+             shorten(cells[c]) + "' is not a finite number");
+    }
+    auto col = [&](Column c) { return v[where.at(c)]; };
+    if (raw) {
+      const double dfl = options.deflection_sign * col(Column::deflection) * L;
+      d.delta.push_back(options.z_sign * col(Column::z) * L - dfl);
+      d.P.push_back(options.spring_constant * dfl);
+    } else {
+      d.delta.push_back(where.count(Column::delta) ? col(Column::delta) * L
+                                                   : -col(Column::tip_position) * L);
+      d.P.push_back(col(Column::force) * F);
+    }
+    if (where.count(Column::a)) d.a.push_back(col(Column::a) * L);
+    if (where.count(Column::weight)) d.weight.push_back(col(Column::weight));
+    if (where.count(Column::segment)) {
+      const double s = col(Column::segment);
+      if (s != 0.0 && s != 1.0)
+        fail("line " + std::to_string(line_no) + ", column 'segment': " + cells[where.at(Column::segment)] +
+             " is invalid; valid values: 0 (approach), 1 (retract)");
+      d.segment.push_back(static_cast<int>(s));
+    }
+  }
+  if (d.delta.empty()) fail("has a header but no data rows");
+  d.Validate();
+  return d;
+}
+
+CurveData read_curve_csv(const std::string& path, const CsvOptions& options) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path + ": cannot open the data file");
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) throw InputError(path + ": cannot read the data file");
+  return parse_curve_csv(text.str(), path, options);
+}
+
+}  // namespace layerjkr

@@ -1,0 +1,302 @@
+// Residuals of a fit: per-sample contact radii by safeguarded Newton, exact Jacobians by
+// implicit differentiation through ceres::Jet.
+#include "curve_evaluator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include <boost/math/tools/roots.hpp>
+
+namespace layerjkr::detail {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+int idx(FitParameter p) { return static_cast<int>(p); }
+
+}  // namespace
+
+template <class T>
+void ParameterMap::physical(const T* x, CurveParameters<T>* p, T* delta0, T* P0) const {
+  using std::exp;
+  auto get = [&](FitParameter q) -> const T* { return is_free(q) ? &x[index(q)] : nullptr; };
+  const CurveParameters<double>& f = fixed.values;
+  p->R = get(FitParameter::R) ? ref[idx(FitParameter::R)] * exp(*get(FitParameter::R)) : T(f.R);
+  p->s = get(FitParameter::w) ? s_scale * *get(FitParameter::w) : T(f.s);
+  p->E = get(FitParameter::E) ? ref[idx(FitParameter::E)] * exp(*get(FitParameter::E)) : T(f.E);
+  if (fixed.layer_foundation && get(FitParameter::E)) {
+    p->K = fixed.k_per_E * p->E;
+    p->G = fixed.g_per_E * p->E;
+  } else {
+    p->K = get(FitParameter::K) ? ref[idx(FitParameter::K)] * exp(*get(FitParameter::K)) : T(f.K);
+    if (!get(FitParameter::G))
+      p->G = T(f.G);
+    else if (G_log)
+      p->G = ref[idx(FitParameter::G)] * exp(*get(FitParameter::G));
+    else
+      p->G = G_scale * *get(FitParameter::G);
+  }
+  *delta0 = get(FitParameter::delta0) ? ref[idx(FitParameter::delta0)] + L * *get(FitParameter::delta0)
+                                      : T(0.0);
+  *P0 = get(FitParameter::P0) ? ref[idx(FitParameter::P0)] + F * *get(FitParameter::P0) : T(0.0);
+}
+
+template void ParameterMap::physical<double>(const double*, CurveParameters<double>*, double*,
+                                             double*) const;
+
+double ParameterMap::value(FitParameter q, const double* x) const {
+  CurveParameters<double> p;
+  double d0 = 0.0, P0 = 0.0;
+  physical(x, &p, &d0, &P0);
+  switch (q) {
+    case FitParameter::K: return p.K;
+    case FitParameter::G: return p.G;
+    case FitParameter::w: return p.s * p.s;
+    case FitParameter::delta0: return d0;
+    case FitParameter::P0: return P0;
+    case FitParameter::E: return p.E;
+    case FitParameter::R: return p.R;
+  }
+  return kNaN;
+}
+
+double ParameterMap::derivative(FitParameter q, const double* x) const {
+  const double xv = x[index(q)];
+  switch (q) {
+    case FitParameter::K:
+    case FitParameter::E:
+    case FitParameter::R: return value(q, x);
+    case FitParameter::G: return G_log ? value(q, x) : G_scale;
+    case FitParameter::w: return 2.0 * s_scale * s_scale * xv;
+    case FitParameter::delta0: return L;
+    case FitParameter::P0: return F;
+  }
+  return kNaN;
+}
+
+std::size_t FitData::residuals() const {
+  std::size_t m = delta.size();
+  for (double v : a) m += std::isnan(v) ? 0 : 1;
+  return m;
+}
+
+CurveEvaluator::CurveEvaluator(const CurveModel& model, const ParameterMap& map, const FitData& data)
+    : model_(model), map_(map), data_(data), n_free_(map.free.size()) {
+  const std::size_t n = data.delta.size();
+  row_.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    row_[i + 1] = row_[i] + 1 + (data.a.empty() || std::isnan(data.a[i]) ? 0 : 1);
+  order_.resize(n);
+  std::iota(order_.begin(), order_.end(), std::size_t{0});
+  std::stable_sort(order_.begin(), order_.end(),
+                   [&](std::size_t i, std::size_t j) { return data.delta[i] < data.delta[j]; });
+  a_cache_.assign(n, 0.0);
+  P_fit_.assign(n, 0.0);
+  // A radius where delta ~ the data's span seeds every later search.
+  const double seed = std::isfinite(model.max_radius()) ? 0.25 * model.max_radius() : 1e-6;
+  a_typ_ = seed;
+  CurveParameters<double> p;
+  double d0 = 0.0, P0 = 0.0;
+  std::vector<double> x0(n_free_, 0.0);
+  map.physical(x0.data(), &p, &d0, &P0);
+  p.s = 0.0;
+  const double lo = std::max(model.min_radius(), 0.0);
+  const double a = solve_radius(p, map.L, lo, seed);
+  if (std::isfinite(a) && a > 0.0) a_typ_ = a;
+}
+
+void CurveEvaluator::curve(const CurveParameters<double>& p, double a, double* delta, double* P,
+                           double* ddelta, double* dP) const {
+  const CurveParameters<Jet1> pj{Jet1(p.K), Jet1(p.G), Jet1(p.E), Jet1(p.s), Jet1(p.R)};
+  Jet1 d, F;
+  model_.evaluate(Jet1(a, 0), pj, &d, &F);
+  *delta = d.a;
+  *P = F.a;
+  if (ddelta) *ddelta = d.v[0];
+  if (dP) *dP = F.v[0];
+}
+
+double CurveEvaluator::solve_radius(const CurveParameters<double>& p, double target, double lo,
+                                    double guess, double* P_out) const {
+  double a_closed, P_closed;
+  if (model_.invert(p, target, &a_closed, &P_closed) && a_closed >= lo && a_closed < model_.max_radius()) {
+    if (P_out) *P_out = P_closed;
+    return a_closed;
+  }
+  const double a_max = model_.max_radius();
+  double hi = kInf;
+  double x = guess > lo ? guess : (lo > 0.0 ? 2.0 * lo : a_typ_);
+  if (!(x < a_max)) x = lo > 0.0 ? 0.5 * (lo + a_max) : 0.5 * a_max;
+  for (int it = 0; it < 300; ++it) {
+    double d, P, dd, dP;
+    curve(p, x, &d, &P, &dd, &dP);
+    if (!std::isfinite(d) || !std::isfinite(dd)) return kNaN;
+    const double g = d - target;
+    if (g == 0.0) {
+      if (P_out) *P_out = P;
+      return x;
+    }
+    (g < 0.0 ? lo : hi) = x;
+    double next = x - g / dd;
+    // Quadratic convergence: once the step is below 1e-8 x the Newton update is exact to
+    // ~1e-16, and so is the first-order update of P.
+    if (dd > 0.0 && std::abs(next - x) <= 1e-8 * x && next > lo && next < hi) {
+      if (P_out) *P_out = P + dP * (next - x);
+      return next;
+    }
+    if (!(dd > 0.0) || !(next > lo && next < hi)) {
+      if (std::isfinite(hi))
+        next = 0.5 * (lo + hi);
+      else
+        next = 2.0 * x;
+    }
+    if (!(next < a_max)) {
+      if (a_max - x <= 1e-12 * a_max) return kNaN;  // the target lies beyond the model's domain
+      next = 0.5 * (x + a_max);
+    }
+    if (std::isfinite(hi) && hi - lo <= 4e-16 * hi) {
+      if (P_out) curve(p, next, &d, P_out, nullptr, nullptr);
+      return next;
+    }
+    x = next;
+  }
+  return kNaN;
+}
+
+bool CurveEvaluator::branch_start(const CurveParameters<double>& p, bool retract,
+                                  BranchStart* out) const {
+  const double floor = std::max(model_.min_radius(), 1e-9 * a_typ_);
+  auto finish = [&](double a) {
+    double P;
+    out->a = a;
+    curve(p, a, &out->delta, &P, nullptr, nullptr);
+    return std::isfinite(out->delta);
+  };
+  if (p.s == 0.0) return finish(floor);
+  // approach: zero load P(a) = 0; retract: pull-off dP/da = 0. Both are negative below.
+  auto g = [&](double a) {
+    double d, P, dd, dP;
+    curve(p, a, &d, &P, &dd, &dP);
+    return retract ? dP : P;
+  };
+  double x = start_cache_[retract ? 1 : 0];
+  if (!(x > floor && x < model_.max_radius())) x = a_typ_;
+  double lo, hi;
+  if (g(x) >= 0.0) {
+    hi = x;
+    for (;;) {
+      x *= 0.5;
+      if (x <= floor) return finish(floor);
+      if (g(x) < 0.0) break;
+      hi = x;
+    }
+    lo = x;
+  } else {
+    lo = x;
+    for (;;) {
+      x *= 2.0;
+      if (!(x < model_.max_radius())) return false;
+      if (g(x) >= 0.0) break;
+      lo = x;
+    }
+    hi = x;
+  }
+  std::uintmax_t iters = 100;
+  const auto r = boost::math::tools::toms748_solve(
+      g, lo, hi, boost::math::tools::eps_tolerance<double>(48), iters);
+  return finish(0.5 * (r.first + r.second));
+}
+
+bool CurveEvaluator::evaluate(const double* x, bool jacobian) {
+  const bool same_point = have_cache_ && std::equal(x_cache_.begin(), x_cache_.end(), x);
+  if (same_point && (have_jac_ || !jacobian)) return cache_ok_;
+  // Ceres asks for the Jacobian at a point whose residuals it just evaluated: reuse the radii.
+  reuse_radii_ = same_point && cache_ok_;
+  x_cache_.assign(x, x + n_free_);
+  have_cache_ = true;
+  have_jac_ = jacobian;
+  cache_ok_ = false;
+
+  const std::size_t slots = n_free_ + 1;
+  if (slots <= 2) cache_ok_ = sweep<Jet3>(x, jacobian);
+  else if (slots <= 4) cache_ok_ = sweep<Jet5>(x, jacobian);
+  else cache_ok_ = sweep<Jet8>(x, jacobian);
+  return cache_ok_;
+}
+
+template <class J>
+bool CurveEvaluator::sweep(const double* x, bool jacobian) {
+  constexpr int kRadiusSlot = J::DIMENSION - 1;
+  CurveParameters<double> p;
+  double delta0 = 0.0, P0 = 0.0;
+  map_.physical(x, &p, &delta0, &P0);
+  if (!(p.K >= 0.0 && p.E >= 0.0 && p.R >= 0.0) || !std::isfinite(p.K) || !std::isfinite(p.E) ||
+      !std::isfinite(p.R) || !std::isfinite(p.G) || !std::isfinite(p.s))
+    return false;
+  CurveParameters<J> pj;
+  J d0j, P0j;
+  if (jacobian) {
+    std::array<J, J::DIMENSION> xj;
+    for (std::size_t j = 0; j < n_free_; ++j) xj[j] = J(x[j], static_cast<int>(j));
+    map_.physical(xj.data(), &pj, &d0j, &P0j);
+  }
+  const std::size_t m = row_.back();
+  r_.assign(m, 0.0);
+  if (jacobian) J_.assign(m * n_free_, 0.0);
+  contact_count_ = 0;
+  const double F = map_.F, A = data_.a_scale;
+
+  for (int branch = 0; branch < 2; ++branch) {
+    const bool retract = branch == 1;
+    bool any = false;
+    for (std::size_t i : order_) any = any || data_.retract[i] == retract;
+    if (!any) continue;
+    BranchStart start;
+    if (!branch_start(p, retract, &start)) return false;
+    start_cache_[branch] = start.a;
+    double lo = start.a;
+    for (std::size_t i : order_) {
+      if (data_.retract[i] != retract) continue;
+      const double t = data_.delta[i] - delta0;
+      const double sw = data_.sqrt_weight[i];
+      const std::size_t r0 = row_[i];
+      const bool has_a = rows(i) == 2;
+      if (t < start.delta) {  // not in contact: the baseline only
+        P_fit_[i] = P0;
+        r_[r0] = sw * (P0 - data_.P[i]) / F;
+        if (jacobian)
+          for (std::size_t j = 0; j < n_free_; ++j) J_[r0 * n_free_ + j] = sw * P0j.v[j] / F;
+        if (has_a) r_[r0 + 1] = -sw * data_.a[i] / A;
+        continue;
+      }
+      double P = 0.0;
+      const double a = reuse_radii_ ? a_cache_[i] : solve_radius(p, t, lo, std::max(a_cache_[i], lo), &P);
+      if (!std::isfinite(a)) return false;
+      lo = a;
+      a_cache_[i] = a;
+      ++contact_count_;
+      if (jacobian) {
+        J dj, Pj;
+        model_.evaluate(J(a, kRadiusSlot), pj, &dj, &Pj);
+        P = Pj.a;
+        const double slope = dj.v[kRadiusSlot];
+        if (!(slope > 0.0)) return false;
+        for (std::size_t j = 0; j < n_free_; ++j) {
+          const double da = (-d0j.v[j] - dj.v[j]) / slope;
+          J_[r0 * n_free_ + j] = sw * (Pj.v[j] + Pj.v[kRadiusSlot] * da + P0j.v[j]) / F;
+          if (has_a) J_[(r0 + 1) * n_free_ + j] = sw * da / A;
+        }
+      }
+      if (!std::isfinite(P)) return false;
+      P_fit_[i] = P0 + P;
+      r_[r0] = sw * (P0 + P - data_.P[i]) / F;
+      if (has_a) r_[r0 + 1] = sw * (a - data_.a[i]) / A;
+    }
+  }
+  return true;
+}
+
+}  // namespace layerjkr::detail

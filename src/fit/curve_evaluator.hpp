@@ -1,0 +1,94 @@
+// Internal: residuals and their exact Jacobian for one fit, cached per parameter vector.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "fit_model.hpp"
+
+namespace layerjkr::detail {
+
+/// Maps the internal dimensionless vector x to physical parameters (see fit.hpp).
+struct ParameterMap {
+  std::vector<FitParameter> free;
+  std::array<int, 7> slot{};        ///< index into x per FitParameter, -1 if fixed
+  std::array<double, 7> ref{};      ///< reference value per FitParameter
+  SceneParameters fixed;
+  double L = 1.0, F = 1.0;          ///< length and force scales [m], [N]
+  double G_scale = 1.0;             ///< linear G: G = G_scale * x
+  bool G_log = false;               ///< full foundation: G = ref * exp(x)
+  double s_scale = 1.0;             ///< s = sqrt(w) = s_scale * x
+
+  int index(FitParameter p) const { return slot[static_cast<int>(p)]; }
+  bool is_free(FitParameter p) const { return index(p) >= 0; }
+
+  /// Physical parameters and offsets from x (T = double or a Jet seeded in slots 0..n-1).
+  template <class T>
+  void physical(const T* x, CurveParameters<T>* p, T* delta0, T* P0) const;
+  /// d(physical)/dx for the reported parameter p at x.
+  double derivative(FitParameter p, const double* x) const;
+  /// Reported physical value of p at x (w, not s).
+  double value(FitParameter p, const double* x) const;
+};
+
+/// The samples of one fit.
+struct FitData {
+  std::vector<double> delta, P, a, sqrt_weight;  ///< a: NaN where not measured
+  std::vector<bool> retract;
+  double a_scale = 1.0;                          ///< divides contact-radius residuals [m]
+  std::size_t residuals() const;
+};
+
+/// Where the stable branch starts: zero load (approach) or pull-off (retract).
+struct BranchStart {
+  double a = 0.0, delta = 0.0;
+};
+
+class CurveEvaluator {
+ public:
+  CurveEvaluator(const CurveModel& model, const ParameterMap& map, const FitData& data);
+
+  /// Residuals (and the row-major Jacobian, residuals x free) at x. False if the
+  /// model cannot be evaluated there (a radius outside the model's domain).
+  bool evaluate(const double* x, bool jacobian);
+  const std::vector<double>& residuals() const { return r_; }
+  const std::vector<double>& jacobian() const { return J_; }
+  /// Model force at each sample (P0 included) and contact flags of the last evaluation.
+  const std::vector<double>& predicted() const { return P_fit_; }
+  std::size_t in_contact() const { return contact_count_; }
+  /// Row where sample i's residuals start.
+  std::size_t row(std::size_t i) const { return row_[i]; }
+  std::size_t rows(std::size_t i) const { return row_[i + 1] - row_[i]; }
+
+  /// Stable-branch start for given physical parameters (double).
+  bool branch_start(const CurveParameters<double>& p, bool retract, BranchStart* out) const;
+  /// Radius with delta(a) = target on a >= lo (delta(lo) <= target); NaN on failure.
+  /// If P is given it receives the force there (to ~1e-15 relative).
+  double solve_radius(const CurveParameters<double>& p, double target, double lo, double guess,
+                      double* P = nullptr) const;
+  /// delta(a), P(a) and their a-derivatives (double).
+  void curve(const CurveParameters<double>& p, double a, double* delta, double* P, double* ddelta,
+             double* dP) const;
+  double typical_radius() const { return a_typ_; }
+
+ private:
+  template <class J>
+  bool sweep(const double* x, bool jacobian);
+
+  const CurveModel& model_;
+  const ParameterMap& map_;
+  const FitData& data_;
+  std::size_t n_free_;
+  std::vector<std::size_t> row_;
+  std::vector<std::size_t> order_;  ///< samples sorted by delta
+  std::vector<double> a_cache_;
+  double a_typ_ = 0.0;
+  std::array<double, 2> start_cache_{0.0, 0.0};
+  std::vector<double> x_cache_;
+  bool have_cache_ = false, have_jac_ = false, cache_ok_ = false, reuse_radii_ = false;
+  std::vector<double> r_, J_, P_fit_;
+  std::size_t contact_count_ = 0;
+};
+
+}  // namespace layerjkr::detail

@@ -1,0 +1,336 @@
+// The three curve families a fit can vary: closed-form foundations, Hertz, and a spline
+// table of any other model whose stiffness scales with E.
+#include "fit_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <boost/math/constants/constants.hpp>
+#include <gsl/gsl_spline.h>
+
+#include "../bessel_ratio.hpp"
+#include "../gsl_support.hpp"
+#include "layerjkr/error.hpp"
+#include "layerjkr/model.hpp"
+
+namespace layerjkr::detail {
+namespace {
+
+constexpr double kPi = boost::math::constants::pi<double>();
+
+inline double value_of(double x) { return x; }
+template <int N>
+double value_of(const ceres::Jet<double, N>& x) {
+  return x.a;
+}
+
+// g(x) for a scalar or Jet x, given g and g' at value_of(x).
+template <class T>
+T lift(double g, double dg, const T& x) {
+  return T(g) + dg * (x - T(value_of(x)));
+}
+
+template <class T>
+struct ProfileAt {
+  T f, df, d2f, M;
+};
+
+// Profile values at a scalar or Jet radius; a paraboloid is evaluated in T so R can vary.
+template <class T>
+ProfileAt<T> profile_at(const Profile& p, bool paraboloid, const T& a, const T& R) {
+  if (paraboloid) {
+    const T a2 = a * a;
+    return {a2 / (2.0 * R), a / R, T(1.0) / R, a2 * a2 / (8.0 * R)};
+  }
+  const double av = value_of(a);
+  const ProfileDerivatives d = p.derivatives(av);
+  return {lift(d.f, d.df, a), lift(d.df, d.d2f, a), lift(d.d2f, d.d3f, a),
+          lift(p.moment(av), av * d.f, a)};
+}
+
+template <class Derived>
+class CurveModelBase : public CurveModel {
+ public:
+  void evaluate(const Jet1& a, const CurveParameters<Jet1>& p, Jet1* d, Jet1* P) const override {
+    static_cast<const Derived*>(this)->curve(a, p, d, P);
+  }
+  void evaluate(const Jet3& a, const CurveParameters<Jet3>& p, Jet3* d, Jet3* P) const override {
+    static_cast<const Derived*>(this)->curve(a, p, d, P);
+  }
+  void evaluate(const Jet5& a, const CurveParameters<Jet5>& p, Jet5* d, Jet5* P) const override {
+    static_cast<const Derived*>(this)->curve(a, p, d, P);
+  }
+  void evaluate(const Jet8& a, const CurveParameters<Jet8>& p, Jet8* d, Jet8* P) const override {
+    static_cast<const Derived*>(this)->curve(a, p, d, P);
+  }
+};
+
+// Two-term / Winkler (asymptotic) or full Pasternak / Filonenko-Borodich.
+class FoundationCurve final : public CurveModelBase<FoundationCurve> {
+ public:
+  FoundationCurve(ProfilePtr profile, bool full, bool layer, std::string name)
+      : profile_(std::move(profile)), paraboloid_(profile_->is_paraboloid()), full_(full),
+        layer_(layer), name_(std::move(name)) {}
+
+  template <class T>
+  void curve(const T& a, const CurveParameters<T>& p, T* delta, T* P) const {
+    using std::sqrt;
+    if (paraboloid_ && !full_) {  // the G-terms cancel in P and shift delta by 2G/(KR)
+      const T root = p.s * sqrt(2.0 / p.K);
+      const T a2 = a * a;
+      *delta = (0.5 * a2 - 2.0 * p.G / p.K) / p.R - root;
+      *P = kPi * p.K * a2 * (0.25 * a2 / p.R - root);
+      return;
+    }
+    const ProfileAt<T> g = profile_at(*profile_, paraboloid_, a, p.R);
+    const T bracket = a * a * g.f - 2.0 * g.M;
+    if (!full_) {
+      const T root = p.s * sqrt(2.0 / p.K);  // sqrt(2 w / K)
+      *delta = g.f - (p.G / p.K) * (g.d2f + g.df / a) - root;
+      *P = kPi * p.K * (bracket - a * a * root) + kPi * p.G * a * (g.df - a * g.d2f);
+      return;
+    }
+    const T lambda = sqrt(p.K / p.G);
+    const T x = lambda * a;
+    const double xv = value_of(x);
+    const double qv = bessel_k1_over_k0(xv);
+    const T q = lift(qv, qv * qv - qv / xv - 1.0, x);  // (K1/K0)' = q^2 - q/x - 1
+    const T delta_H = g.f + g.df / (lambda * q);
+    const T P_H = kPi * p.K * (a * a * delta_H - 2.0 * g.M) + 2.0 * kPi * p.G * a * g.df;
+    const T S = kPi * p.K * a * a + 2.0 * kPi * p.G * lambda * a * q;
+    const T u = p.s * sqrt(2.0 / p.K) / q;  // sqrt(4 pi w a / S'), S' = 2 pi K a q^2
+    *delta = delta_H - u;
+    *P = P_H - S * u;
+  }
+
+  // Paraboloid, asymptotic: delta = a^2/(2R) - 2G/(KR) - sqrt(2w/K) is a quadratic in a.
+  bool invert(const CurveParameters<double>& p, double target, double* a, double* P) const override {
+    if (!paraboloid_ || full_) return false;
+    const double root = p.s * std::sqrt(2.0 / p.K);
+    const double a2 = 2.0 * p.R * (target + 2.0 * p.G / (p.K * p.R) + root);
+    if (!(a2 > 0.0)) return false;
+    *a = std::sqrt(a2);
+    *P = kPi * p.K * a2 * (0.25 * a2 / p.R - root);  // the G-terms cancel for a paraboloid
+    return true;
+  }
+
+  bool supports(FitParameter q) const override {
+    switch (q) {
+      case FitParameter::E: return layer_;
+      case FitParameter::R: return paraboloid_;
+      default: return true;
+    }
+  }
+  double min_radius() const override { return 0.0; }
+  double max_radius() const override { return profile_->max_radius(); }
+  std::string family() const override { return "foundation"; }
+  std::string model_name() const override { return name_; }
+
+ private:
+  ProfilePtr profile_;
+  bool paraboloid_, full_, layer_;
+  std::string name_;
+};
+
+// Half-space with a paraboloid: delta_H = a^2/R, P_H = 4 E* a^3 / (3R).
+class HertzCurve final : public CurveModelBase<HertzCurve> {
+ public:
+  explicit HertzCurve(double nu) : one_minus_nu2_((1.0 - nu) * (1.0 + nu)) {}
+  template <class T>
+  void curve(const T& a, const CurveParameters<T>& p, T* delta, T* P) const {
+    using std::sqrt;
+    const T Es = p.E / one_minus_nu2_;
+    const T u = p.s * sqrt(2.0 * kPi * a / Es);  // sqrt(4 pi w a / S'), S' = 2 E*
+    *delta = a * a / p.R - u;
+    *P = 4.0 * Es * a * a * a / (3.0 * p.R) - 2.0 * Es * a * u;
+  }
+  // Without adhesion delta = a^2/R inverts in closed form.
+  bool invert(const CurveParameters<double>& p, double target, double* a, double* P) const override {
+    if (p.s != 0.0 || !(target > 0.0)) return false;
+    *a = std::sqrt(p.R * target);
+    *P = 4.0 * p.E / one_minus_nu2_ * target * *a / 3.0;
+    return true;
+  }
+  bool supports(FitParameter q) const override {
+    return q != FitParameter::K && q != FitParameter::G;
+  }
+  double min_radius() const override { return 0.0; }
+  double max_radius() const override { return std::numeric_limits<double>::infinity(); }
+  std::string family() const override { return "hertz"; }
+  std::string model_name() const override { return "half_space"; }
+
+ private:
+  double one_minus_nu2_;
+};
+
+// Natural cubic spline in t = ln a, evaluated with a NULL accelerator (thread-safe).
+class LogSpline {
+ public:
+  LogSpline(const std::vector<double>& t, const std::vector<double>& y)
+      : spline_(gsl_spline_alloc(gsl_interp_cspline, t.size()), gsl_spline_free) {
+    silence_gsl_errors();
+    gsl_spline_init(spline_.get(), t.data(), y.data(), t.size());
+  }
+  double value(double t) const { return gsl_spline_eval(spline_.get(), t, nullptr); }
+  double slope(double t) const { return gsl_spline_eval_deriv(spline_.get(), t, nullptr); }
+
+ private:
+  std::unique_ptr<gsl_spline, void (*)(gsl_spline*)> spline_;
+};
+
+// Any model whose P_H, S, S' scale with E at fixed nu, h and profile (exact layer, edge
+// corrected, auto, half-space with a general profile), tabulated once at the scene's E.
+// ln P_H, ln S, ln S' and delta_H (or ln delta_H when positive) are splined in ln a.
+class TabulatedCurve final : public CurveModelBase<TabulatedCurve> {
+ public:
+  TabulatedCurve(ContactModelPtr model, double E_ref, double delta_span, int per_decade)
+      : model_(std::move(model)), E_ref_(E_ref) {
+    const double lo_bound = model_->min_radius();
+    const double hi_bound = model_->max_radius();
+    // Upper radius: delta_H reaches 4x the data's span, or the model's bound.
+    double a_hi = model_->profile().length_scale();
+    if (!(a_hi < hi_bound)) a_hi = 0.5 * hi_bound;
+    for (int i = 0; i < 200 && model_->state(a_hi).delta_H < 4.0 * delta_span; ++i) {
+      const double next = 2.0 * a_hi;
+      if (!(next < hi_bound)) {
+        a_hi = std::isfinite(hi_bound) ? hi_bound * (1.0 - 1e-9) : a_hi;
+        break;
+      }
+      a_hi = next;
+    }
+    for (int i = 0; i < 200 && a_hi > lo_bound && model_->state(0.5 * a_hi).delta_H > 4.0 * delta_span; ++i)
+      a_hi *= 0.5;
+    const double decades = 6.0;
+    double a_lo = a_hi * std::pow(10.0, -decades);
+    if (a_lo <= lo_bound) a_lo = lo_bound * (1.0 + 1e-6);
+    const int n = std::max(8, static_cast<int>(std::ceil(per_decade * std::log10(a_hi / a_lo)))) + 1;
+    std::vector<double> t(n), lnP(n), lnS(n), lnSp(n), dH(n);
+    positive_delta_ = true;
+    for (int i = 0; i < n; ++i) {
+      t[i] = std::log(a_lo) + (std::log(a_hi) - std::log(a_lo)) * i / (n - 1);
+      const HertzState st = model_->state(std::exp(t[i]));
+      if (!(st.P_H > 0.0 && st.S > 0.0 && st.dS_da > 0.0))
+        throw NumericalError("fit: model '" + model_->name() + "' has P_H, S or S' <= 0 at a = " +
+                             format_double(std::exp(t[i])) + " m; it cannot be tabulated for a fit");
+      lnP[i] = std::log(st.P_H);
+      lnS[i] = std::log(st.S);
+      lnSp[i] = std::log(st.dS_da);
+      dH[i] = st.delta_H;
+      positive_delta_ = positive_delta_ && st.delta_H > 0.0;
+    }
+    if (positive_delta_)
+      for (auto& v : dH) v = std::log(v);
+    a_lo_ = std::exp(t.front());
+    a_hi_ = std::exp(t.back());
+    lnP_ = std::make_unique<LogSpline>(t, lnP);
+    lnS_ = std::make_unique<LogSpline>(t, lnS);
+    lnSp_ = std::make_unique<LogSpline>(t, lnSp);
+    delta_ = std::make_unique<LogSpline>(t, dH);
+    // Interpolation error, measured at the midpoints of every 8th interval.
+    for (int i = 0; i + 1 < n; i += 8) {
+      const double tm = 0.5 * (t[i] + t[i + 1]);
+      const HertzState st = model_->state(std::exp(tm));
+      const double dh = positive_delta_ ? std::exp(delta_->value(tm)) : delta_->value(tm);
+      max_error_ = std::max({max_error_, std::abs(std::exp(lnP_->value(tm)) / st.P_H - 1.0),
+                             std::abs(dh / st.delta_H - 1.0),
+                             std::abs(std::exp(lnSp_->value(tm)) / st.dS_da - 1.0)});
+    }
+  }
+
+  template <class T>
+  void curve(const T& a, const CurveParameters<T>& p, T* delta, T* P) const {
+    using std::exp;
+    using std::sqrt;
+    const double av = value_of(a);
+    const double tv = std::log(av);
+    const T dt = (a - T(av)) / av;  // d ln a
+    const T kappa = p.E / E_ref_;
+    const double lp = lnP_->value(tv), ls = lnS_->value(tv), lsp = lnSp_->value(tv);
+    const T P_H = exp(lp) * (T(1.0) + lnP_->slope(tv) * dt);
+    const T S = exp(ls) * (T(1.0) + lnS_->slope(tv) * dt);
+    const T Sp = exp(lsp) * (T(1.0) + lnSp_->slope(tv) * dt);
+    T delta_H;
+    if (positive_delta_) {
+      const double dv = std::exp(delta_->value(tv));
+      delta_H = dv * (T(1.0) + delta_->slope(tv) * dt);
+    } else {
+      delta_H = T(delta_->value(tv)) + delta_->slope(tv) * dt;
+    }
+    const T u = p.s * sqrt(4.0 * kPi * a / (kappa * Sp));
+    *delta = delta_H - u;
+    *P = kappa * (P_H - S * u);
+  }
+
+  bool supports(FitParameter q) const override {
+    return q != FitParameter::K && q != FitParameter::G && q != FitParameter::R;
+  }
+  double min_radius() const override { return a_lo_; }
+  double max_radius() const override { return a_hi_; }
+  std::string family() const override { return "tabulated"; }
+  std::string model_name() const override { return model_->name(); }
+  std::vector<std::string> notes() const override {
+    return {"model '" + model_->name() + "' tabulated on a in [" + format_double(a_lo_) + ", " +
+            format_double(a_hi_) + "] m; measured interpolation error " +
+            format_double(max_error_) + " (relative)"};
+  }
+
+ private:
+  ContactModelPtr model_;
+  double E_ref_;
+  bool positive_delta_ = true;
+  double a_lo_ = 0.0, a_hi_ = 0.0, max_error_ = 0.0;
+  std::unique_ptr<LogSpline> lnP_, lnS_, lnSp_, delta_;
+};
+
+double paraboloid_radius(const Profile& p) {
+  return p.is_paraboloid() ? 1.0 / p.derivatives(1.0).d2f : 0.0;
+}
+
+}  // namespace
+
+std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const FitOptions& options,
+                                             double delta_span, SceneParameters* fixed) {
+  const MediumSpec& m = scene.medium;
+  SceneParameters sp;
+  sp.values.s = std::sqrt(scene.w);
+  sp.values.R = paraboloid_radius(*scene.profile);
+  std::unique_ptr<CurveModel> model;
+  const bool foundation_medium = m.type == MediumType::winkler || m.type == MediumType::pasternak ||
+                                 m.type == MediumType::filonenko_borodich;
+  const bool layer_foundation =
+      m.type == MediumType::layer && (scene.model == "leading" || scene.model == "two_term");
+  if (foundation_medium) {
+    sp.values.K = m.K;
+    sp.values.G = m.type == MediumType::pasternak ? m.G : m.type == MediumType::filonenko_borodich ? m.T : 0.0;
+    const bool full = scene.model == "full";
+    const std::string name = full ? "full_foundation" : sp.values.G == 0.0 ? "winkler" : "two_term";
+    model = std::make_unique<FoundationCurve>(scene.profile, full, false, name);
+  } else if (layer_foundation) {
+    const ThinLayerConstants unit = thin_layer_constants({1.0, m.nu, m.h, m.base});
+    sp.layer_foundation = true;
+    sp.k_per_E = unit.K;
+    sp.g_per_E = scene.model == "leading" ? 0.0 : unit.G;
+    sp.values.E = m.E;
+    sp.values.K = m.E * sp.k_per_E;
+    sp.values.G = m.E * sp.g_per_E;
+    model = std::make_unique<FoundationCurve>(scene.profile, false, true,
+                                              sp.g_per_E == 0.0 ? "winkler" : "two_term");
+  } else if (m.type == MediumType::half_space && scene.profile->is_paraboloid()) {
+    sp.values.E = m.E;
+    sp.nu = m.nu;
+    effective_modulus(m.E, m.nu);  // validates nu
+    model = std::make_unique<HertzCurve>(m.nu);
+  } else {
+    sp.values.E = m.E;
+    sp.nu = m.nu;
+    // "auto" chooses for the radii a fit needs: down to 1/20 of the data's span scale.
+    const double a_min = scene.model == "auto" ? std::sqrt(delta_span * scene.profile->length_scale()) / 20.0 : 0.0;
+    const BuiltScene built = build_scene(scene, a_min);
+    model = std::make_unique<TabulatedCurve>(built.model, m.E, delta_span,
+                                             options.table_points_per_decade);
+  }
+  if (fixed) *fixed = sp;
+  return model;
+}
+
+}  // namespace layerjkr::detail

@@ -1,0 +1,70 @@
+// Internal: the adhesive curve delta(a), P(a) of a scene as a function of the physical
+// parameters, templated so ceres::Jet carries derivatives in the parameters and in a.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ceres/jet.h>
+
+#include "layerjkr/fit.hpp"
+#include "layerjkr/scene.hpp"
+
+namespace layerjkr::detail {
+
+/// Jets for the Jacobian: slots 0..N-2 hold the free parameters, slot N-1 the radius a.
+/// Three sizes, so a fit with few free parameters does not carry unused slots.
+using Jet1 = ceres::Jet<double, 1>;
+using Jet3 = ceres::Jet<double, 2>;
+using Jet5 = ceres::Jet<double, 4>;
+using Jet8 = ceres::Jet<double, 8>;
+
+/// Physical parameters of one curve. s = sqrt(w) [sqrt(J/m^2)] keeps w = 0 regular.
+template <class T>
+struct CurveParameters {
+  T K, G;   ///< foundation [N/m^3], [N/m] (foundation family)
+  T E;      ///< Young's modulus [Pa] (hertz, tabulated; layer foundations via K, G)
+  T s;      ///< sqrt(work of adhesion)
+  T R;      ///< paraboloid radius [m] (when the profile is a paraboloid)
+};
+
+/// delta(a) and P(a) of the adhesive curve for one model family.
+class CurveModel {
+ public:
+  virtual ~CurveModel() = default;
+  virtual void evaluate(const Jet1& a, const CurveParameters<Jet1>& p, Jet1* delta, Jet1* P) const = 0;
+  virtual void evaluate(const Jet3& a, const CurveParameters<Jet3>& p, Jet3* delta, Jet3* P) const = 0;
+  virtual void evaluate(const Jet5& a, const CurveParameters<Jet5>& p, Jet5* delta, Jet5* P) const = 0;
+  virtual void evaluate(const Jet8& a, const CurveParameters<Jet8>& p, Jet8* delta, Jet8* P) const = 0;
+  /// Closed-form inverse of delta(a) = target where one exists: sets *a and *P (the
+  /// force at that radius) and returns true; false means "use Newton iteration".
+  virtual bool invert(const CurveParameters<double>& p, double target, double* a, double* P) const {
+    (void)p, (void)target, (void)a, (void)P;
+    return false;
+  }
+  /// Which physical parameters this family can vary.
+  virtual bool supports(FitParameter p) const = 0;
+  /// Admissible radii (a_min may be 0, exclusive).
+  virtual double min_radius() const = 0;
+  virtual double max_radius() const = 0;
+  virtual std::string family() const = 0;
+  virtual std::string model_name() const = 0;
+  /// Extra lines for FitSummary::warnings (e.g. the table's interpolation error).
+  virtual std::vector<std::string> notes() const { return {}; }
+};
+
+/// The scene's fixed values as CurveParameters<double> (s = sqrt(w)).
+struct SceneParameters {
+  CurveParameters<double> values;
+  double k_per_E = 0.0, g_per_E = 0.0;  ///< layer foundations: K = k E, G = g E
+  bool layer_foundation = false;
+  double nu = 0.0;                      ///< hertz / tabulated: E* = E / (1 - nu^2)
+};
+
+/// Builds the curve model of `scene` for a fit. `delta_span` [m] > 0 sizes the
+/// tabulated family's radius range so that delta_H reaches several times the data's span.
+std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const FitOptions& options,
+                                             double delta_span, SceneParameters* fixed);
+
+}  // namespace layerjkr::detail
