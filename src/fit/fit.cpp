@@ -101,7 +101,7 @@ Start scan_start(const FitData& d, const MasterCurve& approach, const MasterCurv
                  const ParameterMap& map, double P0, double span) {
   const bool free_d0 = map.is_free(FitParameter::delta0);
   const bool free_k = map.is_free(FitParameter::K) || map.is_free(FitParameter::E);
-  const std::size_t n = d.delta.size(), stride = std::max<std::size_t>(1, n / 64);
+  const std::size_t n = d.delta.size(), stride = std::max<std::size_t>(1, n / 48);
   const double dmin = *std::min_element(d.delta.begin(), d.delta.end());
   // A subsample per branch, sorted by delta, so each trial walks the master curve once.
   std::array<std::vector<std::pair<double, double>>, 2> pts;
@@ -144,9 +144,9 @@ Start scan_start(const FitData& d, const MasterCurve& approach, const MasterCurv
     return best;
   }
   double best_cost = std::numeric_limits<double>::infinity();
-  double step = span / 24.0;
+  double step = span / 16.0;
   double centre = dmin + 0.5 * span;
-  int count = 25;
+  int count = 17;
   for (int pass = 0; pass < 3; ++pass) {
     const double c0 = centre;
     for (int k = 0; k < count; ++k) {
@@ -340,7 +340,11 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
 
   // Ceres: one residual block, or one per sample when a robust loss needs it.
   auto solve = [&](std::vector<double>& xs, ceres::Solver::Summary* summary) {
+    // One Ceres context per thread: creating it per fit costs more than a small fit.
+    thread_local ceres::Context context;
     ceres::Problem::Options po;
+    po.context = &context;
+    po.disable_all_safety_checks = true;  // the blocks are built here, sized consistently
     po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
     po.loss_function_ownership = ceres::TAKE_OWNERSHIP;
     auto problem = std::make_unique<ceres::Problem>(po);

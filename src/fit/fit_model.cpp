@@ -24,6 +24,13 @@ double value_of(const ceres::Jet<double, N>& x) {
   return x.a;
 }
 
+// True when x is exactly zero with no sensitivity (w fixed at 0): adhesion terms vanish.
+inline bool is_constant_zero(double x) { return x == 0.0; }
+template <int N>
+bool is_constant_zero(const ceres::Jet<double, N>& x) {
+  return x.a == 0.0 && x.v.isZero();
+}
+
 // g(x) for a scalar or Jet x, given g and g' at value_of(x).
 template <class T>
 T lift(double g, double dg, const T& x) {
@@ -140,9 +147,15 @@ class HertzCurve final : public CurveModelBase<HertzCurve> {
   void curve(const T& a, const CurveParameters<T>& p, T* delta, T* P) const {
     using std::sqrt;
     const T Es = p.E / one_minus_nu2_;
+    const T a2_R = a * a / p.R;
+    if (is_constant_zero(p.s)) {
+      *delta = a2_R;
+      *P = (4.0 / 3.0) * Es * a * a2_R;
+      return;
+    }
     const T u = p.s * sqrt(2.0 * kPi * a / Es);  // sqrt(4 pi w a / S'), S' = 2 E*
-    *delta = a * a / p.R - u;
-    *P = 4.0 * Es * a * a * a / (3.0 * p.R) - 2.0 * Es * a * u;
+    *delta = a2_R - u;
+    *P = (4.0 / 3.0) * Es * a * a2_R - 2.0 * Es * a * u;
   }
   // Without adhesion delta = a^2/R inverts in closed form.
   bool invert(const CurveParameters<double>& p, double target, double* a, double* P) const override {
