@@ -11,3 +11,4 @@
 #include "layerjkr/model_choice.hpp"
 #include "layerjkr/profile.hpp"
 #include "layerjkr/scene.hpp"
+#include "layerjkr/simulate.hpp"

@@ -166,7 +166,7 @@ double CurveEvaluator::solve_radius(const CurveParameters<double>& p, double tar
   return kNaN;
 }
 
-bool CurveEvaluator::branch_start(const CurveParameters<double>& p, bool retract,
+bool CurveEvaluator::branch_start(const CurveParameters<double>& p, StartKind kind,
                                   BranchStart* out) const {
   const double floor = std::max(model_.min_radius(), 1e-9 * a_typ_);
   auto finish = [&](double a) {
@@ -176,13 +176,13 @@ bool CurveEvaluator::branch_start(const CurveParameters<double>& p, bool retract
     return std::isfinite(out->delta);
   };
   if (p.s == 0.0) return finish(floor);
-  // approach: zero load P(a) = 0; retract: pull-off dP/da = 0. Both are negative below.
+  // P(a) = 0, dP/da = 0 or d delta/da = 0: each is negative below its root.
   auto g = [&](double a) {
     double d, P, dd, dP;
     curve(p, a, &d, &P, &dd, &dP);
-    return retract ? dP : P;
+    return kind == StartKind::zero_load ? P : kind == StartKind::pull_off ? dP : dd;
   };
-  double x = start_cache_[retract ? 1 : 0];
+  double x = start_cache_[static_cast<int>(kind)];
   if (!(x > floor && x < model_.max_radius())) x = a_typ_;
   double lo, hi;
   if (g(x) >= 0.0) {
@@ -254,9 +254,12 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
     bool any = false;
     for (std::size_t i : order_) any = any || data_.retract[i] == retract;
     if (!any) continue;
+    bool forced = false;
+    for (std::size_t i : order_) forced = forced || (data_.retract[i] == retract && !data_.contact.empty() && data_.contact[i] >= 0);
+    const StartKind kind = forced ? StartKind::fixed_grips : retract ? StartKind::pull_off : StartKind::zero_load;
     BranchStart start;
-    if (!branch_start(p, retract, &start)) return false;
-    start_cache_[branch] = start.a;
+    if (!branch_start(p, kind, &start)) return false;
+    start_cache_[static_cast<int>(kind)] = start.a;
     double lo = start.a;
     for (std::size_t i : order_) {
       if (data_.retract[i] != retract) continue;
@@ -264,7 +267,10 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
       const double sw = data_.sqrt_weight[i];
       const std::size_t r0 = row_[i];
       const bool has_a = rows(i) == 2;
-      if (t < start.delta) {  // not in contact: the baseline only
+      const signed char flag = data_.contact.empty() ? -1 : data_.contact[i];
+      // A sample held in contact below the curve's end sits at the end (a smooth penalty).
+      const bool clamped = flag == 1 && t < start.delta;
+      if (flag == 0 || (flag < 0 && t < start.delta)) {  // not in contact: the baseline only
         P_fit_[i] = P0;
         r_[r0] = sw * (P0 - data_.P[i]) / F;
         if (jacobian)
@@ -273,7 +279,14 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
         continue;
       }
       double P = 0.0;
-      const double a = reuse_radii_ ? a_cache_[i] : solve_radius(p, t, lo, std::max(a_cache_[i], lo), &P);
+      double a;
+      if (clamped) {
+        double d;
+        a = start.a;
+        curve(p, a, &d, &P, nullptr, nullptr);
+      } else {
+        a = reuse_radii_ ? a_cache_[i] : solve_radius(p, t, lo, std::max(a_cache_[i], lo), &P);
+      }
       if (!std::isfinite(a)) return false;
       lo = a;
       a_cache_[i] = a;
@@ -283,9 +296,9 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
         model_.evaluate(J(a, kRadiusSlot), pj, &dj, &Pj);
         P = Pj.a;
         const double slope = dj.v[kRadiusSlot];
-        if (!(slope > 0.0)) return false;
+        if (!(slope > 0.0) && !clamped) return false;
         for (std::size_t j = 0; j < n_free_; ++j) {
-          const double da = (-d0j.v[j] - dj.v[j]) / slope;
+          const double da = clamped ? 0.0 : (-d0j.v[j] - dj.v[j]) / slope;
           J_[r0 * n_free_ + j] = sw * (Pj.v[j] + Pj.v[kRadiusSlot] * da + P0j.v[j]) / F;
           if (has_a) J_[(r0 + 1) * n_free_ + j] = sw * da / A;
         }

@@ -36,11 +36,18 @@ struct ParameterMap {
 struct FitData {
   std::vector<double> delta, P, a, sqrt_weight;  ///< a: NaN where not measured
   std::vector<bool> retract;
+  /// Per sample: 1 in contact, 0 free, -1 the model decides (empty = all -1). Retract
+  /// samples up to the observed pull-off are in contact whatever the parameters, which
+  /// keeps the cost continuous where the model's pull-off moves across samples.
+  std::vector<signed char> contact;
   double a_scale = 1.0;                          ///< divides contact-radius residuals [m]
   std::size_t residuals() const;
 };
 
-/// Where the stable branch starts: zero load (approach) or pull-off (retract).
+/// Where a branch starts: zero load (approach), pull-off (retract under load control), or
+/// the fixed-grips point min delta(a) (the end of every curve that still exists).
+enum class StartKind { zero_load = 0, pull_off = 1, fixed_grips = 2 };
+
 struct BranchStart {
   double a = 0.0, delta = 0.0;
 };
@@ -62,7 +69,7 @@ class CurveEvaluator {
   std::size_t rows(std::size_t i) const { return row_[i + 1] - row_[i]; }
 
   /// Stable-branch start for given physical parameters (double).
-  bool branch_start(const CurveParameters<double>& p, bool retract, BranchStart* out) const;
+  bool branch_start(const CurveParameters<double>& p, StartKind kind, BranchStart* out) const;
   /// Radius with delta(a) = target on a >= lo (delta(lo) <= target); NaN on failure.
   /// If P is given it receives the force there (to ~1e-15 relative).
   double solve_radius(const CurveParameters<double>& p, double target, double lo, double guess,
@@ -84,7 +91,7 @@ class CurveEvaluator {
   std::vector<std::size_t> order_;  ///< samples sorted by delta
   std::vector<double> a_cache_;
   double a_typ_ = 0.0;
-  std::array<double, 2> start_cache_{0.0, 0.0};
+  std::array<double, 3> start_cache_{0.0, 0.0, 0.0};
   std::vector<double> x_cache_;
   bool have_cache_ = false, have_jac_ = false, cache_ok_ = false, reuse_radii_ = false;
   std::vector<double> r_, J_, P_fit_;

@@ -74,7 +74,7 @@ MasterCurve master_curve(const CurveEvaluator& ev, const CurveParameters<double>
                          bool retract) {
   MasterCurve m;
   detail::BranchStart bs;
-  if (!ev.branch_start(p, retract, &bs)) throw InputError("fit: the initial guess has no stable branch");
+  if (!ev.branch_start(p, retract ? detail::StartKind::pull_off : detail::StartKind::zero_load, &bs)) throw InputError("fit: the initial guess has no stable branch");
   // Uniform in t = delta - delta0 over every offset the scan tries.
   const double t_hi = 2.0 * span;
   m.t.push_back(bs.delta);
@@ -213,6 +213,23 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   if (!(span > 0.0)) throw InputError(curve.source + ": delta is constant on the chosen branch; nothing to fit");
   if (!(force_span > 0.0)) throw InputError(curve.source + ": P is constant on the chosen branch; nothing to fit");
 
+  {
+    // A contact region exists only if the force grows with delta: compare the deepest and
+    // the shallowest tenth of the samples.
+    std::vector<std::size_t> by_delta(data.delta.size());
+    std::iota(by_delta.begin(), by_delta.end(), std::size_t{0});
+    std::sort(by_delta.begin(), by_delta.end(), [&](auto i, auto j) { return data.delta[i] < data.delta[j]; });
+    const std::size_t tenth = std::max<std::size_t>(1, by_delta.size() / 10);
+    double shallow = 0.0, deep = 0.0;
+    for (std::size_t k = 0; k < tenth; ++k) {
+      shallow += data.P[by_delta[k]];
+      deep += data.P[by_delta[by_delta.size() - 1 - k]];
+    }
+    if (!(deep > shallow))
+      throw InputError(curve.source + ": no contact region - the force does not grow with delta on the " +
+                       to_string(options.branch) + " branch (check the sign conventions: delta grows "
+                       "towards the sample, P is positive when repulsive)");
+  }
   FitSummary out;
   // The model and which parameters it can vary.
   detail::SceneParameters fixed;
@@ -293,7 +310,21 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
     for (double v : low) dev.push_back(std::abs(v - mid));
     noise = 1.4826 * median(dev);
   }
-  const bool estimate_w = has(FitParameter::w) && dip < -std::max(5.0 * noise, 1e-6 * force_span);
+  const bool adhesive_data = dip < -std::max(5.0 * noise, 1e-6 * force_span);
+  const bool estimate_w = has(FitParameter::w) && adhesive_data;
+  if (adhesive_data) {
+    // Retract samples are in contact until the observed pull-off: the first sample after
+    // the deepest force that is back above half the dip (P(delta) is flat at pull-off, so
+    // the deepest sample itself may come a few samples early).
+    std::size_t deepest = data.P.size();
+    for (std::size_t i = 0; i < data.P.size(); ++i)
+      if (data.retract[i] && (deepest == data.P.size() || data.P[i] < data.P[deepest])) deepest = i;
+    std::size_t jump = deepest;
+    while (jump < data.P.size() && (!data.retract[jump] || data.P[jump] < P0_start + 0.5 * dip)) ++jump;
+    data.contact.assign(data.P.size(), -1);
+    for (std::size_t i = 0; i < data.P.size(); ++i)
+      if (data.retract[i]) data.contact[i] = i < jump ? 1 : 0;
+  }
   const int stiffness_index = static_cast<int>(has(FitParameter::K) ? FitParameter::K : FitParameter::E);
   for (int pass = 0; pass < 8; ++pass) {
     CurveParameters<double> p;
@@ -324,7 +355,7 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
       p.s = std::sqrt(std::exp(mid));
       detail::BranchStart bs;
       double P = 0.0, d;
-      const bool ok = ev.branch_start(p, true, &bs);
+      const bool ok = ev.branch_start(p, detail::StartKind::pull_off, &bs);
       if (ok) ev.curve(p, bs.a, &d, &P, nullptr, nullptr);
       (ok && P > dip ? lo : hi) = mid;
     }

@@ -23,10 +23,10 @@ using Jet8 = ceres::Jet<double, 8>;
 /// Physical parameters of one curve. s = sqrt(w) [sqrt(J/m^2)] keeps w = 0 regular.
 template <class T>
 struct CurveParameters {
-  T K, G;   ///< foundation [N/m^3], [N/m] (foundation family)
-  T E;      ///< Young's modulus [Pa] (hertz, tabulated; layer foundations via K, G)
-  T s;      ///< sqrt(work of adhesion)
-  T R;      ///< paraboloid radius [m] (when the profile is a paraboloid)
+  T K{}, G{};  ///< foundation [N/m^3], [N/m] (foundation family)
+  T E{};    ///< Young's modulus [Pa] (hertz, tabulated; layer foundations via K, G)
+  T s{};    ///< sqrt(work of adhesion)
+  T R{};    ///< paraboloid radius [m] (when the profile is a paraboloid)
 };
 
 /// delta(a) and P(a) of the adhesive curve for one model family.

@@ -1,0 +1,39 @@
+// layerjkr: synthetic force curves from a scene - test data with known answers.
+//
+// The curve follows the same physics the fit assumes (fit.hpp): on approach the contact
+// snaps in at zero load and follows the stable branch; on retract it follows the branch
+// down to pull-off and is free after it. Radii come from the library's own inverse
+// lookups (JkrSolution::force_at_delta), not from the fit's Newton solver.
+#pragma once
+
+#include <cstdint>
+
+#include "layerjkr/curve_data.hpp"
+#include "layerjkr/scene.hpp"
+
+namespace layerjkr {
+
+struct SimulationOptions {
+  Branch branch = Branch::all;        ///< approach, retract, or both (approach first)
+  std::size_t points_per_branch = 500;  ///< >= 2
+  /// Turning point: the approach at the deepest point [m] relative to first contact
+  /// (> 0). Samples are evenly spaced in delta.
+  double max_indentation = 0.0;
+  /// Fraction of max_indentation sampled before contact (approach) or after pull-off
+  /// (retract), >= 0.
+  double free_fraction = 0.5;
+  double delta0 = 0.0;  ///< contact-point offset added to every delta [m]
+  double P0 = 0.0;      ///< force baseline added to every P [N]
+  double noise = 0.0;   ///< standard deviation of Gaussian force noise [N], >= 0
+  std::uint64_t seed = 1;
+  bool with_radius = false;  ///< also return the contact radius (a JKR rig's a column)
+  /// Throws DomainError naming the first invalid field.
+  void Validate() const;
+};
+
+/// Samples the adhesive curve of `scene` (model "auto" chooses for radii down to a tenth
+/// of the turning point's). Throws DomainError for invalid options and NumericalError if
+/// the scene has no stable branch in the requested range.
+CurveData simulate_curve(const Scene& scene, const SimulationOptions& options);
+
+}  // namespace layerjkr

@@ -1,0 +1,85 @@
+// The CSV reader: every form, units, branch selection, and one clear error per defect.
+#include <catch2/catch.hpp>
+
+#include "layerjkr/curve_data.hpp"
+#include "layerjkr/error.hpp"
+
+using namespace layerjkr;
+
+TEST_CASE("delta,P with optional columns, comments and CRLF", "[csv]") {
+  const CurveData c = parse_curve_csv(
+      "# made by hand\r\ndelta,P,a,weight,segment\r\n1e-6,2e-9,3e-6,1,0\r\n2e-6,5e-9,4e-6,2,1\r\n\r\n", "t");
+  REQUIRE(c.size() == 2);
+  CHECK(c.delta[1] == 2e-6);
+  CHECK(c.P[1] == 5e-9);
+  CHECK(c.a[0] == 3e-6);
+  CHECK(c.weight[1] == 2.0);
+  CHECK(c.segment[1] == 1);
+}
+
+TEST_CASE("units scale lengths and forces", "[csv]") {
+  CsvOptions o;
+  parse_units("nm,nN", o);
+  const CurveData c = parse_curve_csv("P,delta\n2,100\n", "t", o);
+  CHECK(c.delta[0] == Approx(1e-7).epsilon(1e-15));
+  CHECK(c.P[0] == Approx(2e-9).epsilon(1e-15));
+  CHECK_THROWS_WITH(parse_units("nm", o), Catch::Contains("LENGTH,FORCE"));
+  CHECK_THROWS_WITH(parse_units("furlong,N", o), Catch::Contains("furlong"));
+  CHECK_THROWS_WITH(parse_curve_csv("delta_m,P\n1,2\n", "t", o), Catch::Contains("SI"));
+}
+
+TEST_CASE("JPK tip_position,force and raw z,deflection forms", "[csv]") {
+  const CurveData j = parse_curve_csv("tip_position_m,force_N\n1.8e-5,1e-10\n", "t");
+  CHECK(j.delta[0] == -1.8e-5);
+  CHECK(j.P[0] == 1e-10);
+  CsvOptions o;
+  o.spring_constant = 0.05;
+  const CurveData r = parse_curve_csv("z,deflection\n1e-6,2e-8\n", "t", o);
+  CHECK(r.delta[0] == Approx(1e-6 - 2e-8).epsilon(1e-15));
+  CHECK(r.P[0] == Approx(0.05 * 2e-8).epsilon(1e-15));
+  o.z_sign = -1.0;
+  o.deflection_sign = -1.0;
+  const CurveData f = parse_curve_csv("z,deflection\n1e-6,2e-8\n", "t", o);
+  CHECK(f.delta[0] == Approx(-1e-6 + 2e-8).epsilon(1e-15));
+  CHECK(f.P[0] == Approx(-0.05 * 2e-8).epsilon(1e-15));
+  CHECK_THROWS_WITH(parse_curve_csv("z,deflection\n1,2\n", "t"), Catch::Contains("--spring-constant"));
+}
+
+TEST_CASE("branches: segment column or a split at the deepest point", "[csv]") {
+  CurveData c;
+  c.delta = {0, 1, 2, 3, 2, 1};
+  c.P = {0, 0, 0, 0, 0, 0};
+  CHECK(c.select(Branch::approach) == std::vector<std::size_t>{0, 1, 2, 3});
+  CHECK(c.select(Branch::retract) == std::vector<std::size_t>{4, 5});
+  CHECK(c.select(Branch::all).size() == 6);
+  c.segment = {0, 0, 1, 1, 1, 1};
+  CHECK(c.select(Branch::approach) == std::vector<std::size_t>{0, 1});
+  CHECK(parse_branch("retract") == Branch::retract);
+  CHECK_THROWS_WITH(parse_branch("down"), Catch::Contains("down") && Catch::Contains("approach"));
+}
+
+TEST_CASE("every defect names the line and the column", "[csv][errors]") {
+  auto err = [](const std::string& text) {
+    try {
+      parse_curve_csv(text, "data.csv");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK_THAT(err(""), Catch::Contains("data.csv") && Catch::Contains("empty"));
+  CHECK_THAT(err("delta,P\n"), Catch::Contains("no data rows"));
+  CHECK_THAT(err("delta,F\n1,2\n"), Catch::Contains("'F' is unknown"));
+  CHECK_THAT(err("delta,P\n1,abc\n"), Catch::Contains("line 2") && Catch::Contains("'P'") && Catch::Contains("abc"));
+  CHECK_THAT(err("delta,P\n1,nan\n"), Catch::Contains("not a finite number"));
+  CHECK_THAT(err("delta,P\n1,1e999\n"), Catch::Contains("not a finite number"));
+  CHECK_THAT(err("delta,P\n1,2,3\n"), Catch::Contains("line 2 has 3 cells"));
+  CHECK_THAT(err("delta,P\n1\n"), Catch::Contains("line 2 has 1 cells"));
+  CHECK_THAT(err("delta,P,weight\n1,2,0\n"), Catch::Contains("weight = 0"));
+  CHECK_THAT(err("delta,P,segment\n1,2,2\n"), Catch::Contains("segment"));
+  CHECK_THAT(err("delta,P,a\n1,2,-1\n"), Catch::Contains("a = -1"));
+  CHECK_THAT(err("delta,P,P\n1,2,3\n"), Catch::Contains("twice"));
+  CHECK_THAT(err("P\n1\n"), Catch::Contains("delta, tip_position, z"));
+  CHECK_THAT(err(std::string("delta,P\n1,\0\n", 11)), Catch::Contains("not a text file"));
+  CHECK_THROWS_WITH(read_curve_csv("/nonexistent/x.csv"), Catch::Contains("cannot open"));
+}
