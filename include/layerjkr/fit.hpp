@@ -31,6 +31,7 @@
 // the data's length and force scales; residuals are divided by F.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -121,5 +122,34 @@ struct FitSummary {
 /// point, a parameter the model does not have) and DomainError for invalid options.
 /// Convergence failures are reported in the summary, not thrown.
 FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& options);
+
+}  // namespace layerjkr
+
+namespace layerjkr {
+
+/// One curve of a batch: its summary, or why it could not be fitted.
+struct BatchItem {
+  std::string source;  ///< file name or CurveData::source
+  bool ok = false;
+  std::string error;   ///< the Error's message when !ok
+  FitSummary summary;  ///< without the per-sample vectors (delta, P, P_fit), to bound memory
+};
+
+struct BatchOptions {
+  int jobs = 1;  ///< worker threads, >= 1
+  /// Called from one thread at a time after each curve (done, total); may be empty.
+  std::function<void(std::size_t, std::size_t)> progress;
+};
+
+/// Fits many curves in parallel with the same scene and options. A curve that cannot be
+/// read or fitted is reported in its BatchItem and never stops the batch. Results keep
+/// the input order.
+std::vector<BatchItem> fit_batch(const std::vector<CurveData>& curves, const Scene& scene,
+                                 const FitOptions& options, const BatchOptions& batch = {});
+
+/// The same for CSV files, each read with `csv` (a read error fails only that item).
+std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Scene& scene,
+                                 const FitOptions& options, const CsvOptions& csv,
+                                 const BatchOptions& batch = {});
 
 }  // namespace layerjkr

@@ -1,6 +1,8 @@
 // layerjkr command-line tool: a thin layer over the public API.
 //   layerjkr curve SCENE.json (--at a1,a2,... | --a-max A --points N)
 //   layerjkr summary SCENE.json
+//   layerjkr fit DATA.csv --scene S.json --free E,w,delta0 [--out R.json] [--plot F.png] ...
+//   layerjkr fit-map DIR_OR_GLOB... --scene S.json --free ... --jobs N --out RESULTS.csv
 // Exit codes: 0 success, 2 invalid scene or arguments, 1 internal failure.
 #include <algorithm>
 #include <cerrno>
@@ -10,11 +12,13 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "fit_commands.hpp"
 #include "layerjkr/layerjkr.hpp"
 
 namespace {
@@ -138,10 +142,30 @@ int main(int argc, char** argv) {
       "summary", "JSON summary: pull-off, zero-load radius, fixed-grips critical point, K, G");
   summary->add_option("scene", scene_path, "Scene JSON file")->required();
 
-  if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "curve" &&
-      std::string(argv[1]) != "summary") {
+  layerjkr::cli::FitArguments fit_args;
+  std::string data_path, report_path, plot_path, map_out;
+  std::vector<std::string> map_inputs;
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  CLI::App* fit = app.add_subcommand(
+      "fit", "Fit a measured curve (CSV) with a scene's model: estimates, errors, identifiability");
+  fit->add_option("data", data_path, "Curve CSV: delta,P[,a][,weight][,segment] | tip_position,force | z,deflection")
+      ->required();
+  layerjkr::cli::add_fit_options(*fit, fit_args);
+  fit->add_option("--out", report_path, "Write the JSON report here");
+  fit->add_option("--plot", plot_path, "Write a PNG of data, fit and residuals (gnuplot)");
+
+  CLI::App* fit_map = app.add_subcommand(
+      "fit-map", "Fit many curves in parallel; one CSV row per curve (failures included)");
+  fit_map->add_option("inputs", map_inputs, "Directories (all *.csv), glob patterns or files")->required();
+  layerjkr::cli::add_fit_options(*fit_map, fit_args);
+  fit_map->add_option("--jobs", jobs, "Worker threads (default: all cores)");
+  fit_map->add_option("--out", map_out, "Results CSV")->required();
+
+  const std::vector<std::string> commands = {"curve", "summary", "fit", "fit-map"};
+  if (argc > 1 && argv[1][0] != '-' &&
+      std::find(commands.begin(), commands.end(), std::string(argv[1])) == commands.end()) {
     std::cerr << "layerjkr: unknown command '" << argv[1]
-              << "' (known: curve, summary)\nRun 'layerjkr --help' for usage.\n";
+              << "' (known: curve, summary, fit, fit-map)\nRun 'layerjkr --help' for usage.\n";
     return 2;
   }
   try {
@@ -159,6 +183,8 @@ int main(int argc, char** argv) {
 
   try {
     if (*curve) return run_curve(scene_path, at, a_max, points);
+    if (*fit) return layerjkr::cli::run_fit(fit_args, data_path, report_path, plot_path);
+    if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out);
     return run_summary(scene_path);
   } catch (const layerjkr::NumericalError& e) {
     std::cerr << "layerjkr: numerical failure: " << e.what() << "\n";

@@ -1,0 +1,31 @@
+// layerjkr CLI: the fit and fit-map commands (thin wrappers over fit.hpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace layerjkr::cli {
+
+/// Options shared by `fit` and `fit-map`, as typed on the command line.
+struct FitArguments {
+  std::string scene, free, loss = "none", branch = "approach", units = "m,N";
+  double spring_constant = 0.0, z_sign = 1.0, deflection_sign = 1.0;
+  int extra_starts = 0, max_iterations = 200;
+};
+
+/// Registers the shared options on a subcommand.
+void add_fit_options(CLI::App& command, FitArguments& args);
+
+/// `layerjkr fit DATA.csv ...`: summary on stdout, optional JSON report and plot.
+int run_fit(const FitArguments& args, const std::string& data, const std::string& report,
+            const std::string& plot);
+
+/// `layerjkr fit-map INPUT... --out RESULTS.csv`: one row per curve, progress on stderr.
+int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
+                const std::string& out);
+
+}  // namespace layerjkr::cli
