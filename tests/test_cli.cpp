@@ -15,49 +15,14 @@
 
 #include "layerjkr/contact.hpp"
 #include "layerjkr/scene.hpp"
+#include "cli_support.hpp"
 
 namespace {
 
-struct Run {
-  int code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-// ctest runs test cases as parallel processes in one directory: names carry the pid.
-std::string unique(const std::string& name) { return std::to_string(getpid()) + "_" + name; }
-
-Run run(const std::string& args) {
-  const std::string out = unique("cli.out"), err = unique("cli.err");
-  const std::string cmd = std::string(LAYERJKR_CLI_PATH) + " " + args + " >" + out + " 2>" + err + " </dev/null";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
-
-std::string write_file(const std::string& name, const std::string& text) {
-  const std::string path = unique(name);
-  std::ofstream(path) << text;
-  return path;
-}
+using namespace test::cli;
 
 const std::string kScene = std::string(LAYERJKR_SOURCE_DIR) + "/data/scenes/sphere_pdms_film_two_term.json";
 
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream s(text);
-  for (std::string line; std::getline(s, line);) out.push_back(line);
-  return out;
-}
 
 }  // namespace
 

@@ -1,0 +1,54 @@
+// Helpers for tests that run the layerjkr executable.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace test::cli {
+
+struct Run {
+  int code = -1;
+  std::string out, err;
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// ctest runs test cases as parallel processes in one directory: names carry the pid.
+inline std::string unique(const std::string& name) { return std::to_string(getpid()) + "_" + name; }
+
+inline Run run(const std::string& args) {
+  const std::string out = unique("cli.out"), err = unique("cli.err");
+  const std::string cmd = std::string(LAYERJKR_CLI_PATH) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  Run r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+inline std::string write_file(const std::string& name, const std::string& text) {
+  const std::string path = unique(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+inline std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream s(text);
+  for (std::string line; std::getline(s, line);) out.push_back(line);
+  return out;
+}
+
+}  // namespace test::cli
