@@ -63,7 +63,7 @@ struct FitOptions {
   double loss_scale = 0.0;
   /// Ceres trust-region limits (>= 1, > 0).
   int max_iterations = 200;
-  double function_tolerance = 1e-10;
+  double function_tolerance = 1e-9;
   double parameter_tolerance = 1e-10;
   double gradient_tolerance = 1e-14;
   /// Extra starts (>= 0) with delta0 and the stiffness perturbed around the data-driven
