@@ -62,6 +62,7 @@ double median(std::vector<double> v) {
 struct Start {
   double delta0 = 0.0, P0 = 0.0, stiffness_factor = 1.0, w = 0.0;
   std::size_t contact = 0;
+  bool found = true;  ///< false: no trial put >= 3 samples in contact with a positive stiffness
 };
 
 // The non-adhesive master curve P(t) at the reference stiffness, tabulated once so a scan
@@ -163,10 +164,7 @@ Start scan_start(const FitData& d, const MasterCurve& approach, const MasterCurv
     step /= 4.0;
     count = 9;
   }
-  if (!std::isfinite(best_cost))
-    throw InputError(
-        "fit: no contact region - no trial contact point puts three or more samples in "
-        "contact with a positive stiffness (check the sign convention: P must grow with delta)");
+  best.found = std::isfinite(best_cost);
   return best;
 }
 
@@ -214,18 +212,24 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   if (!(force_span > 0.0)) throw InputError(curve.source + ": P is constant on the chosen branch; nothing to fit");
 
   {
-    // A contact region exists only if the force grows with delta: compare the deepest and
-    // the shallowest tenth of the samples.
+    // A contact region exists only if the force grows with delta somewhere: the deepest
+    // tenth of the samples must lie clearly above the lowest force (on retract the whole
+    // contact may be tensile, so the free samples are no reference).
+    // The deepest samples must lie clearly above the lowest force: a loading curve rises
+    // with delta, and on retract even an all-tensile contact rises from pull-off.
     std::vector<std::size_t> by_delta(data.delta.size());
     std::iota(by_delta.begin(), by_delta.end(), std::size_t{0});
     std::sort(by_delta.begin(), by_delta.end(), [&](auto i, auto j) { return data.delta[i] < data.delta[j]; });
-    const std::size_t tenth = std::max<std::size_t>(1, by_delta.size() / 10);
-    double shallow = 0.0, deep = 0.0;
-    for (std::size_t k = 0; k < tenth; ++k) {
-      shallow += data.P[by_delta[k]];
-      deep += data.P[by_delta[by_delta.size() - 1 - k]];
-    }
-    if (!(deep > shallow))
+    const std::size_t m20 = std::max<std::size_t>(1, by_delta.size() / 20);
+    double deep = 0.0;
+    std::vector<double> shallow;
+    for (std::size_t k = 0; k < m20; ++k) deep += data.P[by_delta[by_delta.size() - 1 - k]];
+    deep /= static_cast<double>(m20);
+    for (std::size_t k = 0; k < std::max<std::size_t>(1, by_delta.size() / 4); ++k) shallow.push_back(data.P[by_delta[k]]);
+    const double centre = median(shallow);
+    for (auto& v : shallow) v = std::abs(v - centre);
+    const double sigma = 1.4826 * median(shallow);
+    if (!(deep - *std::min_element(data.P.begin(), data.P.end()) > 5.0 * sigma))
       throw InputError(curve.source + ": no contact region - the force does not grow with delta on the " +
                        to_string(options.branch) + " branch (check the sign conventions: delta grows "
                        "towards the sample, P is positive when repulsive)");
@@ -336,15 +340,27 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
     const Start start = scan_start(data, any_approach ? master_curve(ev, p, span, false) : none,
                                    any_retract ? master_curve(ev, p, span, true) : none, map,
                                    P0_start, span);
-    map.ref[static_cast<int>(FitParameter::delta0)] = start.delta0;
-    map.ref[static_cast<int>(FitParameter::P0)] = start.P0;
+    if (!start.found) {
+      // An all-tensile retract (w = 0 cannot produce it): put the contact point at the
+      // observed pull-off, keep the scene's stiffness, estimate w and scan again.
+      if (!(pass == 0 && estimate_w))
+        throw InputError(curve.source + ": no contact region - no trial contact point puts three or more "
+                         "samples in contact with a positive stiffness (check the sign conventions)");
+      const auto deepest = std::min_element(data.P.begin(), data.P.end()) - data.P.begin();
+      map.ref[static_cast<int>(FitParameter::delta0)] = data.delta[static_cast<std::size_t>(deepest)];
+      map.ref[static_cast<int>(FitParameter::P0)] = P0_start;
+    }
+    if (start.found) {
+      map.ref[static_cast<int>(FitParameter::delta0)] = start.delta0;
+      map.ref[static_cast<int>(FitParameter::P0)] = start.P0;
+    }
     if (has(FitParameter::K) || has(FitParameter::E)) {
       map.ref[stiffness_index] *= start.stiffness_factor;
       if (has(FitParameter::G) && !map.G_log) map.G_scale *= start.stiffness_factor;
       if (has(FitParameter::G) && map.G_log) map.ref[static_cast<int>(FitParameter::G)] *= start.stiffness_factor;
     }
     // Without adhesion and shear term the curve's shape does not depend on the stiffness.
-    const bool settled = std::abs(std::log(start.stiffness_factor)) < 0.01 || (p.s == 0.0 && p.G == 0.0);
+    const bool settled = start.found && (std::abs(std::log(start.stiffness_factor)) < 0.01 || (p.s == 0.0 && p.G == 0.0));
     if (!estimate_w && settled) break;
     if (estimate_w && settled && pass >= 2) break;
     if (!estimate_w) continue;
