@@ -88,6 +88,7 @@ struct ParameterEstimate {
   double stderr_ = 0.0;
   double initial = 0.0;   ///< the data-driven start
   bool at_bound = false;  ///< w ended at 0: its error bar is one-sided
+  bool identifiable = true;  ///< false: in a group the data cannot separate (see FitSummary)
 };
 
 struct FitSummary {

@@ -81,7 +81,8 @@ json report_json(const FitSummary& s, Branch branch) {
     params[to_string(e.parameter)] = {{"value", e.value},
                                       {"stderr", number_or_null(e.stderr_)},
                                       {"initial", e.initial},
-                                      {"at_bound", e.at_bound}};
+                                      {"at_bound", e.at_bound},
+                                      {"identifiable", e.identifiable}};
   j["parameters"] = params;
   json corr = json::object();
   for (std::size_t i = 0; i < s.parameters.size(); ++i) {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <glog/logging.h>
 #include <nlohmann/json.hpp>
 
 #include "fit_commands.hpp"
@@ -122,6 +123,8 @@ int run_summary(const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Ceres logs internal diagnostics through glog; the CLI reports through its own messages.
+  FLAGS_minloglevel = google::GLOG_FATAL;
   CLI::App app{"layerjkr: adhesive (JKR) contact of thin elastic layers"};
   app.require_subcommand(1);
   std::string scene_path, at;

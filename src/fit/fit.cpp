@@ -489,7 +489,15 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   {
     // Eigenvalues of the column-normalised J^T J are the squared singular values; a
     // ratio below 1e-12 (singular values 1e-6 apart) is a null direction.
+    // w held at its bound 0 is left out: dP/d sqrt(w) at fixed delta vanishes at w = 0
+    // (the shifts of P and delta cancel to first order), so its column is zero there.
+    const bool held = w_slot < p_free && out.parameters[w_slot].at_bound;
     Eigen::MatrixXd JtJ = J.transpose() * J;
+    if (held) {
+      JtJ.row(static_cast<Eigen::Index>(w_slot)).setZero();
+      JtJ.col(static_cast<Eigen::Index>(w_slot)).setZero();
+      JtJ(static_cast<Eigen::Index>(w_slot), static_cast<Eigen::Index>(w_slot)) = 1.0;
+    }
     Eigen::VectorXd norms = JtJ.diagonal().cwiseSqrt();
     for (Eigen::Index j = 0; j < norms.size(); ++j) {
       if (norms[j] == 0.0) {
@@ -509,14 +517,19 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
     }
     std::string group;
     for (std::size_t j = 0; j < p_free; ++j)
-      if (!separable[j]) group += (group.empty() ? "" : ", ") + std::string(to_string(options.free[j]));
+      if (!separable[j]) {
+        group += (group.empty() ? "" : ", ") + std::string(to_string(options.free[j]));
+        out.parameters[j].identifiable = false;
+      }
     if (!group.empty()) {
       out.identifiable = false;
       out.unidentifiable.push_back(group + " (the Jacobian is rank-deficient: the data constrain only a combination)");
     }
   }
 
-  if (options.compute_covariance && data.residuals() > p_free) {
+  const bool w_held = w_slot < p_free && out.parameters[w_slot].at_bound;
+  if (options.compute_covariance && data.residuals() > p_free && !(w_held && p_free == 1)) {
+    if (w_held) problem->SetManifold(x.data(), new ceres::SubsetManifold(static_cast<int>(p_free), {static_cast<int>(w_slot)}));
     ceres::Covariance::Options co;
     co.algorithm_type = ceres::DENSE_SVD;
     int deficient = 0;
@@ -532,7 +545,8 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
       const double s2 = 2.0 * summary.final_cost / dof;  // scaled by the residual variance
       for (std::size_t i = 0; i < p_free; ++i)
         for (std::size_t j = 0; j < p_free; ++j)
-          out.correlation[i][j] = C[i * p_free + j] / std::sqrt(C[i * p_free + i] * C[j * p_free + j]);
+          if (!(w_held && (i == w_slot || j == w_slot)))
+            out.correlation[i][j] = C[i * p_free + j] / std::sqrt(C[i * p_free + i] * C[j * p_free + j]);
       for (std::size_t j = 0; j < p_free; ++j) {
         if (!separable[j] || out.parameters[j].at_bound) continue;
         out.parameters[j].stderr_ =
@@ -547,6 +561,8 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
                                          format_double(out.correlation[i][j]) + ")");
             out.parameters[i].stderr_ = kNaN;
             out.parameters[j].stderr_ = kNaN;
+            out.parameters[i].identifiable = false;
+            out.parameters[j].identifiable = false;
           }
     } else {
       out.warnings.push_back("the covariance could not be computed (ceres::Covariance failed)");

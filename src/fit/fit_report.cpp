@@ -77,8 +77,10 @@ std::string FitSummary::BriefReport() const {
       o << " +- " << e.stderr_;
     else if (e.at_bound)
       o << " (at its bound)";
-    else
+    else if (!e.identifiable)
       o << " (no error bar: not identifiable)";
+    else
+      o << " (no error bar: covariance not computed)";
     o << "\n";
   }
   o << "  identifiable: " << (identifiable ? "yes" : "no") << "\n";
