@@ -230,6 +230,13 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
   }
   if (d.delta.empty()) fail("has a header but no data rows");
   d.Validate();
+  // Order matters for the branch split: approach rows first, then retract rows.
+  for (std::size_t i = 1; i < d.segment.size(); ++i)
+    if (d.segment[i] < d.segment[i - 1])
+      fail("data row " + std::to_string(i + 1) + " returns to segment 0 after retract rows; "
+           "rows must be in acquisition order (approach, then retract)");
+  // Rows repeating their predecessor are kept: real exports contain them (jpk_spot3_0192
+  // rows 127-128 are identical; the instrument's height signal is quantised).
   return d;
 }
 

@@ -81,5 +81,7 @@ TEST_CASE("every defect names the line and the column", "[csv][errors]") {
   CHECK_THAT(err("delta,P,P\n1,2,3\n"), Catch::Contains("twice"));
   CHECK_THAT(err("P\n1\n"), Catch::Contains("delta, tip_position, z"));
   CHECK_THAT(err(std::string("delta,P\n1,\0\n", 11)), Catch::Contains("not a text file"));
+  CHECK_THAT(err("delta,P,segment\n1,2,0\n2,3,1\n3,4,0\n"), Catch::Contains("row 3 returns to segment 0"));
+  CHECK(parse_curve_csv("delta,P\n1,2\n2,3\n2,3\n", "t").size() == 3);  // repeats are samples
   CHECK_THROWS_WITH(read_curve_csv("/nonexistent/x.csv"), Catch::Contains("cannot open"));
 }
