@@ -27,9 +27,11 @@ inline std::string slurp(const std::string& path) {
 // ctest runs test cases as parallel processes in one directory: names carry the pid.
 inline std::string unique(const std::string& name) { return std::to_string(getpid()) + "_" + name; }
 
-inline Run run(const std::string& args) {
+// Runs the CLI with `args`; with raw = true, `args` is the whole command line.
+inline Run run(const std::string& args, bool raw = false) {
   const std::string out = unique("cli.out"), err = unique("cli.err");
-  const std::string cmd = std::string(LAYERJKR_CLI_PATH) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+  const std::string cmd = (raw ? args : std::string(LAYERJKR_CLI_PATH) + " " + args) + " >" + out + " 2>" +
+                          err + " </dev/null";
   const int status = std::system(cmd.c_str());
   Run r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
