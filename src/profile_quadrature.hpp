@@ -43,8 +43,12 @@ double integrate_split(G g, double lo, double hi, std::vector<double> cuts,
     if (!(cuts[i + 1] > cuts[i])) continue;
     double error = 0.0, l1 = 0.0;
     std::size_t levels = 0;
-    sum += tanh_sinh_rule().integrate(g, cuts[i], cuts[i + 1], kProfileQuadratureTolerance,
-                                      &error, &l1, &levels);
+    try {
+      sum += tanh_sinh_rule().integrate(g, cuts[i], cuts[i + 1], kProfileQuadratureTolerance,
+                                        &error, &l1, &levels);
+    } catch (const std::exception& e) {  // Boost's domain_error for a NaN integrand
+      throw NumericalError(std::string("layerjkr::") + function + ": quadrature failed: " + e.what());
+    }
     error_sum += error;
     l1_sum += l1;
   }

@@ -109,6 +109,11 @@ class TableProfile final : public Profile {
       if (k != 0.0 && -c / k > 0.0 && -c / k < h && slope(-c / k) < lowest)
         lowest = slope(-c / k), where = lo - c / k;
       const double scale = std::abs(d) + std::abs(c) * h + std::abs(k) * h * h;
+      if (!std::isfinite(lowest) || !std::isfinite(scale))  // found by fuzzing
+        throw DomainError("make_table_profile",
+                          "interpolated slope f' between r[" + std::to_string(i) + "] and r[" +
+                              std::to_string(i + 1) + "]",
+                          lowest, "finite: the table's heights or spacing overflow double precision");
       if (lowest < -kRounding * scale)
         throw DomainError("make_table_profile",
                           "interpolated slope f'(" + format_double(where) + ")", lowest,
@@ -162,6 +167,10 @@ ProfilePtr make_table_profile(std::vector<double> r, std::vector<double> z) {
       throw DomainError(fn, "z" + idx, z[i],
                         ">= z[" + std::to_string(i - 1) + "] = " + format_double(z[i - 1]) +
                             " (non-decreasing: a convex indenter rises from its apex)");
+    if (i > 0 && !std::isfinite((z[i] - z[i - 1]) / (r[i] - r[i - 1])))
+      throw DomainError(fn, "slope (z" + idx + " - z[" + std::to_string(i - 1) + "]) / (r" + idx +
+                                " - r[" + std::to_string(i - 1) + "])",
+                        (z[i] - z[i - 1]) / (r[i] - r[i - 1]), "finite");
   }
   return std::make_shared<TableProfile>(std::move(r), std::move(z));
 }

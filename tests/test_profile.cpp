@@ -146,6 +146,11 @@ TEST_CASE("profile factories reject invalid parameters with named errors", "[pro
   CHECK_THROWS_WITH(make_table_profile({0, 1, 2}, {0, INFINITY, 2}), Catch::Contains("z[1]"));
   CHECK_THROWS_WITH(make_table_profile({0, 1}, {0, 1}), Catch::Contains("number of points"));
   CHECK_THROWS_WITH(make_table_profile({0, 1, 2}, {0, 1}), Catch::Contains("size of z"));
+  // Found by fuzz_table_profile (fuzz/corpus/table/regression_overflowing_slope.bin): a
+  // 3e231 step over a subnormal spacing overflowed the spline into NaN, and the Sneddon
+  // quadrature then threw Boost's domain_error instead of a layerjkr::Error.
+  CHECK_THROWS_WITH(make_table_profile({0.0, 3.1e-322, 1.0, 2.0, 3.0}, {-3.1e231, 3.16e-322, 1.0, 2.0, 3.0}),
+                    Catch::Contains("slope") && Catch::Contains("finite"));
   CHECK_THROWS_WITH(make_sphere(1.0)->derivatives(1.0), Catch::Contains("r = 1"));
   CHECK_THROWS_AS(make_paraboloid(1.0)->moment(-1e-3), DomainError);
   CHECK(make_paraboloid(1.0)->moment(0.0) == 0.0);

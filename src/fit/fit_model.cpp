@@ -18,14 +18,12 @@ namespace {
 
 constexpr double kPi = boost::math::constants::pi<double>();
 
-inline double value_of(double x) { return x; }
 template <int N>
 double value_of(const ceres::Jet<double, N>& x) {
   return x.a;
 }
 
 // True when x is exactly zero with no sensitivity (w fixed at 0): adhesion terms vanish.
-inline bool is_constant_zero(double x) { return x == 0.0; }
 template <int N>
 bool is_constant_zero(const ceres::Jet<double, N>& x) {
   return x.a == 0.0 && x.v.isZero();
