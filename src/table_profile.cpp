@@ -47,6 +47,9 @@ class TableProfile final : public Profile {
     cumulative_.assign(n, 0.0);
     for (std::size_t i = 0; i + 1 < n; ++i)
       cumulative_[i + 1] = cumulative_[i] + segment_moment(r_[i], r_[i + 1]);
+    if (!std::isfinite(cumulative_.back()))  // found by fuzzing: r up to 1e294 m
+      throw DomainError("make_table_profile", "moment M(r_max) = int f r dr", cumulative_.back(),
+                        "finite: the table's extent overflows double precision (lengths are in m)");
   }
 
   ProfileDerivatives derivatives(double r) const override {

@@ -151,6 +151,9 @@ TEST_CASE("profile factories reject invalid parameters with named errors", "[pro
   // quadrature then threw Boost's domain_error instead of a layerjkr::Error.
   CHECK_THROWS_WITH(make_table_profile({0.0, 3.1e-322, 1.0, 2.0, 3.0}, {-3.1e231, 3.16e-322, 1.0, 2.0, 3.0}),
                     Catch::Contains("slope") && Catch::Contains("finite"));
+  // Also found by fuzzing: r up to 1.3e294 m overflowed the moment to inf.
+  CHECK_THROWS_WITH(make_table_profile({0.0, 1e-4, 1.2774145430680292e294}, {0.0, 1.0250921726772629e-149, 4.843750502931348e-07}),
+                    Catch::Contains("moment") && Catch::Contains("overflows"));
   CHECK_THROWS_WITH(make_sphere(1.0)->derivatives(1.0), Catch::Contains("r = 1"));
   CHECK_THROWS_AS(make_paraboloid(1.0)->moment(-1e-3), DomainError);
   CHECK(make_paraboloid(1.0)->moment(0.0) == 0.0);
