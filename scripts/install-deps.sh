@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages layerjkr builds, tests and plots with.
+# Installs the Debian 12 packages layerjkr builds, tests and plots with (clang, clang-tidy
+# and libclang-rt-14-dev for the fuzz and tidy presets).
 # Runs apt-get directly as root (CI, containers) and through sudo otherwise.
 set -euo pipefail
 packages=(cmake ninja-build g++ libeigen3-dev libgsl-dev libboost-dev libceres-dev libmetis-dev
-          catch2 libcli11-dev nlohmann-json3-dev libbenchmark-dev gnuplot-nox)
+          catch2 libcli11-dev nlohmann-json3-dev libbenchmark-dev gnuplot-nox
+          clang clang-tidy libclang-rt-14-dev)
 as_root=()
 [ "$(id -u)" -eq 0 ] || as_root=(sudo)
 missing=()

@@ -57,14 +57,14 @@ class CallableProfile final : public Profile {
 }  // namespace
 
 ProfilePtr make_callable_profile_erased(std::function<double(double)> value,
-                                        std::function<ProfileJet(const ProfileJet&)> f,
+                                        std::function<ProfileJet(const ProfileJet&)> jet,
                                         double length_scale, double max_radius,
                                         std::string name) {
-  if (!f || !value) throw Error("layerjkr::make_callable_profile: the callable is empty");
+  if (!jet || !value) throw Error("layerjkr::make_callable_profile: the callable is empty");
   detail::require_positive("make_callable_profile", "length_scale", length_scale);
   if (std::isnan(max_radius) || !(max_radius > 0.0))
     throw DomainError("make_callable_profile", "max_radius", max_radius, "> 0 (may be +inf)");
-  return std::make_shared<CallableProfile>(std::move(value), std::move(f), length_scale, max_radius,
+  return std::make_shared<CallableProfile>(std::move(value), std::move(jet), length_scale, max_radius,
                                            std::move(name));
 }
 

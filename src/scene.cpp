@@ -40,7 +40,7 @@ class Reader {
     return v;
   }
 
-  void only_keys(const json& obj, const std::string& path, std::set<std::string> allowed) const {
+  void only_keys(const json& obj, const std::string& path, const std::set<std::string>& allowed) const {
     for (const auto& item : obj.items())
       if (!allowed.count(item.key())) {
         std::string list;

@@ -122,7 +122,7 @@ int run_summary(const std::string& path) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run_main(int argc, char** argv) {
   // Ceres logs internal diagnostics through glog; the CLI reports through its own messages.
   FLAGS_minloglevel = google::GLOG_FATAL;
   CLI::App app{"layerjkr: adhesive (JKR) contact of thin elastic layers"};
@@ -196,6 +196,15 @@ int main(int argc, char** argv) {
     std::cerr << "layerjkr: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
+    std::cerr << "layerjkr: internal error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+int main(int argc, char** argv) {
+  try {
+    return run_main(argc, argv);
+  } catch (const std::exception& e) {  // setting up the parser itself failed
     std::cerr << "layerjkr: internal error: " << e.what() << "\n";
     return 1;
   }

@@ -27,9 +27,9 @@ struct ParameterMap {
   template <class T>
   void physical(const T* x, CurveParameters<T>* p, T* delta0, T* P0) const;
   /// d(physical)/dx for the reported parameter p at x.
-  double derivative(FitParameter p, const double* x) const;
+  double derivative(FitParameter q, const double* x) const;
   /// Reported physical value of p at x (w, not s).
-  double value(FitParameter p, const double* x) const;
+  double value(FitParameter q, const double* x) const;
 };
 
 /// The samples of one fit.

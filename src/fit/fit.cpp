@@ -153,7 +153,8 @@ Start scan_start(const FitData& d, const MasterCurve& approach, const MasterCurv
     for (int k = 0; k < count; ++k) {
       Start s;
       s.P0 = P0;
-      const double d0 = c0 + (k - count / 2) * step;
+      const int offset = k - count / 2;
+      const double d0 = c0 + offset * step;
       const double c = trial(d0, &s);
       if (c < best_cost) {
         best_cost = c;
@@ -311,6 +312,7 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   {
     std::vector<double> dev;
     const double mid = median(low);
+    dev.reserve(low.size());
     for (double v : low) dev.push_back(std::abs(v - mid));
     noise = 1.4826 * median(dev);
   }
@@ -439,10 +441,11 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
     std::vector<double> xs(p_free, 0.0);
     if (map.is_free(FitParameter::w)) xs[static_cast<std::size_t>(map.index(FitParameter::w))] = x[static_cast<std::size_t>(map.index(FitParameter::w))] > 0 ? 1.0 : 0.0;
     const double sign = (k % 2) ? 1.0 : -1.0;
+    const int ring = (k + 1) / 2;  // starts 1, 2 alternate sides; 3, 4 go twice as far
     if (map.is_free(FitParameter::delta0))
-      xs[static_cast<std::size_t>(map.index(FitParameter::delta0))] = sign * 0.05 * ((k + 1) / 2);
+      xs[static_cast<std::size_t>(map.index(FitParameter::delta0))] = sign * 0.05 * ring;
     for (FitParameter q : {FitParameter::K, FitParameter::E})
-      if (map.is_free(q)) xs[static_cast<std::size_t>(map.index(q))] = sign * std::log(3.0) * ((k + 1) / 2);
+      if (map.is_free(q)) xs[static_cast<std::size_t>(map.index(q))] = sign * std::log(3.0) * ring;
     if (!ev.evaluate(xs.data(), false)) continue;
     ceres::Solver::Summary s2;
     auto p2 = solve(xs, &s2);
@@ -508,7 +511,7 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
     const Eigen::VectorXd inv = norms.cwiseInverse();
     JtJ = inv.asDiagonal() * JtJ * inv.asDiagonal();
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(JtJ);
-    const Eigen::VectorXd ev2 = eig.eigenvalues();  // ascending
+    const Eigen::VectorXd& ev2 = eig.eigenvalues();  // ascending
     for (Eigen::Index k = 0; k < ev2.size(); ++k) {
       if (ev2[k] > 1e-12 * ev2[ev2.size() - 1]) continue;
       const Eigen::VectorXd v = eig.eigenvectors().col(k);
