@@ -1,0 +1,74 @@
+// fit() step 1: the samples of a branch, checked for what a fit needs.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "fit_steps.hpp"
+#include "layerjkr/error.hpp"
+
+namespace layerjkr::detail {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const auto mid = v.begin() + v.size() / 2;
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+FitData select_fit_data(const CurveData& curve, const FitOptions& options, double* span,
+                        double* force_span) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<std::size_t> idx = curve.select(options.branch);
+  FitData data;
+  const std::size_t approach_count =
+      curve.segment.empty()
+          ? static_cast<std::size_t>(std::max_element(curve.delta.begin(), curve.delta.end()) - curve.delta.begin()) + 1
+          : 0;
+  for (auto* v : {&data.delta, &data.P, &data.a, &data.sqrt_weight}) v->reserve(idx.size());
+  data.retract.reserve(idx.size());
+  for (std::size_t i : idx) {
+    data.delta.push_back(curve.delta[i]);
+    data.P.push_back(curve.P[i]);
+    data.a.push_back(curve.a.empty() ? kNaN : curve.a[i]);
+    data.sqrt_weight.push_back(curve.weight.empty() ? 1.0 : std::sqrt(curve.weight[i]));
+    const bool retract = curve.segment.empty() ? i >= approach_count : curve.segment[i] == 1;
+    data.retract.push_back(retract);
+  }
+  if (curve.a.empty()) data.a.clear();
+  const std::size_t p_free = options.free.size();
+  if (data.residuals() <= p_free)
+    throw InputError(curve.source + ": the " + to_string(options.branch) + " branch has " +
+                     std::to_string(data.delta.size()) + " samples; fitting " +
+                     std::to_string(p_free) + " parameters needs more samples than parameters");
+  const auto [dmin, dmax] = std::minmax_element(data.delta.begin(), data.delta.end());
+  const auto [pmin, pmax] = std::minmax_element(data.P.begin(), data.P.end());
+  *span = *dmax - *dmin;
+  *force_span = *pmax - *pmin;
+  if (!(*span > 0.0)) throw InputError(curve.source + ": delta is constant on the chosen branch; nothing to fit");
+  if (!(*force_span > 0.0)) throw InputError(curve.source + ": P is constant on the chosen branch; nothing to fit");
+
+  {
+    // The deepest samples must lie clearly above the lowest force: a loading curve rises
+    // with delta, and on retract even an all-tensile contact rises from pull-off.
+    std::vector<std::size_t> by_delta(data.delta.size());
+    std::iota(by_delta.begin(), by_delta.end(), std::size_t{0});
+    std::sort(by_delta.begin(), by_delta.end(), [&](auto i, auto j) { return data.delta[i] < data.delta[j]; });
+    const std::size_t m20 = std::max<std::size_t>(1, by_delta.size() / 20);
+    double deep = 0.0;
+    std::vector<double> shallow;
+    for (std::size_t k = 0; k < m20; ++k) deep += data.P[by_delta[by_delta.size() - 1 - k]];
+    deep /= static_cast<double>(m20);
+    for (std::size_t k = 0; k < std::max<std::size_t>(1, by_delta.size() / 4); ++k) shallow.push_back(data.P[by_delta[k]]);
+    const double centre = median(shallow);
+    for (auto& v : shallow) v = std::abs(v - centre);
+    const double sigma = 1.4826 * median(shallow);
+    if (!(deep - *std::min_element(data.P.begin(), data.P.end()) > 5.0 * sigma))
+      throw InputError(curve.source + ": no contact region - the force does not grow with delta on the " +
+                       to_string(options.branch) + " branch (check the sign conventions: delta grows "
+                       "towards the sample, P is positive when repulsive)");
+  }
+  return data;
+}
+
+}  // namespace layerjkr::detail

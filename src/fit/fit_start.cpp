@@ -1,0 +1,222 @@
+// fit() step 2: a start that needs no guess - baseline, contact-point scan with a linear
+// stiffness solve at each trial, and w matched to the retract dip.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "fit_steps.hpp"
+#include "layerjkr/error.hpp"
+
+namespace layerjkr::detail {
+namespace {
+
+struct Start {
+  double delta0 = 0.0, P0 = 0.0, stiffness_factor = 1.0, w = 0.0;
+  std::size_t contact = 0;
+  bool found = true;  ///< false: no trial put >= 3 samples in contact with a positive stiffness
+};
+
+// The non-adhesive master curve P(t) at the reference stiffness, tabulated once so a scan
+// over contact points costs one interpolation per sample.
+struct MasterCurve {
+  std::vector<double> t, P;
+};
+
+MasterCurve master_curve(const CurveEvaluator& ev, const CurveParameters<double>& p, double span,
+                         bool retract) {
+  MasterCurve m;
+  detail::BranchStart bs;
+  if (!ev.branch_start(p, retract ? detail::StartKind::pull_off : detail::StartKind::zero_load, &bs)) throw InputError("fit: the initial guess has no stable branch");
+  // Uniform in t = delta - delta0 over every offset the scan tries.
+  const double t_hi = 2.0 * span;
+  m.t.push_back(bs.delta);
+  double P_start, d_start;
+  ev.curve(p, bs.a, &d_start, &P_start, nullptr, nullptr);
+  m.P.push_back(P_start);
+  double lo = bs.a;
+  const int n = 160;
+  for (int k = 1; k <= n && bs.delta < t_hi; ++k) {
+    const double t = bs.delta + (t_hi - bs.delta) * k / n;
+    double P;
+    const double a = ev.solve_radius(p, t, lo, lo, &P);
+    if (!std::isfinite(a)) break;
+    lo = a;
+    m.t.push_back(t);
+    m.P.push_back(P);
+  }
+  return m;
+}
+
+// Contact point and stiffness by a scan: for each trial delta0 the stiffness factor is the
+// linear least-squares solution, so a scene's stiffness may be off by any factor.
+Start scan_start(const FitData& d, const MasterCurve& approach, const MasterCurve& retract,
+                 const ParameterMap& map, double P0, double span) {
+  const bool free_d0 = map.is_free(FitParameter::delta0);
+  const bool free_k = map.is_free(FitParameter::K) || map.is_free(FitParameter::E);
+  const std::size_t n = d.delta.size(), stride = std::max<std::size_t>(1, n / 48);
+  const double dmin = *std::min_element(d.delta.begin(), d.delta.end());
+  // A subsample per branch, sorted by delta, so each trial walks the master curve once.
+  std::array<std::vector<std::pair<double, double>>, 2> pts;
+  for (std::size_t i = 0; i < n; i += stride) pts[d.retract[i] ? 1 : 0].emplace_back(d.delta[i], d.P[i] - P0);
+  for (auto& v : pts) std::sort(v.begin(), v.end());
+  const std::array<const MasterCurve*, 2> masters{&approach, &retract};
+  auto trial = [&](double d0, Start* s) {
+    double spp = 0.0, spy = 0.0, syy = 0.0, base = 0.0;
+    std::size_t contact = 0;
+    for (int b = 0; b < 2; ++b) {
+      const MasterCurve& mc = *masters[b];
+      std::size_t k = 0;
+      for (const auto& [delta, y] : pts[b]) {
+        const double x = delta - d0;
+        if (x < mc.t.front()) {
+          base += y * y;
+          continue;
+        }
+        while (k + 1 < mc.t.size() && mc.t[k + 1] <= x) ++k;
+        const double m = k + 1 < mc.t.size()
+                             ? mc.P[k] + (x - mc.t[k]) / (mc.t[k + 1] - mc.t[k]) * (mc.P[k + 1] - mc.P[k])
+                             : mc.P.back();
+        ++contact;
+        spp += m * m;
+        spy += m * y;
+        syy += y * y;
+      }
+    }
+    double k = free_k ? (spp > 0.0 ? std::max(spy / spp, 0.0) : 0.0) : 1.0;
+    const double cost = base + syy - 2.0 * k * spy + k * k * spp;
+    s->delta0 = d0;
+    s->stiffness_factor = k > 0.0 ? k : 1.0;
+    s->contact = contact;
+    return contact >= 3 && k > 0.0 ? cost : std::numeric_limits<double>::infinity();
+  };
+  Start best;
+  best.P0 = P0;
+  if (!free_d0) {
+    trial(0.0, &best);
+    return best;
+  }
+  double best_cost = std::numeric_limits<double>::infinity();
+  double step = span / 16.0;
+  double centre = dmin + 0.5 * span;
+  int count = 17;
+  for (int pass = 0; pass < 3; ++pass) {
+    const double c0 = centre;
+    for (int k = 0; k < count; ++k) {
+      Start s;
+      s.P0 = P0;
+      const int offset = k - count / 2;
+      const double d0 = c0 + offset * step;
+      const double c = trial(d0, &s);
+      if (c < best_cost) {
+        best_cost = c;
+        best = s;
+      }
+    }
+    centre = best.delta0;
+    step /= 4.0;
+    count = 9;
+  }
+  best.found = std::isfinite(best_cost);
+  return best;
+}
+
+}  // namespace
+
+void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std::vector<double>& x,
+                const FitOptions& options, const std::string& source) {
+  const auto has = [&](FitParameter q) {
+    return std::find(options.free.begin(), options.free.end(), q) != options.free.end();
+  };
+  const double span = map.L, force_span = map.F;
+  // Data-driven start: baseline from the lowest quarter in delta, then a contact-point
+  // scan with the stiffness solved linearly at each trial.
+  std::vector<double> low;
+  {
+    std::vector<std::size_t> order(data.delta.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(), [&](auto i, auto j) { return data.delta[i] < data.delta[j]; });
+    for (std::size_t k = 0; k < std::max<std::size_t>(order.size() / 4, 1); ++k) low.push_back(data.P[order[k]]);
+  }
+  const double P0_start = has(FitParameter::P0) ? median(low) : 0.0;
+  // Alternate the contact-point scan (at the current w) and the adhesion estimate: w from
+  // the deepest force dip on retract, where the model's pull-off must match it.
+  double dip = 0.0;
+  for (std::size_t i = 0; i < data.P.size(); ++i)
+    if (data.retract[i]) dip = std::min(dip, data.P[i] - P0_start);
+  double noise;
+  {
+    std::vector<double> dev;
+    const double mid = median(low);
+    dev.reserve(low.size());
+    for (double v : low) dev.push_back(std::abs(v - mid));
+    noise = 1.4826 * median(dev);
+  }
+  const bool adhesive_data = dip < -std::max(5.0 * noise, 1e-6 * force_span);
+  const bool estimate_w = has(FitParameter::w) && adhesive_data;
+  if (adhesive_data) {
+    // Retract samples are in contact until the observed pull-off: the first sample after
+    // the deepest force that is back above half the dip (P(delta) is flat at pull-off, so
+    // the deepest sample itself may come a few samples early).
+    std::size_t deepest = data.P.size();
+    for (std::size_t i = 0; i < data.P.size(); ++i)
+      if (data.retract[i] && (deepest == data.P.size() || data.P[i] < data.P[deepest])) deepest = i;
+    std::size_t jump = deepest;
+    while (jump < data.P.size() && (!data.retract[jump] || data.P[jump] < P0_start + 0.5 * dip)) ++jump;
+    data.contact.assign(data.P.size(), -1);
+    for (std::size_t i = 0; i < data.P.size(); ++i)
+      if (data.retract[i]) data.contact[i] = i < jump ? 1 : 0;
+  }
+  const int stiffness_index = static_cast<int>(has(FitParameter::K) ? FitParameter::K : FitParameter::E);
+  for (int pass = 0; pass < 8; ++pass) {
+    CurveParameters<double> p;
+    double d0, P0;
+    map.physical(x.data(), &p, &d0, &P0);
+    const bool any_retract = std::find(data.retract.begin(), data.retract.end(), true) != data.retract.end();
+    const bool any_approach = std::find(data.retract.begin(), data.retract.end(), false) != data.retract.end();
+    const MasterCurve none{{std::numeric_limits<double>::infinity()}, {0.0}};
+    const Start start = scan_start(data, any_approach ? master_curve(ev, p, span, false) : none,
+                                   any_retract ? master_curve(ev, p, span, true) : none, map,
+                                   P0_start, span);
+    if (!start.found) {
+      // An all-tensile retract (w = 0 cannot produce it): put the contact point at the
+      // observed pull-off, keep the scene's stiffness, estimate w and scan again.
+      if (!(pass == 0 && estimate_w))
+        throw InputError(source + ": no contact region - no trial contact point puts three or more "
+                         "samples in contact with a positive stiffness (check the sign conventions)");
+      const auto deepest = std::min_element(data.P.begin(), data.P.end()) - data.P.begin();
+      map.ref[static_cast<int>(FitParameter::delta0)] = data.delta[static_cast<std::size_t>(deepest)];
+      map.ref[static_cast<int>(FitParameter::P0)] = P0_start;
+    }
+    if (start.found) {
+      map.ref[static_cast<int>(FitParameter::delta0)] = start.delta0;
+      map.ref[static_cast<int>(FitParameter::P0)] = start.P0;
+    }
+    if (has(FitParameter::K) || has(FitParameter::E)) {
+      map.ref[stiffness_index] *= start.stiffness_factor;
+      if (has(FitParameter::G) && !map.G_log) map.G_scale *= start.stiffness_factor;
+      if (has(FitParameter::G) && map.G_log) map.ref[static_cast<int>(FitParameter::G)] *= start.stiffness_factor;
+    }
+    // Without adhesion and shear term the curve's shape does not depend on the stiffness.
+    const bool settled = start.found && (std::abs(std::log(start.stiffness_factor)) < 0.01 || (p.s == 0.0 && p.G == 0.0));
+    if (!estimate_w && settled) break;
+    if (estimate_w && settled && pass >= 2) break;
+    if (!estimate_w) continue;
+    map.physical(x.data(), &p, &d0, &P0);
+    double lo = std::log(1e-12 * force_span / span), hi = std::log(1e6 * force_span / span);
+    for (int it = 0; it < 40; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      p.s = std::sqrt(std::exp(mid));
+      detail::BranchStart bs;
+      double P = 0.0, d;
+      const bool ok = ev.branch_start(p, detail::StartKind::pull_off, &bs);
+      if (ok) ev.curve(p, bs.a, &d, &P, nullptr, nullptr);
+      (ok && P > dip ? lo : hi) = mid;
+    }
+    map.s_scale = std::sqrt(std::exp(0.5 * (lo + hi)));
+    x[static_cast<std::size_t>(map.index(FitParameter::w))] = 1.0;
+  }
+}
+
+}  // namespace layerjkr::detail
