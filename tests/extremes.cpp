@@ -107,6 +107,11 @@ void poisson(Matrix& m) {
               "P_H(a/h = 2) = " + sci(s2.P_H) + " N");
     });
   }
+  m.guarded("nu = 0.4999 -> 0.5, exact layer", "continuous", [&] {
+    const double near = make_exact_layer(p, {1e6, 0.4999, 1e-5, Base::bonded})->state(2e-5).P_H;
+    const double at = make_exact_layer(p, {1e6, 0.5, 1e-5, Base::bonded})->state(2e-5).P_H;
+    m.rel("nu = 0.4999 -> 0.5, exact layer P_H (continuity into the incompressible limit)", near, at, 2e-3);
+  });
   m.guarded("nu = 0.499, auto at tolerance 1 %", "chooses exact", [&] {
     const ModelChoice c = choose_layer_model(p, {1e6, 0.499, 1e-5, Base::bonded}, 0.01, 2e-5);
     m.truth("nu = 0.499, auto at tolerance 1 %", c.model == "exact", "chooses exact (asymptotic models invalid)",
