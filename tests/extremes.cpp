@@ -147,6 +147,23 @@ void thickness(Matrix& m) {
       m.rel("h/a = " + sci(ha) + ", edge_corrected vs Winkler", e, w, 4 * 0.2 * ha);
     });
   }
+  m.guarded("nu = 0.5, thin limit", "incompressible law", [&] {
+    // theory.md s.2: an incompressible bonded layer has S = 3 pi mu a^4 / (8 h^3), with an
+    // O(h/a) edge correction; the exact solver must converge to it as h/a -> 0.
+    ExactLayerOptions o;
+    o.max_a_over_h = 100.0;
+    const ExactLayerKernel k({1.0, 0.5, 1.0, Base::bonded}, o);
+    const double Es_inc = 4.0 / 3.0, mu = 1.0 / 3.0;  // E = 1, nu = 1/2
+    double previous = INFINITY;
+    for (double aoh : {20.0, 50.0, 100.0}) {
+      const double S = 2.0 * Es_inc * aoh * k.flat_punch_factor(aoh), S_inc = 3.0 * kPi * mu * std::pow(aoh, 4) / 8.0;
+      const double scaled = (S / S_inc - 1.0) * aoh;  // -> const: O(h/a) convergence
+      m.truth("nu = 0.5, h/a = " + sci(1.0 / aoh) + ", exact S vs incompressible 3 pi mu a^4/(8 h^3)",
+              scaled > 0.0 && scaled < previous && scaled < 7.0, "rel. err <= 7 h/a, shrinking as O(h/a)",
+              "rel. err " + sci(S / S_inc - 1.0) + " = " + sci(scaled) + " h/a");
+      previous = scaled;
+    }
+  });
   m.guarded("h/a = 1e4, auto at tolerance 1 %", "not a thin-layer model", [&] {
     const ModelChoice c = choose_layer_model(p, {1.0, nu, 1e4 * a, Base::bonded}, 0.01, a);
     m.truth("h/a = 1e4, auto at tolerance 1 %", c.model != "leading" && c.model != "two_term",
