@@ -22,6 +22,18 @@ std::size_t count_lines(const std::string& s) {
   return n;
 }
 
+// Runs `args` under a 30 s timeout and checks the rejection contract.
+void check_rejected(const std::string& what, const std::string& args, const std::string& expected,
+                    const std::string& out) {
+  const Run r = run("timeout 30 " + std::string(LAYERJKR_CLI_PATH) + " " + args, true);
+  INFO(what << "\nstderr: " << r.err.substr(0, 300));
+  CHECK(r.code == 2);
+  CHECK(r.out.empty());
+  CHECK(count_lines(r.err) == 1);
+  CHECK(r.err.find(expected) != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+}
+
 
 }  // namespace
 
@@ -61,13 +73,7 @@ TEST_CASE("every command rejects bad scenes with one message and exit 2", "[cli]
     const std::string out = unique("never_written.json");
     for (const std::string& cmd : {"summary " + path, "curve " + path + " --at 1e-4",
                                    "fit " + kCurve + " --scene " + path + " --free E --out " + out}) {
-      const Run r = run("timeout 30 " + std::string(LAYERJKR_CLI_PATH) + " " + cmd, true);
-      INFO(c.name << ": " << cmd.substr(0, 60) << "\nstderr: " << r.err.substr(0, 300));
-      CHECK(r.code == 2);
-      CHECK(r.out.empty());
-      CHECK(count_lines(r.err) == 1);
-      CHECK(r.err.find(c.expected) != std::string::npos);
-      CHECK_FALSE(fs::exists(out));
+      check_rejected(c.name + ": " + cmd.substr(0, 60), cmd, c.expected, out);
     }
     std::remove(path.c_str());
   }
@@ -97,15 +103,7 @@ TEST_CASE("fit rejects bad curves and arguments with one message and exit 2", "[
   for (const auto& c : cases) {
     const std::string path = write_file("bad_curve.csv", c.text);
     const std::string out = unique("never_written.json");
-    const Run r = run("timeout 30 " + std::string(LAYERJKR_CLI_PATH) + " fit " + path + " --scene " + kScene +
-                          " " + c.args + " --out " + out,
-                      true);
-    INFO(c.name << "\nstderr: " << r.err.substr(0, 300));
-    CHECK(r.code == 2);
-    CHECK(r.out.empty());
-    CHECK(count_lines(r.err) == 1);
-    CHECK(r.err.find(c.expected) != std::string::npos);
-    CHECK_FALSE(fs::exists(out));
+    check_rejected(c.name, "fit " + path + " --scene " + kScene + " " + c.args + " --out " + out, c.expected, out);
     std::remove(path.c_str());
   }
 }
