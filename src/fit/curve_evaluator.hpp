@@ -41,6 +41,8 @@ struct FitData {
   /// keeps the cost continuous where the model's pull-off moves across samples.
   std::vector<signed char> contact;
   double a_scale = 1.0;                          ///< divides contact-radius residuals [m]
+  /// Median force and MAD noise of the shallowest quarter of the samples [N].
+  double baseline = 0.0, noise = 0.0;
   std::size_t residuals() const;
 };
 

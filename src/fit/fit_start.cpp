@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 #include "fit_steps.hpp"
 #include "layerjkr/error.hpp"
@@ -130,30 +129,15 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
     return std::find(options.free.begin(), options.free.end(), q) != options.free.end();
   };
   const double span = map.L, force_span = map.F;
-  // Data-driven start: baseline from the lowest quarter in delta, then a contact-point
-  // scan with the stiffness solved linearly at each trial.
-  std::vector<double> low;
-  {
-    std::vector<std::size_t> order(data.delta.size());
-    std::iota(order.begin(), order.end(), std::size_t{0});
-    std::sort(order.begin(), order.end(), [&](auto i, auto j) { return data.delta[i] < data.delta[j]; });
-    for (std::size_t k = 0; k < std::max<std::size_t>(order.size() / 4, 1); ++k) low.push_back(data.P[order[k]]);
-  }
-  const double P0_start = has(FitParameter::P0) ? median(low) : 0.0;
+  // Data-driven start: the baseline of the shallowest quarter (select_fit_data), then a
+  // contact-point scan with the stiffness solved linearly at each trial.
+  const double P0_start = has(FitParameter::P0) ? data.baseline : 0.0;
   // Alternate the contact-point scan (at the current w) and the adhesion estimate: w from
   // the deepest force dip on retract, where the model's pull-off must match it.
   double dip = 0.0;
   for (std::size_t i = 0; i < data.P.size(); ++i)
     if (data.retract[i]) dip = std::min(dip, data.P[i] - P0_start);
-  double noise;
-  {
-    std::vector<double> dev;
-    const double mid = median(low);
-    dev.reserve(low.size());
-    for (double v : low) dev.push_back(std::abs(v - mid));
-    noise = 1.4826 * median(dev);
-  }
-  const bool adhesive_data = dip < -std::max(5.0 * noise, 1e-6 * force_span);
+  const bool adhesive_data = dip < -std::max(5.0 * data.noise, 1e-6 * force_span);
   const bool estimate_w = has(FitParameter::w) && adhesive_data;
   if (adhesive_data) {
     // Retract samples are in contact until the observed pull-off: the first sample after
