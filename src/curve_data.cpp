@@ -98,16 +98,20 @@ void CurveData::Validate() const {
   }
 }
 
+std::vector<bool> CurveData::retract_mask() const {
+  std::vector<bool> mask(size());
+  // Without a segment column the retract branch starts after the deepest sample.
+  const std::size_t deepest =
+      static_cast<std::size_t>(std::max_element(delta.begin(), delta.end()) - delta.begin());
+  for (std::size_t i = 0; i < size(); ++i) mask[i] = segment.empty() ? i > deepest : segment[i] == 1;
+  return mask;
+}
+
 std::vector<std::size_t> CurveData::select(Branch branch) const {
   std::vector<std::size_t> idx;
-  const std::size_t n = size();
-  std::size_t split_at = n;  // first retract sample when there is no segment column
-  if (segment.empty() && n > 0)
-    split_at = static_cast<std::size_t>(std::max_element(delta.begin(), delta.end()) - delta.begin()) + 1;
-  for (std::size_t i = 0; i < n; ++i) {
-    const bool retract = segment.empty() ? i >= split_at : segment[i] == 1;
-    if (branch == Branch::all || retract == (branch == Branch::retract)) idx.push_back(i);
-  }
+  const std::vector<bool> retract = retract_mask();
+  for (std::size_t i = 0; i < size(); ++i)
+    if (branch == Branch::all || retract[i] == (branch == Branch::retract)) idx.push_back(i);
   return idx;
 }
 

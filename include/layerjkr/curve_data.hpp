@@ -46,6 +46,9 @@ struct CurveData {
   /// Indices of the samples on `branch`, in acquisition order. Without a segment
   /// column the curve is split at its largest delta (approach up to and including it).
   std::vector<std::size_t> select(Branch branch) const;
+
+  /// Per sample: true on the retract branch (the rule select() uses). One pass.
+  std::vector<bool> retract_mask() const;
 };
 
 /// Units and the raw-AFM conversion for CSV input.

@@ -20,11 +20,8 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
                         double* force_span) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   const std::vector<std::size_t> idx = curve.select(options.branch);
+  const std::vector<bool> retract = curve.retract_mask();
   FitData data;
-  const std::size_t approach_count =
-      curve.segment.empty()
-          ? static_cast<std::size_t>(std::max_element(curve.delta.begin(), curve.delta.end()) - curve.delta.begin()) + 1
-          : 0;
   for (auto* v : {&data.delta, &data.P, &data.a, &data.sqrt_weight}) v->reserve(idx.size());
   data.retract.reserve(idx.size());
   for (std::size_t i : idx) {
@@ -32,8 +29,7 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
     data.P.push_back(curve.P[i]);
     data.a.push_back(curve.a.empty() ? kNaN : curve.a[i]);
     data.sqrt_weight.push_back(curve.weight.empty() ? 1.0 : std::sqrt(curve.weight[i]));
-    const bool retract = curve.segment.empty() ? i >= approach_count : curve.segment[i] == 1;
-    data.retract.push_back(retract);
+    data.retract.push_back(retract[i]);
   }
   if (curve.a.empty()) data.a.clear();
   const std::size_t p_free = options.free.size();
