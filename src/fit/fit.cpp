@@ -104,28 +104,15 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   map.G_log = scene.model == "full";
   map.G_scale = f.G != 0.0 ? std::abs(f.G) : f.K * span * span;
   map.s_scale = std::sqrt(force_span / span) * 0.1;
-  data.a_scale = 1.0;
-  if (!data.a.empty()) {
-    double amax = 0.0;
-    for (double v : data.a)
-      if (!std::isnan(v)) amax = std::max(amax, v);
-    data.a_scale = amax > 0.0 ? amax : 1.0;
-  }
   if (scene.solver == "ode")
     out.warnings.push_back("solver 'ode' verifies the closed forms; the fit evaluates the same "
                            "foundation in closed form");
-  {
-    const BuiltScene built = scene.model == "auto" || scene.model == "exact" ||
-                                     scene.model == "edge_corrected"
-                                 ? BuiltScene{}
-                                 : build_scene(scene);
-    for (const auto& w : built.warnings) out.warnings.push_back(w);
-  }
+  out.warnings.insert(out.warnings.end(), fixed.warnings.begin(), fixed.warnings.end());
   for (const auto& note : model->notes()) out.warnings.push_back(note);
 
   std::vector<double> x(p_free, 0.0);
   CurveEvaluator ev(*model, map, data);
-  detail::find_start(data, map, ev, x, options, curve.source);
+  detail::find_start(data, map, ev, x, curve.source);
   for (FitParameter q : options.free) {
     ParameterEstimate e;
     e.parameter = q;

@@ -32,6 +32,10 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
     data.retract.push_back(retract[i]);
   }
   if (curve.a.empty()) data.a.clear();
+  double a_max = 0.0;  // measured radii are compared in units of the largest one
+  for (double v : data.a)
+    if (!std::isnan(v)) a_max = std::max(a_max, v);
+  data.a_scale = a_max > 0.0 ? a_max : 1.0;
   const std::size_t p_free = options.free.size();
   if (data.residuals() <= p_free)
     throw InputError(curve.source + ": the " + to_string(options.branch) + " branch has " +

@@ -319,6 +319,7 @@ std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const FitOption
   } else if (layer_foundation) {
     const ThinLayerConstants unit = thin_layer_constants({1.0, m.nu, m.h, m.base});
     sp.layer_foundation = true;
+    sp.warnings = unit.warnings;  // they depend on nu only, so the unit layer's are the scene's
     sp.k_per_E = unit.K;
     sp.g_per_E = scene.model == "leading" ? 0.0 : unit.G;
     sp.values.E = m.E;

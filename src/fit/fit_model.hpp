@@ -60,6 +60,7 @@ struct SceneParameters {
   double k_per_E = 0.0, g_per_E = 0.0;  ///< layer foundations: K = k E, G = g E
   bool layer_foundation = false;
   double nu = 0.0;                      ///< hertz / tabulated: E* = E / (1 - nu^2)
+  std::vector<std::string> warnings;    ///< the thin-layer warnings of a layer foundation
 };
 
 /// Builds the curve model of `scene` for a fit. `delta_span` [m] > 0 sizes the

@@ -124,21 +124,18 @@ Start scan_start(const FitData& d, const MasterCurve& approach, const MasterCurv
 }  // namespace
 
 void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std::vector<double>& x,
-                const FitOptions& options, const std::string& source) {
-  const auto has = [&](FitParameter q) {
-    return std::find(options.free.begin(), options.free.end(), q) != options.free.end();
-  };
+                const std::string& source) {
   const double span = map.L, force_span = map.F;
   // Data-driven start: the baseline of the shallowest quarter (select_fit_data), then a
   // contact-point scan with the stiffness solved linearly at each trial.
-  const double P0_start = has(FitParameter::P0) ? data.baseline : 0.0;
+  const double P0_start = map.is_free(FitParameter::P0) ? data.baseline : 0.0;
   // Alternate the contact-point scan (at the current w) and the adhesion estimate: w from
   // the deepest force dip on retract, where the model's pull-off must match it.
   double dip = 0.0;
   for (std::size_t i = 0; i < data.P.size(); ++i)
     if (data.retract[i]) dip = std::min(dip, data.P[i] - P0_start);
   const bool adhesive_data = dip < -std::max(5.0 * data.noise, 1e-6 * force_span);
-  const bool estimate_w = has(FitParameter::w) && adhesive_data;
+  const bool estimate_w = map.is_free(FitParameter::w) && adhesive_data;
   if (adhesive_data) {
     // Retract samples are in contact until the observed pull-off: the first sample after
     // the deepest force that is back above half the dip (P(delta) is flat at pull-off, so
@@ -152,7 +149,7 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
     for (std::size_t i = 0; i < data.P.size(); ++i)
       if (data.retract[i]) data.contact[i] = i < jump ? 1 : 0;
   }
-  const int stiffness_index = static_cast<int>(has(FitParameter::K) ? FitParameter::K : FitParameter::E);
+  const int stiffness_index = static_cast<int>(map.is_free(FitParameter::K) ? FitParameter::K : FitParameter::E);
   for (int pass = 0; pass < 8; ++pass) {
     CurveParameters<double> p;
     double d0, P0;
@@ -177,10 +174,10 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
       map.ref[static_cast<int>(FitParameter::delta0)] = start.delta0;
       map.ref[static_cast<int>(FitParameter::P0)] = start.P0;
     }
-    if (has(FitParameter::K) || has(FitParameter::E)) {
+    if (map.is_free(FitParameter::K) || map.is_free(FitParameter::E)) {
       map.ref[stiffness_index] *= start.stiffness_factor;
-      if (has(FitParameter::G) && !map.G_log) map.G_scale *= start.stiffness_factor;
-      if (has(FitParameter::G) && map.G_log) map.ref[static_cast<int>(FitParameter::G)] *= start.stiffness_factor;
+      if (map.is_free(FitParameter::G) && !map.G_log) map.G_scale *= start.stiffness_factor;
+      if (map.is_free(FitParameter::G) && map.G_log) map.ref[static_cast<int>(FitParameter::G)] *= start.stiffness_factor;
     }
     // Without adhesion and shear term the curve's shape does not depend on the stiffness.
     const bool settled = start.found && (std::abs(std::log(start.stiffness_factor)) < 0.01 || (p.s == 0.0 && p.G == 0.0));

@@ -23,7 +23,7 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
 /// and w from the retract dip. Sets map's references and s_scale, x's w slot, and
 /// data.contact (retract samples up to the observed pull-off). `source` names the curve.
 void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std::vector<double>& x,
-                const FitOptions& options, const std::string& source);
+                const std::string& source);
 
 /// Standard errors, correlations and the identifiability verdict at the solution x
 /// (ev must hold the Jacobian there). `problem` is the solved Ceres problem.
