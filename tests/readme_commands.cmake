@@ -1,7 +1,12 @@
-# Fails unless README.md contains, verbatim, the command .ci/run executes: CI must run
-# exactly the README's test command.
+# Fails unless README.md contains, verbatim, the test command .ci/run executes (the line
+# after the marker comment): CI must run exactly the README's test command.
 file(STRINGS "${CI_RUN}" ci_lines)
-list(GET ci_lines -1 command)
+list(FIND ci_lines "# The README's test command, verbatim (the test readme_states_the_ci_test_command checks it):" marker)
+if(marker EQUAL -1)
+  message(FATAL_ERROR "${CI_RUN} has no marker line before the test command")
+endif()
+math(EXPR line "${marker} + 1")
+list(GET ci_lines ${line} command)
 file(READ "${README}" readme)
 string(FIND "${readme}" "${command}" position)
 if(position EQUAL -1)

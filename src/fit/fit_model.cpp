@@ -8,8 +8,8 @@
 #include <boost/math/constants/constants.hpp>
 #include <gsl/gsl_spline.h>
 
-#include "../bessel_ratio.hpp"
-#include "../gsl_support.hpp"
+#include "core/bessel_ratio.hpp"
+#include "core/gsl_support.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/model.hpp"
 

@@ -1,0 +1,131 @@
+// Closed-form foundation models: Winkler, two-term, full Pasternak; layer constants.
+#include <cmath>
+
+#include <boost/math/constants/constants.hpp>
+
+#include "core/bessel_ratio.hpp"
+#include "layerjkr/error.hpp"
+#include "layerjkr/model.hpp"
+
+namespace layerjkr {
+namespace {
+
+constexpr double kPi = boost::math::constants::pi<double>();
+
+// a^2 f(a) - 2 M(a) = int_0^a r^2 f'(r) dr >= 0.
+double winkler_bracket(const Profile& p, double a, double f_a) {
+  return a * a * f_a - 2.0 * p.moment(a);
+}
+
+class TwoTerm final : public ContactModel {
+ public:
+  TwoTerm(ProfilePtr p, double K, double G) : ContactModel(std::move(p)), K_(K), G_(G) {}
+  HertzState state(double a) const override {
+    profile().require_contact_radius(G_ == 0.0 ? "winkler" : "two_term", a);
+    const ProfileDerivatives d = profile().derivatives(a);
+    HertzState s;
+    s.a = a;
+    s.S = kPi * K_ * a * a;
+    s.dS_da = 2.0 * kPi * K_ * a;
+    if (G_ == 0.0) {  // exact Winkler: no 0 * inf from f''(a) of a rough profile
+      s.delta_H = d.f;
+      s.P_H = kPi * K_ * winkler_bracket(profile(), a, d.f);
+    } else {
+      s.delta_H = d.f - (G_ / K_) * (d.d2f + d.df / a);
+      s.P_H = kPi * K_ * winkler_bracket(profile(), a, d.f) + kPi * G_ * a * (d.df - a * d.d2f);
+    }
+    return s;
+  }
+  std::string name() const override { return G_ == 0.0 ? "winkler" : "two_term"; }
+
+ private:
+  double K_, G_;
+};
+
+class FullFoundation final : public ContactModel {
+ public:
+  FullFoundation(ProfilePtr p, double K, double G)
+      : ContactModel(std::move(p)), K_(K), G_(G), lambda_(std::sqrt(K / G)) {}
+  HertzState state(double a) const override {
+    profile().require_contact_radius("full_foundation", a);
+    const ProfileDerivatives d = profile().derivatives(a);
+    const double q = detail::bessel_k1_over_k0(lambda_ * a);  // K1/K0 at lam a
+    HertzState s;
+    s.a = a;
+    // Slope continuity at the free boundary: f'(a) = -w'(a+) = c lam K1/K0.
+    s.delta_H = d.f + d.df / (lambda_ * q);
+    s.P_H = kPi * K_ * (a * a * s.delta_H - 2.0 * profile().moment(a)) + 2.0 * kPi * G_ * a * d.df;
+    s.S = kPi * K_ * a * a + 2.0 * kPi * G_ * lambda_ * a * q;
+    s.dS_da = 2.0 * kPi * K_ * a * q * q;
+    return s;
+  }
+  std::string name() const override { return "full_foundation"; }
+
+ private:
+  double K_, G_, lambda_;
+};
+
+}  // namespace
+
+ContactModel::ContactModel(ProfilePtr profile) : profile_(std::move(profile)) {
+  if (!profile_) throw Error("layerjkr::ContactModel: the profile is null");
+}
+
+double ContactModel::max_radius() const { return profile_->max_radius(); }
+
+ContactModelPtr make_winkler(ProfilePtr profile, double K) {
+  detail::require_positive("make_winkler", "K", K);
+  return std::make_shared<TwoTerm>(std::move(profile), K, 0.0);
+}
+
+ContactModelPtr make_two_term(ProfilePtr profile, double K, double G) {
+  detail::require_positive("make_two_term", "K", K);
+  detail::require_finite("make_two_term", "G", G);
+  return std::make_shared<TwoTerm>(std::move(profile), K, G);
+}
+
+ContactModelPtr make_full_foundation(ProfilePtr profile, double K, double G) {
+  detail::require_positive("make_full_foundation", "K", K);
+  if (!std::isfinite(G) || !(G > 0.0))
+    throw DomainError("make_full_foundation", "G (or tension T)", G,
+                      "finite and > 0; for G <= 0 use the asymptotic two-term model, which has "
+                      "no exterior solution");
+  return std::make_shared<FullFoundation>(std::move(profile), K, G);
+}
+
+double effective_modulus(double E, double nu) {
+  detail::require_positive("effective_modulus", "E", E);
+  if (!(nu > -1.0 && nu <= 0.5)) throw DomainError("effective_modulus", "nu", nu, "(-1, 0.5]");
+  return E / ((1.0 - nu) * (1.0 + nu));
+}
+
+ThinLayerConstants thin_layer_constants(const ElasticLayer& layer) {
+  const char* fn = "thin_layer_constants";
+  detail::require_positive(fn, "E", layer.E);
+  detail::require_positive(fn, "h", layer.h);
+  const double nu = layer.nu;
+  if (!(nu > -1.0 && nu < 0.5))
+    throw DomainError(fn, "nu", nu,
+                      "(-1, 0.5); the compressible thin-layer expansion is singular at 0.5");
+  ThinLayerConstants c;
+  const double E = layer.E, h = layer.h;
+  if (layer.base == Base::frictionless) {
+    c.K = E / (h * (1.0 - nu) * (1.0 + nu));
+    c.G = 0.0;
+    return c;
+  }
+  const double m = 1.0 - 2.0 * nu;
+  c.K = E * (1.0 - nu) / (h * (1.0 + nu) * m);
+  c.G = h * E * nu * (1.0 - 4.0 * nu) / (3.0 * (1.0 + nu) * m * m);
+  if (nu > 0.45) {
+    const double ratio = std::sqrt(nu * (4.0 * nu - 1.0) / (3.0 * m * (1.0 - nu)));
+    c.warnings.push_back(
+        "bonded layer with nu = " + format_double(nu) +
+        " > 0.45: the compressible thin-layer expansion is non-uniform as nu -> 0.5; it needs "
+        "a/h >> " + format_double(ratio) +
+        " and an incompressible layer follows a different law (theory.md section 2)");
+  }
+  return c;
+}
+
+}  // namespace layerjkr

@@ -1,0 +1,121 @@
+// The layerjkr executable: output formats, exit codes, and error messages.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "layerjkr/contact.hpp"
+#include "layerjkr/scene.hpp"
+#include "support/cli_support.hpp"
+
+namespace {
+
+using namespace test::cli;
+
+const std::string kScene = std::string(LAYERJKR_SOURCE_DIR) + "/data/scenes/sphere_pdms_film_two_term.json";
+
+
+}  // namespace
+
+TEST_CASE("curve --at prints the CSV contract at full precision", "[cli]") {
+  const Run r = run("curve " + kScene + " --at 1e-4,4e-4");
+  REQUIRE(r.code == 0);
+  const auto rows = lines(r.out);
+  REQUIRE(rows.size() == 3);
+  CHECK(rows[0] == "a,P,delta,P_H,delta_H,S");
+  // Values round-trip: parse and compare with the library.
+  const layerjkr::Scene s = layerjkr::load_scene(kScene);
+  const layerjkr::JkrSolution jkr(layerjkr::build_scene(s).model, s.w);
+  const layerjkr::AdhesiveState st = jkr.at(4e-4);
+  std::vector<double> v;
+  std::stringstream row(rows[2]);
+  for (std::string cell; std::getline(row, cell, ',');) v.push_back(std::stod(cell));
+  REQUIRE(v.size() == 6);
+  CHECK(v[0] == 4e-4);
+  CHECK(v[1] == st.P);
+  CHECK(v[2] == st.delta);
+  CHECK(v[3] == st.hertz.P_H);
+  CHECK(v[4] == st.hertz.delta_H);
+  CHECK(v[5] == st.hertz.S);
+}
+
+TEST_CASE("curve --a-max --points gives an even grid", "[cli]") {
+  const Run r = run("curve " + kScene + " --a-max 1e-3 --points 4");
+  REQUIRE(r.code == 0);
+  const auto rows = lines(r.out);
+  REQUIRE(rows.size() == 5);
+  CHECK(std::stod(rows[1]) == 1e-3 * 1 / 4);
+  CHECK(std::stod(rows[4]) == 1e-3);
+}
+
+TEST_CASE("summary prints the documented JSON keys", "[cli]") {
+  const Run r = run("summary " + kScene);
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"pull_off_force", "pull_off_radius", "pull_off_delta",
+                          "zero_load_radius", "K", "G", "model", "warnings"})
+    CHECK(j.contains(key));
+  CHECK(j["pull_off_force"].get<double>() == Approx(-2 * M_PI * 0.05 * 0.01).epsilon(1e-10));
+  CHECK(j["fixed_grips_critical"].is_null());  // Winkler-like: delta(a) is monotone
+}
+
+TEST_CASE("help exits 0 and lists the commands", "[cli]") {
+  Run r = run("--help");
+  CHECK(r.code == 0);
+  CHECK(r.out.find("curve") != std::string::npos);
+  CHECK(r.out.find("summary") != std::string::npos);
+  r = run("curve --help");
+  CHECK(r.code == 0);
+  CHECK(r.out.find("--a-max") != std::string::npos);
+}
+
+TEST_CASE("bad arguments and scenes exit 2 with one message and no output", "[cli][errors]") {
+  const std::string bad_nu = write_file("bad_nu.json",
+      R"({"indenter": {"shape": "paraboloid", "R": 0.01},
+          "medium": {"type": "layer", "E": 3e6, "nu": 0.5, "h": 1e-4}, "model": "two_term"})");
+  const std::string sphere = write_file("small_sphere.json",
+      R"({"indenter": {"shape": "sphere", "R": 1e-3}, "medium": {"type": "winkler", "K": 1e10}, "w": 0.1})");
+  struct Case { std::string args, expected; };
+  const std::vector<Case> cases{
+      {"", "A subcommand is required"},
+      {"frobnicate", "unknown command 'frobnicate'"},
+      {"curve", "scene is required"},
+      {"curve " + kScene, "curve needs --at or --a-max"},
+      {"curve " + kScene + " --at abc", "'abc' is not a finite number"},
+      {"curve " + kScene + " --at 1e-4,,2e-4", "'' is not a finite number"},
+      {"curve " + kScene + " --at -1e-4", "must be > 0"},
+      {"curve " + kScene + " --at nan", "'nan' is not a finite number"},
+      {"curve " + kScene + " --a-max 1e-3", "--points"},
+      {"curve " + kScene + " --a-max 1e-3 --points 0", "--points = 0"},
+      {"curve " + kScene + " --a-max -1 --points 3", "--a-max = -1"},
+      {"curve " + kScene + " --at 1e-4 --a-max 1e-3 --points 3", "excludes"},
+      {"summary /nonexistent.json", "cannot open"},
+      {"summary " + bad_nu, "nu = 0.5"},
+      {"curve " + sphere + " --at 5e-4,1e-3", "contact radius a = 0.001"},
+  };
+  for (const auto& c : cases) {
+    const Run r = run(c.args);
+    INFO(c.args << "\nstderr: " << r.err);
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());  // never partial output
+    CHECK(r.err.find(c.expected) != std::string::npos);
+  }
+}
+
+TEST_CASE("near-incompressible layers warn on stderr and in the summary", "[cli]") {
+  const std::string path = write_file("nu049.json",
+      R"({"indenter": {"shape": "paraboloid", "R": 0.01},
+          "medium": {"type": "layer", "E": 3e6, "nu": 0.49, "h": 1e-4}, "model": "two_term", "w": 0.01})");
+  const Run r = run("summary " + path);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.find("warning") != std::string::npos);
+  CHECK(nlohmann::json::parse(r.out)["warnings"].size() == 1);
+}

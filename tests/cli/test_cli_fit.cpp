@@ -1,0 +1,139 @@
+// layerjkr fit and fit-map: report contract, plot, batches with failures, bad data.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "support/cli_support.hpp"
+
+using namespace test::cli;
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kSource = LAYERJKR_SOURCE_DIR;
+const std::string kCurve = kSource + "/data/curves/hydrogel_film_two_term.csv";
+const std::string kScene = kSource + "/data/scenes/hydrogel_film_two_term.json";
+const std::string kFit = "fit " + kCurve + " --scene " + kScene + " --branch all ";
+bool have_gnuplot() { return std::system("gnuplot --version >/dev/null 2>&1") == 0; }
+}  // namespace
+
+TEST_CASE("fit recovers the bundled sample and writes the documented report", "[cli][fit]") {
+  const std::string report = unique("report.json");
+  const Run r = run(kFit + "--free E,w,delta0,P0 --out " + report);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("converged") != std::string::npos);
+  const auto j = nlohmann::json::parse(slurp(report));
+  for (const char* key : {"converged", "parameters", "correlation", "rms_residual", "iterations",
+                          "identifiable", "warnings"})
+    CHECK(j.contains(key));
+  CHECK(j["converged"] == true);
+  CHECK(j["identifiable"] == true);
+  // The sample was made with E = 50 kPa, w = 1 mJ/m^2, delta0 = 2.5 um (make_sample_curve).
+  const auto& p = j["parameters"];
+  CHECK(std::abs(p["E"]["value"].get<double>() - 5e4) < 4 * p["E"]["stderr"].get<double>());
+  CHECK(std::abs(p["w"]["value"].get<double>() - 1e-3) < 4 * p["w"]["stderr"].get<double>());
+  CHECK(std::abs(p["delta0"]["value"].get<double>() - 2.5e-6) < 4 * p["delta0"]["stderr"].get<double>());
+  CHECK(j["correlation"]["E"]["E"] == Approx(1.0));
+  CHECK(j["correlation"]["E"]["w"] == j["correlation"]["w"]["E"]);
+  std::remove(report.c_str());
+}
+
+TEST_CASE("fit reports an unidentifiable G with null error bars", "[cli][fit]") {
+  const std::string scene = write_file("pasternak.json",
+      R"({"indenter": {"shape": "paraboloid", "R": 1e-5}, "medium": {"type": "pasternak", "K": 3e11, "G": 1e-3}, "model": "asymptotic"})");
+  const std::string report = unique("g.json");
+  const Run r = run("fit " + kCurve + " --scene " + scene + " --branch all --free K,G,w,delta0,P0 --out " + report);
+  INFO(r.err << r.out);
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(slurp(report));
+  CHECK(j["identifiable"] == false);
+  CHECK(j["parameters"]["G"]["stderr"].is_null());
+  CHECK(j["unidentifiable"][0].get<std::string>().find("G") != std::string::npos);
+  CHECK(r.out.find("cannot separate") != std::string::npos);
+  std::remove(report.c_str());
+}
+
+TEST_CASE("fit --plot writes a PNG through gnuplot", "[cli][fit][plot]") {
+  if (!have_gnuplot()) {
+    test::report_skip("gnuplot is not installed");
+    return;
+  }
+  const std::string png = unique("fit.png");
+  const Run r = run(kFit + "--free E,w,delta0,P0 --plot " + png);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const std::string bytes = slurp(png);
+  REQUIRE(bytes.size() > 1000);
+  CHECK(bytes.substr(1, 3) == "PNG");
+  std::remove(png.c_str());
+}
+
+TEST_CASE("fit-map fits a directory in parallel and reports a bad curve without stopping", "[cli][fit-map]") {
+  const fs::path dir = unique("map");
+  fs::create_directories(dir);
+  for (int i = 0; i < 6; ++i) fs::copy_file(kCurve, dir / ("curve" + std::to_string(i) + ".csv"));
+  std::ofstream(dir / "broken.csv") << "delta,P\n1,abc\n";
+  const std::string out = unique("map.csv");
+  const Run r = run("fit-map " + dir.string() + " --scene " + kScene +
+                    " --branch all --free E,w,delta0,P0 --jobs 2 --out " + out);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.find("6 of 7 curves fitted") != std::string::npos);
+  CHECK(r.err.find("fit-map [") != std::string::npos);  // the progress bar
+  const auto rows = lines(slurp(out));
+  REQUIRE(rows.size() == 8);
+  CHECK(rows[0] == "file,status,error,model,converged,iterations,rms_residual,identifiable,E,E_stderr,"
+                   "w,w_stderr,delta0,delta0_stderr,P0,P0_stderr");
+  CHECK(rows[1].find("broken.csv,error,") != std::string::npos);
+  CHECK(rows[1].find("abc") != std::string::npos);
+  for (std::size_t k = 2; k < rows.size(); ++k) CHECK(rows[k].find(",ok,,two_term,1,") != std::string::npos);
+  CHECK(rows[2].substr(rows[2].find(",two_term,")) == rows[7].substr(rows[7].find(",two_term,")));
+  fs::remove_all(dir);
+  std::remove(out.c_str());
+}
+
+TEST_CASE("fit and fit-map reject bad data and options with exit 2 and no output", "[cli][fit][errors]") {
+  const std::string out = unique("never.json");
+  const std::string text = write_file("text.csv", "delta,P\n1e-6,abc\n");
+  const std::string nan = write_file("nan.csv", "delta,P\n1e-6,1e-9\n2e-6,nan\n");
+  const std::string few = write_file("few.csv", "delta,P\n1e-6,1e-9\n2e-6,2e-9\n");
+  const std::string falling = write_file("falling.csv", "delta,P\n1e-7,4e-9\n2e-7,3e-9\n3e-7,2e-9\n4e-7,1e-9\n5e-7,0\n");
+  const std::string raw = write_file("raw.csv", "z,deflection\n1e-6,1e-9\n");
+  const std::string header = write_file("header.csv", "depth,force\n1,2\n");
+  const std::string empty = write_file("empty.csv", "");
+  const std::string binary = write_file("binary.csv", std::string("\x89PNG\r\n\x1a\n\0\0", 10));
+  struct Case { std::string args, expected; };
+  const std::vector<Case> cases{
+      {"fit " + text + " --scene " + kScene + " --free E", "'abc' is not a finite number"},
+      {"fit " + nan + " --scene " + kScene + " --free E", "'nan' is not a finite number"},
+      {"fit " + few + " --scene " + kScene + " --free E,w,delta0 --branch all", "more samples than parameters"},
+      {"fit " + falling + " --scene " + kScene + " --free E,delta0 --branch all", "no contact region"},
+      {"fit " + raw + " --scene " + kScene + " --free E", "--spring-constant"},
+      {"fit " + header + " --scene " + kScene + " --free E", "'depth' is unknown"},
+      {"fit " + empty + " --scene " + kScene + " --free E", "is empty"},
+      {"fit " + binary + " --scene " + kScene + " --free E", "not a text file"},
+      {"fit /nonexistent.csv --scene " + kScene + " --free E", "cannot open"},
+      {kFit + "--free E,nu", "'nu' is not a fit parameter"},
+      {kFit + "--free E,E", "listed twice"},
+      {kFit + "--free K,E", "E and K/G"},
+      {kFit + "--free E,R,w --loss huber", "huber:SCALE"},
+      {kFit + "--free E --loss huber:-1", "must be a finite number > 0"},
+      {"fit " + kCurve + " --scene " + kScene + " --free E --branch sideways", "sideways"},
+      {kFit + "--free E --units parsec,N", "parsec"},
+      {kFit + "--free E --starts -1", "extra_starts"},
+      {"fit " + kCurve + " --free E", "--scene is required"},
+      {"fit-map " + kCurve + " --scene " + kScene + " --free E --jobs 0", "--jobs = 0"},
+      {"fit-map /nonexistent/*.csv --scene " + kScene + " --free E", "matches no files"},
+      {"fit-map /nonexistent_dir --scene " + kScene + " --free E", "no such file"},
+  };
+  for (const auto& c : cases) {
+    const Run r = run(c.args + " --out " + out);
+    INFO(c.args << "\nstderr: " << r.err);
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.find(c.expected) != std::string::npos);
+    CHECK_FALSE(fs::exists(out));
+  }
+}
