@@ -221,8 +221,8 @@ bool CurveEvaluator::evaluate(const double* x, bool jacobian) {
   cache_ok_ = false;
 
   const std::size_t slots = n_free_ + 1;
-  if (slots <= 2) cache_ok_ = sweep<Jet3>(x, jacobian);
-  else if (slots <= 4) cache_ok_ = sweep<Jet5>(x, jacobian);
+  if (slots <= 2) cache_ok_ = sweep<Jet2>(x, jacobian);
+  else if (slots <= 4) cache_ok_ = sweep<Jet4>(x, jacobian);
   else cache_ok_ = sweep<Jet8>(x, jacobian);
   return cache_ok_;
 }

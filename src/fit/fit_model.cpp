@@ -8,37 +8,16 @@
 #include <boost/math/constants/constants.hpp>
 #include <gsl/gsl_spline.h>
 
-#include "core/bessel_ratio.hpp"
 #include "core/gsl_support.hpp"
+#include "core/scalar.hpp"
+#include "jkr/jkr_transform.hpp"
+#include "models/state_formulas.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/model.hpp"
 
 namespace layerjkr::detail {
 namespace {
 
-constexpr double kPi = boost::math::constants::pi<double>();
-
-template <int N>
-double value_of(const ceres::Jet<double, N>& x) {
-  return x.a;
-}
-
-// True when x is exactly zero with no sensitivity (w fixed at 0): adhesion terms vanish.
-template <int N>
-bool is_constant_zero(const ceres::Jet<double, N>& x) {
-  return x.a == 0.0 && x.v.isZero();
-}
-
-// g(x) for a scalar or Jet x, given g and g' at value_of(x).
-template <class T>
-T lift(double g, double dg, const T& x) {
-  return T(g) + dg * (x - T(value_of(x)));
-}
-
-template <class T>
-struct ProfileAt {
-  T f, df, d2f, M;
-};
 
 // Profile values at a scalar or Jet radius; a paraboloid is evaluated in T so R can vary.
 template <class T>
@@ -53,16 +32,22 @@ ProfileAt<T> profile_at(const Profile& p, bool paraboloid, const T& a, const T& 
           lift(p.moment(av), av * d.f, a)};
 }
 
+// The JKR curve point of a non-adhesive state (the one transform, jkr_transform.hpp).
+template <class T>
+void adhesive(const T& a, const StateOf<T>& h, const T& sqrt_w, T* delta, T* P) {
+  jkr_from_state(a, h.P_H, h.delta_H, h.S, h.dS_da, sqrt_w, delta, P);
+}
+
 template <class Derived>
 class CurveModelBase : public CurveModel {
  public:
   void evaluate(const Jet1& a, const CurveParameters<Jet1>& p, Jet1* d, Jet1* P) const override {
     static_cast<const Derived*>(this)->curve(a, p, d, P);
   }
-  void evaluate(const Jet3& a, const CurveParameters<Jet3>& p, Jet3* d, Jet3* P) const override {
+  void evaluate(const Jet2& a, const CurveParameters<Jet2>& p, Jet2* d, Jet2* P) const override {
     static_cast<const Derived*>(this)->curve(a, p, d, P);
   }
-  void evaluate(const Jet5& a, const CurveParameters<Jet5>& p, Jet5* d, Jet5* P) const override {
+  void evaluate(const Jet4& a, const CurveParameters<Jet4>& p, Jet4* d, Jet4* P) const override {
     static_cast<const Derived*>(this)->curve(a, p, d, P);
   }
   void evaluate(const Jet8& a, const CurveParameters<Jet8>& p, Jet8* d, Jet8* P) const override {
@@ -79,33 +64,9 @@ class FoundationCurve final : public CurveModelBase<FoundationCurve> {
 
   template <class T>
   void curve(const T& a, const CurveParameters<T>& p, T* delta, T* P) const {
-    using std::sqrt;
-    if (paraboloid_ && !full_) {  // the G-terms cancel in P and shift delta by 2G/(KR)
-      const T root = p.s * sqrt(2.0 / p.K);
-      const T a2 = a * a;
-      *delta = (0.5 * a2 - 2.0 * p.G / p.K) / p.R - root;
-      *P = kPi * p.K * a2 * (0.25 * a2 / p.R - root);
-      return;
-    }
     const ProfileAt<T> g = profile_at(*profile_, paraboloid_, a, p.R);
-    const T bracket = a * a * g.f - 2.0 * g.M;
-    if (!full_) {
-      const T root = p.s * sqrt(2.0 / p.K);  // sqrt(2 w / K)
-      *delta = g.f - (p.G / p.K) * (g.d2f + g.df / a) - root;
-      *P = kPi * p.K * (bracket - a * a * root) + kPi * p.G * a * (g.df - a * g.d2f);
-      return;
-    }
-    const T lambda = sqrt(p.K / p.G);
-    const T x = lambda * a;
-    const double xv = value_of(x);
-    const double qv = bessel_k1_over_k0(xv);
-    const T q = lift(qv, qv * qv - qv / xv - 1.0, x);  // (K1/K0)' = q^2 - q/x - 1
-    const T delta_H = g.f + g.df / (lambda * q);
-    const T P_H = kPi * p.K * (a * a * delta_H - 2.0 * g.M) + 2.0 * kPi * p.G * a * g.df;
-    const T S = kPi * p.K * a * a + 2.0 * kPi * p.G * lambda * a * q;
-    const T u = p.s * sqrt(2.0 / p.K) / q;  // sqrt(4 pi w a / S'), S' = 2 pi K a q^2
-    *delta = delta_H - u;
-    *P = P_H - S * u;
+    const StateOf<T> h = full_ ? full_foundation_state(a, g, p.K, p.G) : two_term_state(a, g, p.K, p.G);
+    adhesive(a, h, p.s, delta, P);
   }
 
   // Paraboloid, asymptotic: delta = a^2/(2R) - 2G/(KR) - sqrt(2w/K) is a quadratic in a.
@@ -115,7 +76,8 @@ class FoundationCurve final : public CurveModelBase<FoundationCurve> {
     const double a2 = 2.0 * p.R * (target + 2.0 * p.G / (p.K * p.R) + root);
     if (!(a2 > 0.0)) return false;
     *a = std::sqrt(a2);
-    *P = kPi * p.K * a2 * (0.25 * a2 / p.R - root);  // the G-terms cancel for a paraboloid
+    double delta = 0.0;
+    curve(*a, p, &delta, P);
     return true;
   }
 
@@ -143,23 +105,15 @@ class HertzCurve final : public CurveModelBase<HertzCurve> {
   explicit HertzCurve(double nu) : one_minus_nu2_((1.0 - nu) * (1.0 + nu)) {}
   template <class T>
   void curve(const T& a, const CurveParameters<T>& p, T* delta, T* P) const {
-    using std::sqrt;
-    const T Es = p.E / one_minus_nu2_;
-    const T a2_R = a * a / p.R;
-    if (is_constant_zero(p.s)) {
-      *delta = a2_R;
-      *P = (4.0 / 3.0) * Es * a * a2_R;
-      return;
-    }
-    const T u = p.s * sqrt(2.0 * kPi * a / Es);  // sqrt(4 pi w a / S'), S' = 2 E*
-    *delta = a2_R - u;
-    *P = (4.0 / 3.0) * Es * a * a2_R - 2.0 * Es * a * u;
+    const T a_R = a / p.R;  // a paraboloid's Sneddon integrals: I0 = a/R, I2 = 2a/(3R)
+    adhesive(a, half_space_state(a, a_R, (2.0 / 3.0) * a_R, T(p.E / one_minus_nu2_)), p.s, delta, P);
   }
   // Without adhesion delta = a^2/R inverts in closed form.
   bool invert(const CurveParameters<double>& p, double target, double* a, double* P) const override {
     if (p.s != 0.0 || !(target > 0.0)) return false;
     *a = std::sqrt(p.R * target);
-    *P = 4.0 * p.E / one_minus_nu2_ * target * *a / 3.0;
+    double delta = 0.0;
+    curve(*a, p, &delta, P);
     return true;
   }
   bool supports(FitParameter q) const override {
@@ -251,7 +205,6 @@ class TabulatedCurve final : public CurveModelBase<TabulatedCurve> {
   template <class T>
   void curve(const T& a, const CurveParameters<T>& p, T* delta, T* P) const {
     using std::exp;
-    using std::sqrt;
     const double av = value_of(a);
     const double tv = std::log(av);
     const T dt = (a - T(av)) / av;  // d ln a
@@ -267,9 +220,8 @@ class TabulatedCurve final : public CurveModelBase<TabulatedCurve> {
     } else {
       delta_H = T(delta_->value(tv)) + delta_->slope(tv) * dt;
     }
-    const T u = p.s * sqrt(4.0 * kPi * a / (kappa * Sp));
-    *delta = delta_H - u;
-    *P = kappa * (P_H - S * u);
+    // P_H, S and S' scale with E; delta_H does not.
+    adhesive(a, StateOf<T>{kappa * P_H, delta_H, kappa * S, kappa * Sp}, p.s, delta, P);
   }
 
   bool supports(FitParameter q) const override {

@@ -14,10 +14,11 @@
 namespace layerjkr::detail {
 
 /// Jets for the Jacobian: slots 0..N-2 hold the free parameters, slot N-1 the radius a.
-/// Three sizes, so a fit with few free parameters does not carry unused slots.
+/// Named by their slot count; four sizes, so a fit with few free parameters does not
+/// carry unused slots.
 using Jet1 = ceres::Jet<double, 1>;
-using Jet3 = ceres::Jet<double, 2>;
-using Jet5 = ceres::Jet<double, 4>;
+using Jet2 = ceres::Jet<double, 2>;
+using Jet4 = ceres::Jet<double, 4>;
 using Jet8 = ceres::Jet<double, 8>;
 
 /// Physical parameters of one curve. s = sqrt(w) [sqrt(J/m^2)] keeps w = 0 regular.
@@ -34,8 +35,8 @@ class CurveModel {
  public:
   virtual ~CurveModel() = default;
   virtual void evaluate(const Jet1& a, const CurveParameters<Jet1>& p, Jet1* delta, Jet1* P) const = 0;
-  virtual void evaluate(const Jet3& a, const CurveParameters<Jet3>& p, Jet3* delta, Jet3* P) const = 0;
-  virtual void evaluate(const Jet5& a, const CurveParameters<Jet5>& p, Jet5* delta, Jet5* P) const = 0;
+  virtual void evaluate(const Jet2& a, const CurveParameters<Jet2>& p, Jet2* delta, Jet2* P) const = 0;
+  virtual void evaluate(const Jet4& a, const CurveParameters<Jet4>& p, Jet4* delta, Jet4* P) const = 0;
   virtual void evaluate(const Jet8& a, const CurveParameters<Jet8>& p, Jet8* delta, Jet8* P) const = 0;
   /// Closed-form inverse of delta(a) = target where one exists: sets *a and *P (the
   /// force at that radius) and returns true; false means "use Newton iteration".

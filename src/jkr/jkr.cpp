@@ -4,6 +4,7 @@
 
 #include <boost/math/constants/constants.hpp>
 
+#include "jkr/jkr_transform.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr {
@@ -21,9 +22,7 @@ AdhesiveState jkr_transform(const HertzState& h, double w) {
   if (!(h.dS_da > 0.0) || !std::isfinite(h.dS_da))
     throw DomainError("jkr_transform", "dS/da", h.dS_da,
                       "> 0 (the transform needs a stiffness that grows with a)");
-  const double unload = std::sqrt(4.0 * kPi * w * h.a / h.dS_da);  // delta_1 - delta_2, eq. (17)
-  s.delta = h.delta_H - unload;
-  s.P = h.P_H - h.S * unload;  // = sqrt(4 pi w a S^2 / S'), eq. (16)
+  detail::jkr_from_state(h.a, h.P_H, h.delta_H, h.S, h.dS_da, std::sqrt(w), &s.delta, &s.P);
   return s;
 }
 

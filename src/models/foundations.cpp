@@ -1,20 +1,20 @@
 // Closed-form foundation models: Winkler, two-term, full Pasternak; layer constants.
 #include <cmath>
 
-#include <boost/math/constants/constants.hpp>
-
-#include "core/bessel_ratio.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/model.hpp"
+#include "models/state_formulas.hpp"
 
 namespace layerjkr {
 namespace {
 
-constexpr double kPi = boost::math::constants::pi<double>();
+detail::ProfileAt<double> profile_at(const Profile& p, double a) {
+  const ProfileDerivatives d = p.derivatives(a);
+  return {d.f, d.df, d.d2f, p.moment(a)};
+}
 
-// a^2 f(a) - 2 M(a) = int_0^a r^2 f'(r) dr >= 0.
-double winkler_bracket(const Profile& p, double a, double f_a) {
-  return a * a * f_a - 2.0 * p.moment(a);
+HertzState hertz_state(double a, const detail::StateOf<double>& s) {
+  return {a, s.P_H, s.delta_H, s.S, s.dS_da};
 }
 
 class TwoTerm final : public ContactModel {
@@ -22,19 +22,7 @@ class TwoTerm final : public ContactModel {
   TwoTerm(ProfilePtr p, double K, double G) : ContactModel(std::move(p)), K_(K), G_(G) {}
   HertzState state(double a) const override {
     profile().require_contact_radius(G_ == 0.0 ? "winkler" : "two_term", a);
-    const ProfileDerivatives d = profile().derivatives(a);
-    HertzState s;
-    s.a = a;
-    s.S = kPi * K_ * a * a;
-    s.dS_da = 2.0 * kPi * K_ * a;
-    if (G_ == 0.0) {  // exact Winkler: no 0 * inf from f''(a) of a rough profile
-      s.delta_H = d.f;
-      s.P_H = kPi * K_ * winkler_bracket(profile(), a, d.f);
-    } else {
-      s.delta_H = d.f - (G_ / K_) * (d.d2f + d.df / a);
-      s.P_H = kPi * K_ * winkler_bracket(profile(), a, d.f) + kPi * G_ * a * (d.df - a * d.d2f);
-    }
-    return s;
+    return hertz_state(a, detail::two_term_state(a, profile_at(profile(), a), K_, G_));
   }
   std::string name() const override { return G_ == 0.0 ? "winkler" : "two_term"; }
 
@@ -44,25 +32,15 @@ class TwoTerm final : public ContactModel {
 
 class FullFoundation final : public ContactModel {
  public:
-  FullFoundation(ProfilePtr p, double K, double G)
-      : ContactModel(std::move(p)), K_(K), G_(G), lambda_(std::sqrt(K / G)) {}
+  FullFoundation(ProfilePtr p, double K, double G) : ContactModel(std::move(p)), K_(K), G_(G) {}
   HertzState state(double a) const override {
     profile().require_contact_radius("full_foundation", a);
-    const ProfileDerivatives d = profile().derivatives(a);
-    const double q = detail::bessel_k1_over_k0(lambda_ * a);  // K1/K0 at lam a
-    HertzState s;
-    s.a = a;
-    // Slope continuity at the free boundary: f'(a) = -w'(a+) = c lam K1/K0.
-    s.delta_H = d.f + d.df / (lambda_ * q);
-    s.P_H = kPi * K_ * (a * a * s.delta_H - 2.0 * profile().moment(a)) + 2.0 * kPi * G_ * a * d.df;
-    s.S = kPi * K_ * a * a + 2.0 * kPi * G_ * lambda_ * a * q;
-    s.dS_da = 2.0 * kPi * K_ * a * q * q;
-    return s;
+    return hertz_state(a, detail::full_foundation_state(a, profile_at(profile(), a), K_, G_));
   }
   std::string name() const override { return "full_foundation"; }
 
  private:
-  double K_, G_, lambda_;
+  double K_, G_;
 };
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include "layerjkr/error.hpp"
 #include "layerjkr/model.hpp"
+#include "models/state_formulas.hpp"
 
 namespace layerjkr {
 namespace {
@@ -13,13 +14,8 @@ class HalfSpace final : public ContactModel {
   HertzState state(double a) const override {
     profile().require_contact_radius("half_space", a);
     const SneddonIntegrals I = profile().sneddon(a);
-    HertzState s;
-    s.a = a;
-    s.delta_H = a * I.I0;
-    s.P_H = 2.0 * E_star_ * a * a * I.I2;
-    s.S = 2.0 * E_star_ * a;
-    s.dS_da = 2.0 * E_star_;
-    return s;
+    const auto s = detail::half_space_state(a, I.I0, I.I2, E_star_);
+    return {a, s.P_H, s.delta_H, s.S, s.dS_da};
   }
   std::string name() const override { return "half_space"; }
 
