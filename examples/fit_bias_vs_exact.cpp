@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
         c.P.push_back(0.0);
         c.segment.push_back(1);
       }
-      for (const char* model : {"leading", "two_term", "edge_corrected", "exact"}) {
+      for (const SceneModel model : {SceneModel::leading, SceneModel::two_term,
+                                     SceneModel::edge_corrected, SceneModel::exact}) {
         Scene s = scene;
         s.model = model;
         s.medium.E = 2e5;  // the start must not matter
@@ -65,11 +66,11 @@ int main(int argc, char** argv) {
           const FitSummary f = fit(c, s, o);
           const double eb = f[FitParameter::E].value / E - 1.0, wb = f[FitParameter::w].value / w - 1.0;
           const double rr = f.rms_residual / std::abs(po.P);
-          std::printf("| %.2f | %.0f | %s | %+.2f %% | %+.2f %% | %.1e |\n", nu, ratio, model, 100 * eb,
+          std::printf("| %.2f | %.0f | %s | %+.2f %% | %+.2f %% | %.1e |\n", nu, ratio, to_string(model), 100 * eb,
                       100 * wb, rr);
-          csv << nu << "," << ratio << "," << model << "," << eb << "," << wb << "," << rr << "\n";
+          csv << nu << "," << ratio << "," << to_string(model) << "," << eb << "," << wb << "," << rr << "\n";
         } catch (const Error& e) {
-          std::printf("| %.2f | %.0f | %s | failed: %s | | |\n", nu, ratio, model, e.what());
+          std::printf("| %.2f | %.0f | %s | failed: %s | | |\n", nu, ratio, to_string(model), e.what());
         }
         std::fflush(stdout);
       }

@@ -10,7 +10,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     const layerjkr::Scene scene = layerjkr::parse_scene(text, "fuzz");
-    if (scene.model == "exact" || scene.model == "auto" || scene.model == "edge_corrected") return 0;
+    using layerjkr::SceneModel;
+    if (scene.model == SceneModel::exact || scene.model == SceneModel::automatic ||
+        scene.model == SceneModel::edge_corrected)
+      return 0;
     const layerjkr::BuiltScene built = layerjkr::build_scene(scene);
     const double a = std::min(scene.profile->length_scale(), 0.5 * scene.profile->max_radius());
     const layerjkr::HertzState s = built.model->state(a);

@@ -22,11 +22,24 @@
 #include <vector>
 
 #include "layerjkr/model.hpp"
+#include "layerjkr/model_spec.hpp"
 #include "layerjkr/profile.hpp"
 
 namespace layerjkr {
 
 enum class MediumType { winkler, pasternak, filonenko_borodich, layer, half_space };
+
+/// The scene's "model" key: what the user asked for. Which ones a medium accepts:
+/// winkler: winkler; half_space: half_space; layer: leading, two_term, edge_corrected,
+/// exact, automatic ("auto"); pasternak and filonenko_borodich: asymptotic, full.
+enum class SceneModel { winkler, half_space, leading, two_term, edge_corrected, exact, automatic,
+                        asymptotic, full };
+
+/// The scene's spelling of a SceneModel ("auto" for automatic).
+const char* to_string(SceneModel model);
+
+/// How a foundation's P_H is computed: closed forms, or the ODE route (model.hpp).
+enum class Solver { closed_form, ode };
 
 /// The medium as given in the scene (unused fields are NaN).
 struct MediumSpec {
@@ -39,8 +52,8 @@ struct MediumSpec {
 struct Scene {
   ProfilePtr profile;
   MediumSpec medium;
-  std::string model;                  ///< resolved model name
-  std::string solver = "closed_form"; ///< closed_form | ode
+  SceneModel model = SceneModel::winkler;  ///< the scene's model, or the medium's default
+  Solver solver = Solver::closed_form;
   double w = 0.0;                     ///< [J/m^2]
   double tolerance = 0.0;             ///< relative error target of model "auto", in (0, 1)
 };
@@ -67,7 +80,19 @@ Scene parse_scene(const std::string& json_text, const std::string& source = "sce
 /// Reads and parses a scene file. Throws InputError if it cannot be read.
 Scene load_scene(const std::string& path);
 
-/// Builds the contact model of a parsed scene. Model "auto" chooses for contact radii
+/// What a scene's model resolves to. Throws DomainError for invalid constants and Error
+/// for model "auto", which resolves only for a contact radius (build_scene).
+struct ResolvedModel {
+  ModelSpec spec;
+  /// The medium's foundation constants, as summaries report them (a layer's thin-layer
+  /// K and G, also for "leading" and "edge_corrected"; none for "exact").
+  bool has_foundation_constants = false;
+  double K = 0.0, G = 0.0;
+  std::vector<std::string> warnings;  ///< the thin-layer constants' validity warnings
+};
+ResolvedModel resolve_model(const Scene& scene);
+
+/// Builds the contact model of a parsed scene (through make_contact_model). Model "auto" chooses for contact radii
 /// >= a_min [m] (required > 0 for "auto", ignored otherwise).
 BuiltScene build_scene(const Scene& scene, double a_min = 0.0);
 

@@ -101,10 +101,10 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   map.ref[static_cast<int>(FitParameter::E)] = f.E;
   map.ref[static_cast<int>(FitParameter::R)] = f.R;
   map.ref[static_cast<int>(FitParameter::G)] = f.G;
-  map.G_log = scene.model == "full";
+  map.G_log = scene.model == SceneModel::full;
   map.G_scale = f.G != 0.0 ? std::abs(f.G) : f.K * span * span;
   map.s_scale = std::sqrt(force_span / span) * 0.1;
-  if (scene.solver == "ode")
+  if (scene.solver == Solver::ode)
     out.warnings.push_back("solver 'ode' verifies the closed forms; the fit evaluates the same "
                            "foundation in closed form");
   out.warnings.insert(out.warnings.end(), fixed.warnings.begin(), fixed.warnings.end());

@@ -260,12 +260,12 @@ std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const FitOption
   std::unique_ptr<CurveModel> model;
   const bool foundation_medium = m.type == MediumType::winkler || m.type == MediumType::pasternak ||
                                  m.type == MediumType::filonenko_borodich;
-  const bool layer_foundation =
-      m.type == MediumType::layer && (scene.model == "leading" || scene.model == "two_term");
+  const bool layer_foundation = m.type == MediumType::layer && (scene.model == SceneModel::leading ||
+                                                               scene.model == SceneModel::two_term);
   if (foundation_medium) {
     sp.values.K = m.K;
     sp.values.G = m.type == MediumType::pasternak ? m.G : m.type == MediumType::filonenko_borodich ? m.T : 0.0;
-    const bool full = scene.model == "full";
+    const bool full = scene.model == SceneModel::full;
     const std::string name = full ? "full_foundation" : sp.values.G == 0.0 ? "winkler" : "two_term";
     model = std::make_unique<FoundationCurve>(scene.profile, full, false, name);
   } else if (layer_foundation) {
@@ -273,7 +273,7 @@ std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const FitOption
     sp.layer_foundation = true;
     sp.warnings = unit.warnings;  // they depend on nu only, so the unit layer's are the scene's
     sp.k_per_E = unit.K;
-    sp.g_per_E = scene.model == "leading" ? 0.0 : unit.G;
+    sp.g_per_E = scene.model == SceneModel::leading ? 0.0 : unit.G;
     sp.values.E = m.E;
     sp.values.K = m.E * sp.k_per_E;
     sp.values.G = m.E * sp.g_per_E;
@@ -288,7 +288,7 @@ std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const FitOption
     sp.values.E = m.E;
     sp.nu = m.nu;
     // "auto" chooses for the radii a fit needs: down to 1/20 of the data's span scale.
-    const double a_min = scene.model == "auto" ? std::sqrt(delta_span * scene.profile->length_scale()) / 20.0 : 0.0;
+    const double a_min = scene.model == SceneModel::automatic ? std::sqrt(delta_span * scene.profile->length_scale()) / 20.0 : 0.0;
     const BuiltScene built = build_scene(scene, a_min);
     model = std::make_unique<TabulatedCurve>(built.model, m.E, delta_span,
                                              options.table_points_per_decade);

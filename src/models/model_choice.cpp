@@ -8,6 +8,7 @@
 
 #include "layerjkr/error.hpp"
 #include "layerjkr/exact_layer.hpp"
+#include "layerjkr/model_spec.hpp"
 
 namespace layerjkr {
 namespace {
@@ -96,27 +97,28 @@ ModelChoice choose_layer_model(ProfilePtr profile, const ElasticLayer& layer, do
   // 5x for f ~ r^4, 1.3x for a cone), so only the exact solver is trusted there.
   if (layer.nu < 0.5 && profile->is_paraboloid()) {
     const ThinLayerConstants c = thin_layer_constants(layer);
-    for (const char* m : {"winkler", "edge_corrected", "two_term", "full_foundation"}) {
-      const double e = estimated_model_error(m, layer, a_min);
+    for (ModelKind kind : {ModelKind::winkler, ModelKind::edge_corrected, ModelKind::two_term,
+                           ModelKind::full_foundation}) {
+      const double e = estimated_model_error(model_name(kind), layer, a_min);
       if (!(e <= tolerance)) continue;
-      choice.model = m;
+      ModelSpec spec;
+      spec.kind = kind;
+      spec.K = c.K;
+      spec.G = c.G;
+      spec.layer = layer;
+      choice.model = model_name(kind);
       choice.estimated_error = e;
-      if (choice.model == "winkler")
-        choice.contact_model = make_winkler(profile, c.K);
-      else if (choice.model == "edge_corrected")
-        choice.contact_model = make_edge_corrected(profile, layer);
-      else if (choice.model == "two_term")
-        choice.contact_model = make_two_term(profile, c.K, c.G);
-      else
-        choice.contact_model = make_full_foundation(profile, c.K, c.G);
+      choice.contact_model = make_contact_model(profile, spec);
       return choice;
     }
   }
-  ExactLayerOptions options;
-  options.max_a_over_h = std::max(100.0, a_min / layer.h);
-  choice.model = "exact";
+  ModelSpec exact;
+  exact.kind = ModelKind::exact;
+  exact.layer = layer;
+  exact.exact.max_a_over_h = std::max(100.0, a_min / layer.h);
+  choice.model = model_name(ModelKind::exact);
   choice.estimated_error = kExactAccuracy;
-  choice.contact_model = make_exact_layer(std::move(profile), layer, options);
+  choice.contact_model = make_contact_model(std::move(profile), exact);
   return choice;
 }
 

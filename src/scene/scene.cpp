@@ -171,16 +171,53 @@ MediumSpec read_medium(const Reader& in, const json& root) {
   return m;
 }
 
-// Allowed model names per medium; the first is the default ("" = required).
-std::vector<std::string> models_for(MediumType t) {
+constexpr std::pair<SceneModel, const char*> kSceneModelNames[] = {
+    {SceneModel::winkler, "winkler"},   {SceneModel::half_space, "half_space"},
+    {SceneModel::leading, "leading"},   {SceneModel::two_term, "two_term"},
+    {SceneModel::edge_corrected, "edge_corrected"}, {SceneModel::exact, "exact"},
+    {SceneModel::automatic, "auto"},    {SceneModel::asymptotic, "asymptotic"},
+    {SceneModel::full, "full"}};
+
+// The models a medium accepts, and its default (none: the scene must name one).
+struct MediumModels {
+  std::vector<SceneModel> allowed;
+  bool has_default;  // then allowed.front() is the default
+};
+
+MediumModels models_for(MediumType t) {
   switch (t) {
-    case MediumType::winkler: return {"winkler"};
-    case MediumType::half_space: return {"half_space"};
-    case MediumType::layer: return {"", "leading", "two_term", "edge_corrected", "exact", "auto"};
+    case MediumType::winkler: return {{SceneModel::winkler}, true};
+    case MediumType::half_space: return {{SceneModel::half_space}, true};
+    case MediumType::layer:
+      return {{SceneModel::leading, SceneModel::two_term, SceneModel::edge_corrected,
+               SceneModel::exact, SceneModel::automatic},
+              false};
     case MediumType::pasternak:
-    case MediumType::filonenko_borodich: return {"", "asymptotic", "full"};
+    case MediumType::filonenko_borodich: return {{SceneModel::asymptotic, SceneModel::full}, false};
   }
-  return {};
+  return {{}, false};
+}
+
+// Models that take a layer solve or a beta fit to build (0.2 s and up): parse_scene
+// validates their parameters without building them.
+bool expensive(SceneModel m) {
+  return m == SceneModel::automatic || m == SceneModel::exact || m == SceneModel::edge_corrected;
+}
+
+SceneModel read_model(const Reader& in, const json& root, MediumType medium) {
+  const MediumModels models = models_for(medium);
+  std::string list;
+  for (SceneModel m : models.allowed) list += (list.empty() ? "" : ", ") + std::string(to_string(m));
+  const std::string medium_name = root["medium"]["type"].get<std::string>();
+  if (!root.contains("model")) {
+    if (!models.has_default) in.fail("model", "is missing; medium '" + medium_name + "' needs one of: " + list);
+    return models.allowed.front();
+  }
+  const std::string name = in.string(root, "model", "scene");
+  for (SceneModel m : models.allowed)
+    if (name == to_string(m)) return m;
+  in.fail("model", "= \"" + name + "\" is not available for medium '" + medium_name +
+                       "' (available: " + list + ")");
 }
 
 }  // namespace
@@ -199,66 +236,99 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   s.profile = read_indenter(in, root);
   s.medium = read_medium(in, root);
 
-  const std::vector<std::string> allowed = models_for(s.medium.type);
-  std::string list;
-  for (const auto& m : allowed)
-    if (!m.empty()) list += (list.empty() ? "" : ", ") + m;
-  const std::string medium_name = root["medium"]["type"].get<std::string>();
-  if (root.contains("model")) {
-    s.model = in.string(root, "model", "scene");
-    bool ok = false;
-    for (const auto& m : allowed) ok = ok || (!m.empty() && m == s.model);
-    if (!ok)
-      in.fail("model", "= \"" + s.model + "\" is not available for medium '" + medium_name +
-                           "' (available: " + list + ")");
-  } else if (allowed.front().empty()) {
-    in.fail("model", "is missing; medium '" + medium_name + "' needs one of: " + list);
-  } else {
-    s.model = allowed.front();
-  }
+  s.model = read_model(in, root, s.medium.type);
 
   if (root.contains("solver")) {
-    s.solver = in.string(root, "solver", "scene");
-    if (s.solver != "closed_form" && s.solver != "ode")
-      in.fail("solver", "= \"" + s.solver + "\" is unknown (known: closed_form, ode)");
-    if (s.solver == "ode" && s.medium.type == MediumType::half_space)
+    const std::string solver = in.string(root, "solver", "scene");
+    if (solver != "closed_form" && solver != "ode")
+      in.fail("solver", "= \"" + solver + "\" is unknown (known: closed_form, ode)");
+    s.solver = solver == "ode" ? Solver::ode : Solver::closed_form;
+    if (s.solver == Solver::ode && s.medium.type == MediumType::half_space)
       in.fail("solver", "= \"ode\" is available for foundation models only, not half_space");
   }
   if (root.contains("w")) {
     s.w = in.as_number(root.at("w"), "w");
     if (s.w < 0.0) in.fail("w", "= " + format_double(s.w) + " is invalid; valid range: >= 0");
   }
-  const bool expensive = s.model == "auto" || s.model == "exact" || s.model == "edge_corrected";
-  if (s.model == "auto") {
+  if (s.model == SceneModel::automatic) {
     if (!root.contains("tolerance"))
       in.fail("tolerance", "is missing; model \"auto\" needs a relative error target in (0, 1)");
     s.tolerance = in.as_number(root.at("tolerance"), "tolerance");
     if (!(s.tolerance > 0.0 && s.tolerance < 1.0))
       in.fail("tolerance", "= " + format_double(s.tolerance) + " is invalid; valid range: (0, 1)");
   } else if (root.contains("tolerance")) {
-    in.fail("tolerance", "is only used with model \"auto\" (model is \"" + s.model + "\")");
+    in.fail("tolerance", "is only used with model \"auto\" (model is \"" + std::string(to_string(s.model)) + "\")");
   }
-  if (expensive) {
-    if (s.solver != "closed_form")
-      in.fail("solver", "must be closed_form with model \"" + s.model + "\"");
-    // Validate without building the exact kernel or fitting beta (0.2 s each): the
-    // caller's build_scene does that once.
-    in.checked("medium", [&] {
+  if (expensive(s.model) && s.solver != Solver::closed_form)
+    in.fail("solver", "must be closed_form with model \"" + std::string(to_string(s.model)) + "\"");
+  // Every invalid value is reported at parse time, without building anything.
+  in.checked("medium", [&] {
+    if (s.model == SceneModel::automatic) {  // resolves only for a radius: check the layer
       detail::require_positive("layer", "h", s.medium.h);
-      if (s.model == "edge_corrected")
-        return thin_layer_constants({s.medium.E, s.medium.nu, s.medium.h, s.medium.base}).K;
-      return effective_modulus(s.medium.E, s.medium.nu);
-    });
-    return s;
-  }
-  // Build once so every invalid value is reported at parse time.
-  (void)build_scene(s);
+      (void)effective_modulus(s.medium.E, s.medium.nu);
+    } else {
+      validate(resolve_model(s).spec);
+    }
+  });
   return s;
+}
+
+const char* to_string(SceneModel model) {
+  for (const auto& [m, name] : kSceneModelNames)
+    if (m == model) return name;
+  return "unknown";
+}
+
+ResolvedModel resolve_model(const Scene& s) {
+  const MediumSpec& m = s.medium;
+  ResolvedModel r;
+  ModelSpec& spec = r.spec;
+  spec.ode = s.solver == Solver::ode;
+  switch (m.type) {
+    case MediumType::half_space:
+      spec.kind = ModelKind::half_space;
+      spec.layer = {m.E, m.nu, 0.0, Base::bonded};
+      return r;
+    case MediumType::winkler:
+      spec.kind = ModelKind::winkler;
+      spec.K = r.K = m.K;
+      r.has_foundation_constants = true;
+      return r;
+    case MediumType::pasternak:
+    case MediumType::filonenko_borodich:
+      spec.kind = s.model == SceneModel::full ? ModelKind::full_foundation : ModelKind::two_term;
+      spec.K = r.K = m.K;
+      spec.G = r.G = m.type == MediumType::pasternak ? m.G : m.T;
+      r.has_foundation_constants = true;
+      return r;
+    case MediumType::layer:
+      break;
+  }
+  spec.layer = {m.E, m.nu, m.h, m.base};
+  if (s.model == SceneModel::automatic)
+    throw Error("resolve_model: model \"auto\" resolves only for a contact radius (build_scene)");
+  if (s.model == SceneModel::exact) {  // needs no thin-layer constants (allows nu = 0.5)
+    spec.kind = ModelKind::exact;
+    return r;
+  }
+  const ThinLayerConstants c = thin_layer_constants(spec.layer);
+  r.has_foundation_constants = true;
+  r.K = c.K;
+  r.G = c.G;
+  r.warnings = c.warnings;
+  if (s.model == SceneModel::edge_corrected) {
+    spec.kind = ModelKind::edge_corrected;
+    return r;
+  }
+  spec.kind = s.model == SceneModel::leading || c.G == 0.0 ? ModelKind::winkler : ModelKind::two_term;
+  spec.K = c.K;
+  spec.G = s.model == SceneModel::leading ? 0.0 : c.G;
+  return r;
 }
 
 double summary_reference_radius(const Scene& s) {
   const MediumSpec& m = s.medium;
-  if (s.model != "auto") return 0.0;  // only "auto" chooses by radius
+  if (s.model != SceneModel::automatic) return 0.0;  // only "auto" chooses by radius
   if (s.w > 0.0 && m.nu < 0.5) {
     const ThinLayerConstants c = thin_layer_constants({m.E, m.nu, m.h, m.base});
     if (const auto po = JkrSolution(make_winkler(s.profile, c.K), s.w).pull_off())
@@ -280,71 +350,36 @@ BuiltScene build_scene(const Scene& s, double a_min) {
   Reader in("scene");
   BuiltScene b;
   const MediumSpec& m = s.medium;
-  double K = m.K, G = 0.0;
-  bool full = false;
-  switch (m.type) {
-    case MediumType::half_space:
-      b.model = in.checked("medium", [&] { return make_half_space(s.profile, m.E, m.nu); });
-      b.has_effective_modulus = true;
-      b.E_star = effective_modulus(m.E, m.nu);
-      return b;
-    case MediumType::winkler:
-      break;
-    case MediumType::pasternak:
-    case MediumType::filonenko_borodich:
-      G = m.type == MediumType::pasternak ? m.G : m.T;
-      full = s.model == "full";
-      break;
-    case MediumType::layer: {
-      const ElasticLayer layer{m.E, m.nu, m.h, m.base};
-      b.has_effective_modulus = true;
-      b.E_star = in.checked("medium", [&] { return effective_modulus(m.E, m.nu); });
-      // The thin-layer constants: needed by every asymptotic model, reported for auto
-      // where they exist, irrelevant to the exact solver (which allows nu = 0.5).
-      if (s.model != "exact" && !(s.model == "auto" && m.nu >= 0.5)) {
-        const ThinLayerConstants c = in.checked("medium", [&] { return thin_layer_constants(layer); });
-        b.has_foundation_constants = true;
-        b.K = c.K;
-        b.G = c.G;
-        if (s.model != "auto") b.warnings = c.warnings;
-      }
-      if (s.model == "auto") {
-        if (!(a_min > 0.0) || !std::isfinite(a_min))
-          throw DomainError("build_scene", "a_min (smallest contact radius of interest)", a_min,
-                            "finite and > 0 for model auto");
-        const ModelChoice choice = in.checked(
-            "medium", [&] { return choose_layer_model(s.profile, layer, s.tolerance, a_min); });
-        b.model = choice.contact_model;
-        b.automatic = true;
-        b.chosen_model = choice.model;
-        b.estimated_error = choice.estimated_error;
-        b.reference_radius = choice.reference_radius;
-        return b;
-      }
-      if (s.model == "exact") {
-        b.model = in.checked("medium", [&] { return make_exact_layer(s.profile, layer); });
-        return b;
-      }
-      if (s.model == "edge_corrected") {
-        b.model = in.checked("medium", [&] { return make_edge_corrected(s.profile, layer); });
-        return b;
-      }
-      K = b.K;
-      G = s.model == "leading" ? 0.0 : b.G;
-      break;
-    }
+  if (m.type == MediumType::layer || m.type == MediumType::half_space) {
+    b.has_effective_modulus = true;
+    b.E_star = in.checked("medium", [&] { return effective_modulus(m.E, m.nu); });
   }
-  b.has_foundation_constants = true;
-  b.K = K;
-  if (m.type != MediumType::layer) b.G = G;
-  b.model = in.checked("medium", [&]() -> ContactModelPtr {
-    if (s.solver == "ode")
-      return make_ode_foundation(s.profile, K, G,
-                                 full ? FoundationKind::full : FoundationKind::asymptotic);
-    if (full) return make_full_foundation(s.profile, K, G);
-    if (G == 0.0) return make_winkler(s.profile, K);
-    return make_two_term(s.profile, K, G);
-  });
+  if (s.model == SceneModel::automatic) {
+    const ElasticLayer layer{m.E, m.nu, m.h, m.base};
+    if (m.nu < 0.5) {  // the thin-layer constants are reported where they exist
+      const ThinLayerConstants c = in.checked("medium", [&] { return thin_layer_constants(layer); });
+      b.has_foundation_constants = true;
+      b.K = c.K;
+      b.G = c.G;
+    }
+    if (!(a_min > 0.0) || !std::isfinite(a_min))
+      throw DomainError("build_scene", "a_min (smallest contact radius of interest)", a_min,
+                        "finite and > 0 for model auto");
+    const ModelChoice choice =
+        in.checked("medium", [&] { return choose_layer_model(s.profile, layer, s.tolerance, a_min); });
+    b.model = choice.contact_model;
+    b.automatic = true;
+    b.chosen_model = choice.model;
+    b.estimated_error = choice.estimated_error;
+    b.reference_radius = choice.reference_radius;
+    return b;
+  }
+  const ResolvedModel r = in.checked("medium", [&] { return resolve_model(s); });
+  b.warnings = r.warnings;
+  b.has_foundation_constants = r.has_foundation_constants;
+  b.K = r.K;
+  b.G = r.G;
+  b.model = in.checked("medium", [&] { return make_contact_model(s.profile, r.spec); });
   return b;
 }
 

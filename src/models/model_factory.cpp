@@ -1,0 +1,71 @@
+// The one place a ContactModel is built from its description (model_spec.hpp).
+#include "layerjkr/model_spec.hpp"
+
+#include "layerjkr/error.hpp"
+
+namespace layerjkr {
+
+const char* model_name(ModelKind kind) {
+  switch (kind) {
+    case ModelKind::winkler: return "winkler";
+    case ModelKind::two_term: return "two_term";
+    case ModelKind::full_foundation: return "full_foundation";
+    case ModelKind::half_space: return "half_space";
+    case ModelKind::edge_corrected: return "edge_corrected";
+    case ModelKind::exact: return "exact";
+  }
+  return "unknown";
+}
+
+void validate(const ModelSpec& spec) {
+  const char* fn = "validate(ModelSpec)";
+  switch (spec.kind) {
+    case ModelKind::winkler:
+    case ModelKind::two_term:
+    case ModelKind::full_foundation:
+      detail::require_positive(fn, "K", spec.K);
+      detail::require_finite(fn, "G", spec.G);
+      if (spec.kind == ModelKind::full_foundation && !(spec.G > 0.0))
+        throw DomainError(fn, "G (or tension T)", spec.G,
+                          "finite and > 0; for G <= 0 use the asymptotic two-term model, which "
+                          "has no exterior solution");
+      return;
+    case ModelKind::half_space:
+      (void)effective_modulus(spec.layer.E, spec.layer.nu);
+      return;
+    case ModelKind::edge_corrected:
+      (void)thin_layer_constants(spec.layer);
+      return;
+    case ModelKind::exact:
+      detail::require_positive(fn, "h", spec.layer.h);
+      (void)effective_modulus(spec.layer.E, spec.layer.nu);
+      spec.exact.Validate();
+      return;
+  }
+}
+
+ContactModelPtr make_contact_model(ProfilePtr profile, const ModelSpec& spec) {
+  validate(spec);
+  const bool full = spec.kind == ModelKind::full_foundation;
+  const double G = spec.kind == ModelKind::winkler ? 0.0 : spec.G;
+  switch (spec.kind) {
+    case ModelKind::winkler:
+    case ModelKind::two_term:
+    case ModelKind::full_foundation:
+      if (spec.ode)
+        return make_ode_foundation(std::move(profile), spec.K, G,
+                                   full ? FoundationKind::full : FoundationKind::asymptotic);
+      if (full) return make_full_foundation(std::move(profile), spec.K, spec.G);
+      if (G == 0.0) return make_winkler(std::move(profile), spec.K);
+      return make_two_term(std::move(profile), spec.K, G);
+    case ModelKind::half_space:
+      return make_half_space(std::move(profile), spec.layer.E, spec.layer.nu);
+    case ModelKind::edge_corrected:
+      return make_edge_corrected(std::move(profile), spec.layer);
+    case ModelKind::exact:
+      return make_exact_layer(std::move(profile), spec.layer, spec.exact);
+  }
+  throw Error("make_contact_model: unknown model kind");
+}
+
+}  // namespace layerjkr
