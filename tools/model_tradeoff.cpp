@@ -169,7 +169,7 @@ int main(int argc, char** argv) {
          "// {bonded, nu, a/h, model, error}\n";
   for (const auto& [key, err] : worst) {
     char line[128];
-    std::snprintf(line, sizeof line, "{%d, %.2f, %g, \"%s\", %.4g},\n", std::get<0>(key),
+    std::snprintf(line, sizeof line, "{%d, %.2f, %g, ModelKind::%s, %.4g},\n", std::get<0>(key),
                   std::get<1>(key), std::get<2>(key), std::get<3>(key).c_str(), err);
     inc << line;
   }

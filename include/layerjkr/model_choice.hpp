@@ -1,7 +1,8 @@
 // layerjkr: automatic model choice for a thin layer ("model": "auto").
 //
 // The error of every asymptotic model against the exact layer was measured once
-// (examples/model_tradeoff; table in src/model_error_table.inc, summary in README):
+// (tools/model_tradeoff.cpp; table in src/models/model_error_table.inc, summary in
+// docs/models.md):
 // the worst relative error of P_H, delta_H and the pull-off force, per base, nu in
 // {0, 0.1, 0.2, 0.25, 0.3, 0.4, 0.45, 0.49} and a/h in {0.5, ..., 100}. The estimate for
 // a scene interpolates that table conservatively: the maximum over the bracketing grid
@@ -16,12 +17,15 @@
 #include <string>
 
 #include "layerjkr/model.hpp"
+#include "layerjkr/model_spec.hpp"
 
 namespace layerjkr {
 
 /// Estimated worst relative error of an asymptotic model ("winkler", "edge_corrected",
 /// "two_term", "full_foundation") for `layer` at contact radius a [m]; +inf where the model does not
 /// apply or was not measured. The exact solver's own error (< 1e-7) is not included.
+double estimated_model_error(ModelKind model, const ElasticLayer& layer, double a);
+/// The same by name; throws DomainError for a name that is not one of the four.
 double estimated_model_error(const std::string& model, const ElasticLayer& layer, double a);
 
 struct ModelChoice {

@@ -4,6 +4,7 @@
 // make_contact_model, so a model is constructed, and validated, in one place.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ enum class ModelKind {
 /// "half_space", "edge_corrected", "exact" (ContactModel::name() of what it builds;
 /// the ODE route prints "ode(<kind>)").
 const char* model_name(ModelKind kind);
+
+/// The kind a model_name() names; nullopt for any other string.
+std::optional<ModelKind> model_kind(const std::string& name);
 
 /// A model with its constants; the fields a kind does not use are ignored.
 struct ModelSpec {

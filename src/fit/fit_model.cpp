@@ -13,6 +13,7 @@
 #include "jkr/jkr_transform.hpp"
 #include "models/state_formulas.hpp"
 #include "layerjkr/error.hpp"
+#include "layerjkr/model_spec.hpp"
 #include "layerjkr/model.hpp"
 
 namespace layerjkr::detail {
@@ -58,9 +59,9 @@ class CurveModelBase : public CurveModel {
 // Two-term / Winkler (asymptotic) or full Pasternak / Filonenko-Borodich.
 class FoundationCurve final : public CurveModelBase<FoundationCurve> {
  public:
-  FoundationCurve(ProfilePtr profile, bool full, bool layer, std::string name)
+  FoundationCurve(ProfilePtr profile, bool full, bool layer, ModelKind name)
       : profile_(std::move(profile)), paraboloid_(profile_->is_paraboloid()), full_(full),
-        layer_(layer), name_(std::move(name)) {}
+        layer_(layer), name_(name) {}
 
   template <class T>
   void curve(const T& a, const CurveParameters<T>& p, T* delta, T* P) const {
@@ -91,12 +92,12 @@ class FoundationCurve final : public CurveModelBase<FoundationCurve> {
   double min_radius() const override { return 0.0; }
   double max_radius() const override { return profile_->max_radius(); }
   std::string family() const override { return "foundation"; }
-  std::string model_name() const override { return name_; }
+  std::string model_name() const override { return layerjkr::model_name(name_); }
 
  private:
   ProfilePtr profile_;
   bool paraboloid_, full_, layer_;
-  std::string name_;
+  ModelKind name_;
 };
 
 // Half-space with a paraboloid: delta_H = a^2/R, P_H = 4 E* a^3 / (3R).
@@ -122,7 +123,7 @@ class HertzCurve final : public CurveModelBase<HertzCurve> {
   double min_radius() const override { return 0.0; }
   double max_radius() const override { return std::numeric_limits<double>::infinity(); }
   std::string family() const override { return "hertz"; }
-  std::string model_name() const override { return "half_space"; }
+  std::string model_name() const override { return layerjkr::model_name(ModelKind::half_space); }
 
  private:
   double one_minus_nu2_;
@@ -266,7 +267,7 @@ std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const FitOption
     sp.values.K = m.K;
     sp.values.G = m.type == MediumType::pasternak ? m.G : m.type == MediumType::filonenko_borodich ? m.T : 0.0;
     const bool full = scene.model == SceneModel::full;
-    const std::string name = full ? "full_foundation" : sp.values.G == 0.0 ? "winkler" : "two_term";
+    const ModelKind name = full ? ModelKind::full_foundation : sp.values.G == 0.0 ? ModelKind::winkler : ModelKind::two_term;
     model = std::make_unique<FoundationCurve>(scene.profile, full, false, name);
   } else if (layer_foundation) {
     const ThinLayerConstants unit = thin_layer_constants({1.0, m.nu, m.h, m.base});
@@ -278,7 +279,7 @@ std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const FitOption
     sp.values.K = m.E * sp.k_per_E;
     sp.values.G = m.E * sp.g_per_E;
     model = std::make_unique<FoundationCurve>(scene.profile, false, true,
-                                              sp.g_per_E == 0.0 ? "winkler" : "two_term");
+                                              sp.g_per_E == 0.0 ? ModelKind::winkler : ModelKind::two_term);
   } else if (m.type == MediumType::half_space && scene.profile->is_paraboloid()) {
     sp.values.E = m.E;
     sp.nu = m.nu;

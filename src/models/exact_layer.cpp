@@ -1,5 +1,6 @@
 // Exact elastic layer: kernel table (GSL QAWF + spline) and Nystrom solve (Eigen).
 #include "layerjkr/exact_layer.hpp"
+#include "layerjkr/model_spec.hpp"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -319,7 +320,7 @@ class ExactLayerModel final : public ContactModel {
   ExactLayerModel(ProfilePtr p, const ElasticLayer& layer, ExactLayerOptions o)
       : ContactModel(std::move(p)), kernel_(layer, o) {}
   HertzState state(double a) const override { return kernel_.solve(profile(), a).state; }
-  std::string name() const override { return "exact"; }
+  std::string name() const override { return model_name(ModelKind::exact); }
   double max_radius() const override {
     return std::min(profile().max_radius(),
                     kernel_.options().max_a_over_h * kernel_.layer().h);
@@ -342,7 +343,7 @@ class EdgeCorrected final : public ContactModel {
     s.a = a;  // the JKR energy term uses the true contact radius
     return s;
   }
-  std::string name() const override { return "edge_corrected"; }
+  std::string name() const override { return model_name(ModelKind::edge_corrected); }
   double min_radius() const override { return std::max(0.0, -shift_); }
 
  private:

@@ -3,6 +3,7 @@
 
 #include "layerjkr/error.hpp"
 #include "layerjkr/model.hpp"
+#include "layerjkr/model_spec.hpp"
 #include "models/state_formulas.hpp"
 
 namespace layerjkr {
@@ -21,12 +22,13 @@ class TwoTerm final : public ContactModel {
  public:
   TwoTerm(ProfilePtr p, double K, double G) : ContactModel(std::move(p)), K_(K), G_(G) {}
   HertzState state(double a) const override {
-    profile().require_contact_radius(G_ == 0.0 ? "winkler" : "two_term", a);
+    profile().require_contact_radius(model_name(kind()), a);
     return hertz_state(a, detail::two_term_state(a, profile_at(profile(), a), K_, G_));
   }
-  std::string name() const override { return G_ == 0.0 ? "winkler" : "two_term"; }
+  std::string name() const override { return model_name(kind()); }
 
  private:
+  ModelKind kind() const { return G_ == 0.0 ? ModelKind::winkler : ModelKind::two_term; }
   double K_, G_;
 };
 
@@ -34,10 +36,10 @@ class FullFoundation final : public ContactModel {
  public:
   FullFoundation(ProfilePtr p, double K, double G) : ContactModel(std::move(p)), K_(K), G_(G) {}
   HertzState state(double a) const override {
-    profile().require_contact_radius("full_foundation", a);
+    profile().require_contact_radius(model_name(ModelKind::full_foundation), a);
     return hertz_state(a, detail::full_foundation_state(a, profile_at(profile(), a), K_, G_));
   }
-  std::string name() const override { return "full_foundation"; }
+  std::string name() const override { return model_name(ModelKind::full_foundation); }
 
  private:
   double K_, G_;

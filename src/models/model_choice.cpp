@@ -16,7 +16,7 @@ namespace {
 struct Entry {
   int bonded;
   double nu, a_over_h;
-  const char* model;
+  ModelKind model;
   double error;
 };
 
@@ -27,7 +27,7 @@ const Entry kTable[] = {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kExactAccuracy = 1e-7;
 
-double table_value(bool bonded, double nu, double r, const std::string& model) {
+double table_value(bool bonded, double nu, double r, ModelKind model) {
   for (const Entry& e : kTable)
     if (e.bonded == int(bonded) && e.nu == nu && e.a_over_h == r && model == e.model) return e.error;
   return kInf;
@@ -52,27 +52,34 @@ std::vector<double> bracket(const std::vector<double>& g, double x) {
 
 // A model that degenerates to Winkler at a grid point (G = 0 at nu = 0 and 1/4) has
 // Winkler's error there.
-double at_grid(bool bonded, double nu, double r, const std::string& model) {
+double at_grid(bool bonded, double nu, double r, ModelKind model) {
   const double v = table_value(bonded, nu, r, model);
-  if (std::isfinite(v) || model == "winkler") return v;
-  if (bonded && (nu == 0.0 || nu == 0.25)) return table_value(bonded, nu, r, "winkler");
+  if (std::isfinite(v) || model == ModelKind::winkler) return v;
+  if (bonded && (nu == 0.0 || nu == 0.25)) return table_value(bonded, nu, r, ModelKind::winkler);
   return kInf;
 }
 
 }  // namespace
 
 double estimated_model_error(const std::string& model, const ElasticLayer& layer, double a) {
+  const std::optional<ModelKind> kind = model_kind(model);
+  if (!kind || *kind == ModelKind::half_space || *kind == ModelKind::exact)
+    throw DomainError("estimated_model_error", "model (" + model + ")", 0.0,
+                      "one of winkler, edge_corrected, two_term, full_foundation");
+  return estimated_model_error(*kind, layer, a);
+}
+
+double estimated_model_error(ModelKind model, const ElasticLayer& layer, double a) {
   detail::require_positive("estimated_model_error", "a", a);
   detail::require_positive("estimated_model_error", "h", layer.h);
   const bool bonded = layer.base == Base::bonded;
   const ThinLayerConstants c = thin_layer_constants(layer);  // validates E, nu, h
-  if (model != "winkler" && model != "edge_corrected" && model != "two_term" &&
-      model != "full_foundation")
-    throw DomainError("estimated_model_error", "model (" + model + ")", 0.0,
+  if (model == ModelKind::half_space || model == ModelKind::exact)
+    throw DomainError("estimated_model_error", std::string("model (") + model_name(model) + ")", 0.0,
                       "one of winkler, edge_corrected, two_term, full_foundation");
-  if (model == "full_foundation" && !(c.G > 0.0)) return kInf;
+  if (model == ModelKind::full_foundation && !(c.G > 0.0)) return kInf;
   // With G = 0 (frictionless base, nu = 0 or 1/4) the two-term model is Winkler.
-  if (model == "two_term" && c.G == 0.0) return estimated_model_error("winkler", layer, a);
+  if (model == ModelKind::two_term && c.G == 0.0) return estimated_model_error(ModelKind::winkler, layer, a);
   // A frictionless layer's exact kernel and K = E*/h do not depend on nu (measured at 0).
   const double nu = bonded ? layer.nu : 0.0;
   const double r = a / layer.h;
@@ -99,7 +106,7 @@ ModelChoice choose_layer_model(ProfilePtr profile, const ElasticLayer& layer, do
     const ThinLayerConstants c = thin_layer_constants(layer);
     for (ModelKind kind : {ModelKind::winkler, ModelKind::edge_corrected, ModelKind::two_term,
                            ModelKind::full_foundation}) {
-      const double e = estimated_model_error(model_name(kind), layer, a_min);
+      const double e = estimated_model_error(kind, layer, a_min);
       if (!(e <= tolerance)) continue;
       ModelSpec spec;
       spec.kind = kind;

@@ -17,6 +17,13 @@ const char* model_name(ModelKind kind) {
   return "unknown";
 }
 
+std::optional<ModelKind> model_kind(const std::string& name) {
+  for (ModelKind k : {ModelKind::winkler, ModelKind::two_term, ModelKind::full_foundation,
+                      ModelKind::half_space, ModelKind::edge_corrected, ModelKind::exact})
+    if (name == model_name(k)) return k;
+  return std::nullopt;
+}
+
 void validate(const ModelSpec& spec) {
   const char* fn = "validate(ModelSpec)";
   switch (spec.kind) {
