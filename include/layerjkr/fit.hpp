@@ -75,6 +75,8 @@ struct FitOptions {
   double correlation_limit = 0.99;
   /// Grid density of the tabulated family, >= 8.
   int table_points_per_decade = 40;
+  /// Print Ceres' progress per iteration (stdout) and its full report (stderr).
+  bool trace = false;
   /// Throws DomainError naming the first invalid field.
   void Validate() const;
 };

@@ -14,6 +14,10 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// The first radius search of a model with no largest radius starts here [m]; every later
+// search starts from the previous solution, so this only has to be within the search's
+// bracketing range (decades either way), not close.
+constexpr double kUnboundedSeedRadius = 1e-6;
 
 int idx(FitParameter p) { return static_cast<int>(p); }
 
@@ -96,7 +100,7 @@ CurveEvaluator::CurveEvaluator(const CurveModel& model, const ParameterMap& map,
   a_cache_.assign(n, 0.0);
   P_fit_.assign(n, 0.0);
   // A radius where delta ~ the data's span seeds every later search.
-  const double seed = std::isfinite(model.max_radius()) ? 0.25 * model.max_radius() : 1e-6;
+  const double seed = std::isfinite(model.max_radius()) ? 0.25 * model.max_radius() : kUnboundedSeedRadius;
   a_typ_ = seed;
   CurveParameters<double> p;
   double d0 = 0.0, P0 = 0.0;

@@ -66,7 +66,9 @@ class CurveEvaluator {
   /// Model force at each sample (P0 included) and contact flags of the last evaluation.
   const std::vector<double>& predicted() const { return P_fit_; }
   std::size_t in_contact() const { return contact_count_; }
-  /// Row where sample i's residuals start.
+  /// Number of samples (residual groups).
+  std::size_t points() const { return row_.size() - 1; }
+  /// Row where sample i's residuals start, and how many rows it has.
   std::size_t row(std::size_t i) const { return row_[i]; }
   std::size_t rows(std::size_t i) const { return row_[i + 1] - row_[i]; }
 

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cstdio>
 #include <cmath>
 #include <limits>
@@ -50,6 +49,152 @@ class BlockCost final : public ceres::CostFunction {
 };
 
 
+
+// The trust region starts this wide (in the dimensionless parameters): the data-driven
+// start is close, so the first steps are near Gauss-Newton. Ceres' default (1e4) cost
+// 2-3 extra iterations on the bundled sample and the real AFM curves.
+constexpr double kInitialTrustRegionRadius = 1e8;
+// Extra starts move the contact point by this fraction of the indentation span and the
+// stiffness by this factor, alternately up and down, one ring further every two starts.
+constexpr double kExtraStartContactStep = 0.05;
+constexpr double kExtraStartStiffnessFactor = 3.0;
+
+bool has(const FitOptions& options, FitParameter q) {
+  return std::find(options.free.begin(), options.free.end(), q) != options.free.end();
+}
+
+// Every free parameter must be one the model family can vary.
+void require_supported(const CurveModel& model, const FitOptions& options) {
+  for (FitParameter q : options.free)
+    if (!model.supports(q)) {
+      std::string why = q == FitParameter::R ? "R can vary only for a paraboloid indenter with a closed-form model"
+                        : q == FitParameter::E ? "E can vary only for a layer or half-space medium"
+                                               : std::string(to_string(q)) + " is not a parameter of this medium; use E";
+      throw InputError(std::string("fit: --free ") + to_string(q) + " is not available for model '" +
+                       model.model_name() + "' (" + why + ")");
+    }
+  if (has(options, FitParameter::E) && (has(options, FitParameter::K) || has(options, FitParameter::G)))
+    throw InputError("fit: E and K/G cannot both be free (K and G follow from E, nu and h)");
+}
+
+// Where each free parameter sits in x, and the scales that make x dimensionless.
+ParameterMap make_parameter_map(const FitOptions& options, const Scene& scene,
+                                detail::SceneParameters fixed, double span, double force_span) {
+  if (scene.medium.type == MediumType::layer && (has(options, FitParameter::K) || has(options, FitParameter::G)))
+    fixed.layer_foundation = false;  // K, G vary independently of E
+  ParameterMap map;
+  map.free = options.free;
+  map.fixed = fixed;
+  map.slot.fill(-1);
+  for (std::size_t j = 0; j < options.free.size(); ++j)
+    map.slot[static_cast<int>(options.free[j])] = static_cast<int>(j);
+  map.L = span;
+  map.F = force_span;
+  const CurveParameters<double>& f = fixed.values;
+  map.ref[static_cast<int>(FitParameter::K)] = f.K;
+  map.ref[static_cast<int>(FitParameter::E)] = f.E;
+  map.ref[static_cast<int>(FitParameter::R)] = f.R;
+  map.ref[static_cast<int>(FitParameter::G)] = f.G;
+  map.G_log = scene.model == SceneModel::full;
+  map.G_scale = f.G != 0.0 ? std::abs(f.G) : f.K * span * span;
+  map.s_scale = std::sqrt(force_span / span) * 0.1;
+  return map;
+}
+
+// One Ceres trust-region solve from xs; one residual block, or one per sample when a
+// robust loss needs it.
+std::unique_ptr<ceres::Problem> solve(CurveEvaluator& ev, const ParameterMap& map,
+                                      const FitOptions& options, std::vector<double>& xs,
+                                      ceres::Solver::Summary* summary) {
+  // One Ceres context per thread: creating it per fit costs more than a small fit.
+  thread_local ceres::Context context;
+  ceres::Problem::Options po;
+  po.context = &context;
+  po.disable_all_safety_checks = true;  // the blocks are built here, sized consistently
+  po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  po.loss_function_ownership = ceres::TAKE_OWNERSHIP;
+  auto problem = std::make_unique<ceres::Problem>(po);
+  const int n = static_cast<int>(xs.size());
+  const std::size_t last = ev.points() - 1;
+  if (options.loss == LossType::none) {
+    problem->AddResidualBlock(new BlockCost(&ev, 0, ev.row(last) + ev.rows(last), n), nullptr, xs.data());
+  } else {
+    const double s = options.loss_scale / map.F;
+    for (std::size_t i = 0; i <= last; ++i) {
+      ceres::LossFunction* loss = options.loss == LossType::huber
+                                      ? static_cast<ceres::LossFunction*>(new ceres::HuberLoss(s))
+                                      : new ceres::CauchyLoss(s);
+      problem->AddResidualBlock(new BlockCost(&ev, ev.row(i), ev.row(i) + ev.rows(i), n), loss, xs.data());
+    }
+  }
+  if (has(options, FitParameter::w))
+    problem->SetParameterLowerBound(xs.data(), map.index(FitParameter::w), 0.0);
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  so.logging_type = options.trace ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
+  so.minimizer_progress_to_stdout = options.trace;
+  so.max_num_iterations = options.max_iterations;
+  so.function_tolerance = options.function_tolerance;
+  so.parameter_tolerance = options.parameter_tolerance;
+  so.gradient_tolerance = options.gradient_tolerance;
+  so.num_threads = 1;
+  so.initial_trust_region_radius = kInitialTrustRegionRadius;
+  ceres::Solve(so, problem.get(), summary);
+  if (options.trace) std::fprintf(stderr, "%s\n", summary->FullReport().c_str());
+  return problem;
+}
+
+// Solves again from options.extra_starts perturbed starts; keeps the lowest cost.
+void try_extra_starts(CurveEvaluator& ev, const ParameterMap& map, const FitOptions& options,
+                      std::vector<double>& x, ceres::Solver::Summary& summary,
+                      std::unique_ptr<ceres::Problem>& problem) {
+  const auto at = [&](std::vector<double>& v, FitParameter q) -> double& {
+    return v[static_cast<std::size_t>(map.index(q))];
+  };
+  for (int k = 1; k <= options.extra_starts; ++k) {
+    std::vector<double> xs(x.size(), 0.0);
+    if (map.is_free(FitParameter::w)) at(xs, FitParameter::w) = at(x, FitParameter::w) > 0 ? 1.0 : 0.0;
+    const double sign = (k % 2) ? 1.0 : -1.0;
+    const int ring = (k + 1) / 2;  // starts 1, 2 alternate sides; 3, 4 go twice as far
+    if (map.is_free(FitParameter::delta0)) at(xs, FitParameter::delta0) = sign * kExtraStartContactStep * ring;
+    for (FitParameter q : {FitParameter::K, FitParameter::E})
+      if (map.is_free(q)) at(xs, q) = sign * std::log(kExtraStartStiffnessFactor) * ring;
+    if (!ev.evaluate(xs.data(), false)) continue;
+    ceres::Solver::Summary s2;
+    auto p2 = solve(ev, map, options, xs, &s2);
+    if (s2.IsSolutionUsable() && s2.final_cost < summary.final_cost) {
+      summary = s2;
+      x = xs;
+      problem = std::move(p2);
+    }
+  }
+}
+
+// The solution, the fitted curve and its rms into the summary.
+void record_solution(CurveEvaluator& ev, const ParameterMap& map, const FitData& data,
+                     const std::vector<double>& x, const ceres::Solver::Summary& summary,
+                     FitSummary* out) {
+  out->converged = summary.termination_type == ceres::CONVERGENCE;
+  out->termination = summary.message;
+  out->iterations = static_cast<int>(summary.iterations.size()) - 1;
+  out->initial_cost = summary.initial_cost;
+  out->final_cost = summary.final_cost;
+  if (!ev.evaluate(x.data(), true)) throw NumericalError("fit: the model cannot be evaluated at the solution");
+  out->points = data.delta.size();
+  out->points_in_contact = ev.in_contact();
+  out->delta = data.delta;
+  out->P = data.P;
+  out->P_fit = ev.predicted();
+  double ss = 0.0;
+  for (std::size_t i = 0; i < data.P.size(); ++i) ss += (out->P_fit[i] - data.P[i]) * (out->P_fit[i] - data.P[i]);
+  out->rms_residual = std::sqrt(ss / static_cast<double>(data.P.size()));
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    out->parameters[j].value = map.value(map.free[j], x.data());
+    out->parameters[j].stderr_ = kNaN;
+  }
+  out->correlation.assign(x.size(), std::vector<double>(x.size(), kNaN));
+}
+
 }  // namespace
 
 const ParameterEstimate& FitSummary::operator[](FitParameter p) const {
@@ -66,51 +211,20 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
 
   double span = 0.0, force_span = 0.0;
   FitData data = detail::select_fit_data(curve, options, &span, &force_span);
-  const std::size_t p_free = options.free.size();
   FitSummary out;
-  // The model and which parameters it can vary.
   detail::SceneParameters fixed;
   const std::unique_ptr<CurveModel> model = detail::make_curve_model(scene, options, span, &fixed);
   out.model = model->model_name();
   out.family = model->family();
-  for (FitParameter q : options.free)
-    if (!model->supports(q)) {
-      std::string why = q == FitParameter::R ? "R can vary only for a paraboloid indenter with a closed-form model"
-                        : q == FitParameter::E ? "E can vary only for a layer or half-space medium"
-                                               : std::string(to_string(q)) + " is not a parameter of this medium; use E";
-      throw InputError(std::string("fit: --free ") + to_string(q) + " is not available for model '" +
-                       out.model + "' (" + why + ")");
-    }
-  const auto has = [&](FitParameter q) {
-    return std::find(options.free.begin(), options.free.end(), q) != options.free.end();
-  };
-  if (has(FitParameter::E) && (has(FitParameter::K) || has(FitParameter::G)))
-    throw InputError("fit: E and K/G cannot both be free (K and G follow from E, nu and h)");
-  if (scene.medium.type == MediumType::layer && (has(FitParameter::K) || has(FitParameter::G)))
-    fixed.layer_foundation = false;  // K, G vary independently of E
-
-  ParameterMap map;
-  map.free = options.free;
-  map.fixed = fixed;
-  map.slot.fill(-1);
-  for (std::size_t j = 0; j < p_free; ++j) map.slot[static_cast<int>(options.free[j])] = static_cast<int>(j);
-  map.L = span;
-  map.F = force_span;
-  const CurveParameters<double>& f = fixed.values;
-  map.ref[static_cast<int>(FitParameter::K)] = f.K;
-  map.ref[static_cast<int>(FitParameter::E)] = f.E;
-  map.ref[static_cast<int>(FitParameter::R)] = f.R;
-  map.ref[static_cast<int>(FitParameter::G)] = f.G;
-  map.G_log = scene.model == SceneModel::full;
-  map.G_scale = f.G != 0.0 ? std::abs(f.G) : f.K * span * span;
-  map.s_scale = std::sqrt(force_span / span) * 0.1;
+  require_supported(*model, options);
+  ParameterMap map = make_parameter_map(options, scene, fixed, span, force_span);  // the start refines it
   if (scene.solver == Solver::ode)
     out.warnings.push_back("solver 'ode' verifies the closed forms; the fit evaluates the same "
                            "foundation in closed form");
   out.warnings.insert(out.warnings.end(), fixed.warnings.begin(), fixed.warnings.end());
   for (const auto& note : model->notes()) out.warnings.push_back(note);
 
-  std::vector<double> x(p_free, 0.0);
+  std::vector<double> x(options.free.size(), 0.0);
   CurveEvaluator ev(*model, map, data);
   detail::find_start(data, map, ev, x, curve.source);
   for (FitParameter q : options.free) {
@@ -119,99 +233,17 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
     e.initial = map.value(q, x.data());
     out.parameters.push_back(e);
   }
-
-  // Ceres: one residual block, or one per sample when a robust loss needs it.
-  auto solve = [&](std::vector<double>& xs, ceres::Solver::Summary* summary) {
-    // One Ceres context per thread: creating it per fit costs more than a small fit.
-    thread_local ceres::Context context;
-    ceres::Problem::Options po;
-    po.context = &context;
-    po.disable_all_safety_checks = true;  // the blocks are built here, sized consistently
-    po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
-    po.loss_function_ownership = ceres::TAKE_OWNERSHIP;
-    auto problem = std::make_unique<ceres::Problem>(po);
-    const int n = static_cast<int>(p_free);
-    if (options.loss == LossType::none) {
-      problem->AddResidualBlock(new BlockCost(&ev, 0, ev.row(data.delta.size() - 1) +
-                                                          ev.rows(data.delta.size() - 1), n),
-                                nullptr, xs.data());
-    } else {
-      const double s = options.loss_scale / map.F;
-      for (std::size_t i = 0; i < data.delta.size(); ++i) {
-        ceres::LossFunction* loss = options.loss == LossType::huber
-                                        ? static_cast<ceres::LossFunction*>(new ceres::HuberLoss(s))
-                                        : new ceres::CauchyLoss(s);
-        problem->AddResidualBlock(new BlockCost(&ev, ev.row(i), ev.row(i) + ev.rows(i), n), loss,
-                                  xs.data());
-      }
-    }
-    if (has(FitParameter::w))
-      problem->SetParameterLowerBound(xs.data(), map.index(FitParameter::w), 0.0);
-    ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-    so.logging_type = ceres::SILENT;
-    so.minimizer_progress_to_stdout = std::getenv("LAYERJKR_FIT_TRACE") != nullptr;
-    if (so.minimizer_progress_to_stdout) so.logging_type = ceres::PER_MINIMIZER_ITERATION;
-    so.max_num_iterations = options.max_iterations;
-    so.function_tolerance = options.function_tolerance;
-    so.parameter_tolerance = options.parameter_tolerance;
-    so.gradient_tolerance = options.gradient_tolerance;
-    so.num_threads = 1;
-    so.initial_trust_region_radius = 1e8;  // the data-driven start is close: begin near Gauss-Newton
-    ceres::Solve(so, problem.get(), summary);
-    if (so.minimizer_progress_to_stdout) fprintf(stderr, "%s\n", summary->FullReport().c_str());
-    return problem;
-  };
-
-  // Evaluate the start; a start outside the model's domain is a data problem.
+  // A start outside the model's domain is a data problem.
   if (!ev.evaluate(x.data(), false))
     throw InputError(curve.source + ": the model cannot be evaluated at the data-driven start "
                                     "(the indentation exceeds the model's range of radii)");
 
   ceres::Solver::Summary summary;
-  std::unique_ptr<ceres::Problem> problem = solve(x, &summary);
-  for (int k = 1; k <= options.extra_starts; ++k) {
-    std::vector<double> xs(p_free, 0.0);
-    if (map.is_free(FitParameter::w)) xs[static_cast<std::size_t>(map.index(FitParameter::w))] = x[static_cast<std::size_t>(map.index(FitParameter::w))] > 0 ? 1.0 : 0.0;
-    const double sign = (k % 2) ? 1.0 : -1.0;
-    const int ring = (k + 1) / 2;  // starts 1, 2 alternate sides; 3, 4 go twice as far
-    if (map.is_free(FitParameter::delta0))
-      xs[static_cast<std::size_t>(map.index(FitParameter::delta0))] = sign * 0.05 * ring;
-    for (FitParameter q : {FitParameter::K, FitParameter::E})
-      if (map.is_free(q)) xs[static_cast<std::size_t>(map.index(q))] = sign * std::log(3.0) * ring;
-    if (!ev.evaluate(xs.data(), false)) continue;
-    ceres::Solver::Summary s2;
-    auto p2 = solve(xs, &s2);
-    if (s2.IsSolutionUsable() && s2.final_cost < summary.final_cost) {
-      summary = s2;
-      x = xs;
-      problem = std::move(p2);
-    }
-  }
-
-  out.converged = summary.termination_type == ceres::CONVERGENCE;
-  out.termination = summary.message;
-  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  out.initial_cost = summary.initial_cost;
-  out.final_cost = summary.final_cost;
-  if (!ev.evaluate(x.data(), true))
-    throw NumericalError("fit: the model cannot be evaluated at the solution");
-  out.points = data.delta.size();
-  out.points_in_contact = ev.in_contact();
-  out.delta = data.delta;
-  out.P = data.P;
-  out.P_fit = ev.predicted();
-  double ss = 0.0;
-  for (std::size_t i = 0; i < data.P.size(); ++i) ss += (out.P_fit[i] - data.P[i]) * (out.P_fit[i] - data.P[i]);
-  out.rms_residual = std::sqrt(ss / static_cast<double>(data.P.size()));
-  for (std::size_t j = 0; j < p_free; ++j) {
-    out.parameters[j].value = map.value(options.free[j], x.data());
-    out.parameters[j].stderr_ = kNaN;
-  }
-  out.correlation.assign(p_free, std::vector<double>(p_free, kNaN));
-
+  std::unique_ptr<ceres::Problem> problem = solve(ev, map, options, x, &summary);
+  try_extra_starts(ev, map, options, x, summary, problem);
+  record_solution(ev, map, data, x, summary, &out);
   detail::assess_uncertainty(ev, problem.get(), summary.final_cost, map, x, options, data.residuals(), &out);
-  if (options.branch == Branch::approach && has(FitParameter::w))
+  if (options.branch == Branch::approach && has(options, FitParameter::w))
     out.warnings.push_back("on approach the model snaps in at zero load, so w is identified only "
                            "through the shape of the loading curve; fit the retract branch for w");
   out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();

@@ -62,8 +62,8 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
     for (std::size_t k = 0; k < std::max<std::size_t>(1, by_delta.size() / 4); ++k) shallow.push_back(data.P[by_delta[k]]);
     data.baseline = median(shallow);
     for (auto& v : shallow) v = std::abs(v - data.baseline);
-    data.noise = 1.4826 * median(shallow);  // MAD
-    if (!(deep - *std::min_element(data.P.begin(), data.P.end()) > 5.0 * data.noise))
+    data.noise = kMadToSigma * median(shallow);
+    if (!(deep - *std::min_element(data.P.begin(), data.P.end()) > kSignificantSigmas * data.noise))
       throw InputError(curve.source + ": no contact region - the force does not grow with delta on the " +
                        to_string(options.branch) + " branch (check the sign conventions: delta grows "
                        "towards the sample, P is positive when repulsive)");

@@ -11,6 +11,11 @@
 namespace layerjkr::detail {
 namespace {
 
+// The w search of the start brackets w in these multiples of the data's force per length,
+// force_span / span [J/m^2]: far wider than any adhesion the curve can show.
+constexpr double kWBracketLow = 1e-12;
+constexpr double kWBracketHigh = 1e6;
+
 struct Start {
   double delta0 = 0.0, P0 = 0.0, stiffness_factor = 1.0, w = 0.0;
   std::size_t contact = 0;
@@ -134,7 +139,8 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
   double dip = 0.0;
   for (std::size_t i = 0; i < data.P.size(); ++i)
     if (data.retract[i]) dip = std::min(dip, data.P[i] - P0_start);
-  const bool adhesive_data = dip < -std::max(5.0 * data.noise, 1e-6 * force_span);
+  const bool adhesive_data =
+      dip < -std::max(kSignificantSigmas * data.noise, kSignificantForceFraction * force_span);
   const bool estimate_w = map.is_free(FitParameter::w) && adhesive_data;
   if (adhesive_data) {
     // Retract samples are in contact until the observed pull-off: the first sample after
@@ -185,7 +191,7 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
     if (estimate_w && settled && pass >= 2) break;
     if (!estimate_w) continue;
     map.physical(x.data(), &p, &d0, &P0);
-    double lo = std::log(1e-12 * force_span / span), hi = std::log(1e6 * force_span / span);
+    double lo = std::log(kWBracketLow * force_span / span), hi = std::log(kWBracketHigh * force_span / span);
     for (int it = 0; it < 40; ++it) {
       const double mid = 0.5 * (lo + hi);
       p.s = std::sqrt(std::exp(mid));

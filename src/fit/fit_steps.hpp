@@ -14,6 +14,14 @@ namespace layerjkr::detail {
 
 double median(std::vector<double> v);
 
+/// Gaussian sigma from the median absolute deviation: 1 / Phi^-1(3/4).
+constexpr double kMadToSigma = 1.4826;
+/// A force feature (the contact region, an adhesive dip) is taken as real when it exceeds
+/// this many noise sigmas: for Gaussian noise a false alarm has probability < 1e-6.
+constexpr double kSignificantSigmas = 5.0;
+/// ...or, for noiseless data, this fraction of the force span.
+constexpr double kSignificantForceFraction = 1e-6;
+
 /// The samples of options.branch, with their scales. Throws InputError for fewer samples
 /// than parameters, constant delta or P, or no contact region.
 FitData select_fit_data(const CurveData& curve, const FitOptions& options, double* span,

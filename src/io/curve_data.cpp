@@ -141,25 +141,24 @@ void parse_units(const std::string& text, CsvOptions& options) {
   options.force_unit = forces.at(force);
 }
 
-CurveData parse_curve_csv(const std::string& text, const std::string& source,
-                          const CsvOptions& options) {
-  options.Validate();
-  auto fail = [&](const std::string& what) -> void { throw InputError(source + ": " + what); };
-  if (text.find('\0') != std::string::npos) fail("is not a text file (it contains NUL bytes)");
-  std::istringstream in(text);
-  std::string line;
-  std::size_t line_no = 0;
-  std::vector<std::string> header;
-  while (std::getline(in, line)) {
-    ++line_no;
-    const std::string t = trim(line);
-    if (t.empty() || t[0] == '#') continue;
-    header = split(t);
-    break;
-  }
-  if (header.empty()) fail("is empty (expected a header row such as delta,P)");
+namespace {
 
+// Throws the reader's InputError, naming the source.
+struct Fail {
+  const std::string& source;
+  [[noreturn]] void operator()(const std::string& what) const { throw InputError(source + ": " + what); }
+};
+
+// Where each quantity sits in a row, checked against the header's conventions.
+struct Layout {
+  std::vector<std::string> header;
   std::map<Column, std::size_t> where;
+  bool raw = false;  // z,deflection
+  bool has(Column c) const { return where.count(c) > 0; }
+};
+
+Layout read_layout(std::vector<std::string> header, const CsvOptions& options, const Fail& fail) {
+  Layout l;
   bool si_labelled = false;
   for (std::size_t c = 0; c < header.size(); ++c) {
     const auto it = known_columns().find(header[c]);
@@ -167,80 +166,115 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
       fail("header column " + std::to_string(c + 1) + " '" + shorten(header[c]) +
            "' is unknown (known: delta, P, force, a, weight, segment, tip_position, z, "
            "deflection; optional _m/_N suffix)");
-    if (where.count(it->second.column))
-      fail("header names the same quantity twice ('" + header[c] + "')");
-    where[it->second.column] = c;
+    if (l.has(it->second.column)) fail("header names the same quantity twice ('" + header[c] + "')");
+    l.where[it->second.column] = c;
     si_labelled = si_labelled || it->second.si_labelled;
   }
   if (si_labelled && (options.length_unit != 1.0 || options.force_unit != 1.0))
     fail("the header labels its columns as SI (_m/_N) but non-SI units were requested");
-  const int length_forms = int(where.count(Column::delta)) + int(where.count(Column::tip_position)) +
-                           int(where.count(Column::z));
-  if (length_forms != 1)
-    fail("needs exactly one of the columns delta, tip_position, z (header: " + shorten(trim(line)) + ")");
-  const bool raw = where.count(Column::z) > 0;
-  if (raw) {
-    if (!where.count(Column::deflection)) fail("column z needs a deflection column");
-    if (where.count(Column::force)) fail("give either z,deflection or a force column, not both");
+  const int length_forms = int(l.has(Column::delta)) + int(l.has(Column::tip_position)) + int(l.has(Column::z));
+  if (length_forms != 1) {
+    std::string joined;
+    for (const auto& h : header) joined += (joined.empty() ? "" : ",") + h;
+    fail("needs exactly one of the columns delta, tip_position, z (header: " + shorten(joined) + ")");
+  }
+  l.raw = l.has(Column::z);
+  if (l.raw) {
+    if (!l.has(Column::deflection)) fail("column z needs a deflection column");
+    if (l.has(Column::force)) fail("give either z,deflection or a force column, not both");
     if (!(options.spring_constant > 0.0))
       fail("z,deflection data need the cantilever spring constant (--spring-constant k [N/m])");
   } else {
-    if (where.count(Column::deflection)) fail("column deflection is only used with z");
-    if (!where.count(Column::force)) fail("needs a force column (P or force)");
+    if (l.has(Column::deflection)) fail("column deflection is only used with z");
+    if (!l.has(Column::force)) fail("needs a force column (P or force)");
   }
-  if (where.count(Column::a) && !where.count(Column::delta))
-    fail("column a is only accepted with the delta,P form");
+  if (l.has(Column::a) && !l.has(Column::delta)) fail("column a is only accepted with the delta,P form");
+  l.header = std::move(header);
+  return l;
+}
 
-  CurveData d;
-  d.source = source;
-  const double L = options.length_unit, F = options.force_unit;
-  while (std::getline(in, line)) {
-    ++line_no;
-    const std::string t = trim(line);
-    if (t.empty() || t[0] == '#') continue;
-    const std::vector<std::string> cells = split(t);
-    if (cells.size() != header.size())
-      fail("line " + std::to_string(line_no) + " has " + std::to_string(cells.size()) +
-           " cells, the header has " + std::to_string(header.size()));
-    std::vector<double> v(cells.size());
-    for (std::size_t c = 0; c < cells.size(); ++c) {
-      const char* begin = cells[c].c_str();
-      char* end = nullptr;
-      errno = 0;
-      v[c] = std::strtod(begin, &end);
-      if (cells[c].empty() || end == begin || *end != '\0' || errno == ERANGE || !std::isfinite(v[c]))
-        fail("line " + std::to_string(line_no) + ", column '" + header[c] + "': '" +
-             shorten(cells[c]) + "' is not a finite number");
-    }
-    auto col = [&](Column c) { return v[where.at(c)]; };
-    if (raw) {
-      const double dfl = options.deflection_sign * col(Column::deflection) * L;
-      d.delta.push_back(options.z_sign * col(Column::z) * L - dfl);
-      d.P.push_back(options.spring_constant * dfl);
-    } else {
-      d.delta.push_back(where.count(Column::delta) ? col(Column::delta) * L
-                                                   : -col(Column::tip_position) * L);
-      d.P.push_back(col(Column::force) * F);
-    }
-    if (where.count(Column::a)) d.a.push_back(col(Column::a) * L);
-    if (where.count(Column::weight)) d.weight.push_back(col(Column::weight));
-    if (where.count(Column::segment)) {
-      const double s = col(Column::segment);
-      if (s != 0.0 && s != 1.0)
-        fail("line " + std::to_string(line_no) + ", column 'segment': " + cells[where.at(Column::segment)] +
-             " is invalid; valid values: 0 (approach), 1 (retract)");
-      d.segment.push_back(static_cast<int>(s));
-    }
+// The numbers of one data row; every cell must be a finite number.
+std::vector<double> read_numbers(const std::vector<std::string>& cells, const Layout& l,
+                                 std::size_t line_no, const Fail& fail) {
+  if (cells.size() != l.header.size())
+    fail("line " + std::to_string(line_no) + " has " + std::to_string(cells.size()) +
+         " cells, the header has " + std::to_string(l.header.size()));
+  std::vector<double> v(cells.size());
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    const char* begin = cells[c].c_str();
+    char* end = nullptr;
+    errno = 0;
+    v[c] = std::strtod(begin, &end);
+    if (cells[c].empty() || end == begin || *end != '\0' || errno == ERANGE || !std::isfinite(v[c]))
+      fail("line " + std::to_string(line_no) + ", column '" + l.header[c] + "': '" + shorten(cells[c]) +
+           "' is not a finite number");
   }
-  if (d.delta.empty()) fail("has a header but no data rows");
-  d.Validate();
-  // Order matters for the branch split: approach rows first, then retract rows.
+  return v;
+}
+
+// One row into the curve, converted to SI delta and P by the layout's convention.
+void append_row(const std::vector<double>& v, const Layout& l, const CsvOptions& options,
+                std::size_t line_no, const Fail& fail, CurveData& d) {
+  auto col = [&](Column c) { return v[l.where.at(c)]; };
+  const double L = options.length_unit, F = options.force_unit;
+  if (l.raw) {
+    const double dfl = options.deflection_sign * col(Column::deflection) * L;
+    d.delta.push_back(options.z_sign * col(Column::z) * L - dfl);
+    d.P.push_back(options.spring_constant * dfl);
+  } else {
+    d.delta.push_back(l.has(Column::delta) ? col(Column::delta) * L : -col(Column::tip_position) * L);
+    d.P.push_back(col(Column::force) * F);
+  }
+  if (l.has(Column::a)) d.a.push_back(col(Column::a) * L);
+  if (l.has(Column::weight)) d.weight.push_back(col(Column::weight));
+  if (l.has(Column::segment)) {
+    const double s = col(Column::segment);
+    if (s != 0.0 && s != 1.0)
+      fail("line " + std::to_string(line_no) + ", column 'segment': " + format_double(s) +
+           " is invalid; valid values: 0 (approach), 1 (retract)");
+    d.segment.push_back(static_cast<int>(s));
+  }
+}
+
+// Order matters for the branch split: approach rows first, then retract rows. Rows
+// repeating their predecessor are kept: real exports contain them (jpk_spot3_0192 rows
+// 127-128 are identical; the instrument's height signal is quantised).
+void require_acquisition_order(const CurveData& d, const Fail& fail) {
   for (std::size_t i = 1; i < d.segment.size(); ++i)
     if (d.segment[i] < d.segment[i - 1])
       fail("data row " + std::to_string(i + 1) + " returns to segment 0 after retract rows; "
            "rows must be in acquisition order (approach, then retract)");
-  // Rows repeating their predecessor are kept: real exports contain them (jpk_spot3_0192
-  // rows 127-128 are identical; the instrument's height signal is quantised).
+}
+
+}  // namespace
+
+CurveData parse_curve_csv(const std::string& text, const std::string& source,
+                          const CsvOptions& options) {
+  options.Validate();
+  const Fail fail{source};
+  if (text.find('\0') != std::string::npos) fail("is not a text file (it contains NUL bytes)");
+  std::istringstream in(text);
+  std::string line;
+  std::size_t line_no = 0;
+  auto next_row = [&](std::vector<std::string>* cells) {  // skips blank and # comment lines
+    while (std::getline(in, line)) {
+      ++line_no;
+      const std::string t = trim(line);
+      if (t.empty() || t[0] == '#') continue;
+      *cells = split(t);
+      return true;
+    }
+    return false;
+  };
+  std::vector<std::string> cells;
+  if (!next_row(&cells)) fail("is empty (expected a header row such as delta,P)");
+  const Layout layout = read_layout(cells, options, fail);
+  CurveData d;
+  d.source = source;
+  while (next_row(&cells)) append_row(read_numbers(cells, layout, line_no, fail), layout, options, line_no, fail, d);
+  if (d.delta.empty()) fail("has a header but no data rows");
+  d.Validate();
+  require_acquisition_order(d, fail);
   return d;
 }
 
