@@ -89,8 +89,6 @@ class Reader {
     }
   }
 
-  const std::string& source() const { return source_; }
-
  private:
   std::string source_;
 };
