@@ -1,4 +1,4 @@
-// Cost of a fit, for README: the targets are a 1000-point adhesive two-term fit
+// Cost of a fit, for docs/benchmarks.md: the targets are a 1000-point adhesive two-term fit
 // under 2 ms and the 276-point real AFM curve (jpk_spot3_0192) 10x faster than the
 // peer's 1.0 ms. Medians:
 //   build/bin/bench_fit --benchmark_repetitions=10 --benchmark_report_aggregates_only=true

@@ -1,5 +1,5 @@
 // Cost of one non-adhesive state per model and profile, of the JKR transform over a
-// 200-point curve, and of the critical-point search. Medians go in README:
+// 200-point curve, and of the critical-point search. Medians go in docs/benchmarks.md:
 //   build/bin/bench_models --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 

@@ -1,5 +1,5 @@
 // layerjkr: the exact elastic layer - frictionless axisymmetric indentation of a layer
-// (E, nu, h) bonded to, or lying frictionless on, a rigid base (theory.md s.4).
+// (E, nu, h) bonded to, or lying frictionless on, a rigid base (docs/theory.md s.4).
 //
 // The contact is reduced to a second-kind Fredholm equation for an auxiliary function
 // g on [0, a]:
@@ -76,6 +76,11 @@ class ExactLayerKernel {
   /// Non-adhesive state at contact radius a for `profile`, with error estimates.
   ExactLayerState solve(const Profile& profile, double a) const;
 
+  /// Non-adhesive states at a = a_max j / count, j = 1..count, from one factorisation: the
+  /// radii are panel boundaries of one grid, and each smaller radius is the leading block
+  /// of the largest (no error estimate). count >= 1.
+  std::vector<HertzState> sweep(const Profile& profile, double a_max, int count) const;
+
   /// Non-adhesive contact pressure p(r) [Pa] at radii r in [0, a) for contact radius a:
   /// p(r) = -int_r^a g'(t) / sqrt(t^2 - r^2) dt (g(a) = 0), with g' from the Nystrom
   /// interpolant and tanh-sinh quadrature in s = sqrt(t^2 - r^2). Integrates to P_H to
@@ -95,7 +100,7 @@ class ExactLayerKernel {
 };
 
 /// Edge-correction length of a thin layer in units of h: the exact layer behaves like a
-/// Winkler foundation at the effective contact radius a + beta h (theory.md s.6). Fitted
+/// Winkler foundation at the effective contact radius a + beta h (docs/theory.md s.6). Fitted
 /// once from the exact solver, as the beta at which a paraboloid's Winkler approach
 /// matches the exact one at a/h = 50 (~0.1 s). nu in (-1, 0.5).
 /// Measured: 0.183 (bonded, nu = 0), 0.124 (0.3), -0.098 (0.4), -0.505 (0.45), 0.177
@@ -105,12 +110,12 @@ double edge_correction_beta(const ElasticLayer& layer);
 /// ContactModel "edge_corrected" (beyond the paper): Winkler's P_H, delta_H, S and S'
 /// evaluated at a + beta h, with beta from edge_correction_beta. This is consistent
 /// (dP_H/d delta_H = S) and costs as much per point as Winkler. Its error against the
-/// exact layer (README) is 0.13 % at a/h = 5 and 0.02 % at a/h = 10 (bonded, nu <= 0.3,
+/// exact layer (docs/models.md) is 0.13 % at a/h = 5 and 0.02 % at a/h = 10 (bonded, nu <= 0.3,
 /// or frictionless), against Winkler's 13 % and 7 %. Requires a + beta h > 0.
 ContactModelPtr make_edge_corrected(ProfilePtr profile, const ElasticLayer& layer);
 
 /// ContactModel "exact": the exact layer for a profile. The kernel table is built in
-/// the constructor; state(a) costs one Nystrom solve pair (ms to s, see README).
+/// the constructor; state(a) costs one Nystrom solve pair (ms to s, docs/benchmarks.md).
 ContactModelPtr make_exact_layer(ProfilePtr profile, const ElasticLayer& layer,
                                  ExactLayerOptions options = {});
 

@@ -5,12 +5,12 @@
 // S is also the flat-punch stiffness at radius a (paper, section 3), which is
 // what the JKR transform (jkr.hpp) needs.
 //
-// Models, their parameters and validity (see README "Models"):
+// Models, their parameters and validity (docs/models.md):
 //   Winkler (K [N/m^3])            eq. (41): leading order of a thin bonded layer, a >> h.
 //   two-term (K, G [N/m], any sign) eqs. (43)-(45) with the corrected force (docs/erratum.md):
 //                                  P_H = pi K [a^2 f - 2M] + pi G a [f' - a f''],  S = pi K a^2.
 //   full foundation (K, G > 0)     Pasternak (or Filonenko-Borodich with G -> T) on the whole
-//                                  plane with the decaying exterior solution (theory.md s.3).
+//                                  plane with the decaying exterior solution (docs/theory.md s.3).
 //   half-space (E, nu)             Galin / Sneddon, any profile; S = 2 E* a.
 //   ODE route                      the same foundations with P_H obtained by integrating
 //                                  dP_H/da = S(a) d delta_H/da (independent of the moment M).
@@ -108,7 +108,7 @@ struct ThinLayerConstants {
   std::vector<std::string> warnings;
 };
 
-/// Thin-layer constants (theory.md s.2):
+/// Thin-layer constants (docs/theory.md s.2):
 ///   bonded:       K = E(1-nu)/[h(1+nu)(1-2nu)],  G = h E nu(1-4nu)/[3(1+nu)(1-2nu)^2]
 ///   frictionless: K = E/[h(1-nu^2)],             G = 0 (no h^2 term)
 /// Throws DomainError for E <= 0, h <= 0, nu <= -1 or nu >= 0.5. For a bonded layer

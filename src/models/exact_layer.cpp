@@ -6,6 +6,7 @@
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_spline.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -69,10 +70,10 @@ void ExactLayerOptions::Validate() const {
   const char* fn = "ExactLayerOptions::Validate";
   if (!(max_a_over_h > 0.0 && max_a_over_h <= 1000.0))
     throw DomainError(fn, "max_a_over_h", max_a_over_h, "(0, 1000]");
-  if (points_per_panel < 4 || points_per_panel > 20)
-    throw DomainError(fn, "points_per_panel", points_per_panel, "[4, 20]");
-  if (!(panel_width > 0.0 && panel_width <= 2.0))
-    throw DomainError(fn, "panel_width", panel_width, "(0, 2]");
+  if (points_per_panel < 4 || points_per_panel > 32)
+    throw DomainError(fn, "points_per_panel", points_per_panel, "[4, 32]");
+  if (!(panel_width > 0.0 && panel_width <= 8.0))
+    throw DomainError(fn, "panel_width", panel_width, "(0, 8]");
   if (min_panels < 2) throw DomainError(fn, "min_panels", min_panels, ">= 2");
   if (!(table_spacing >= 1e-4 && table_spacing <= 0.2))
     throw DomainError(fn, "table_spacing", table_spacing, "[1e-4, 0.2]");
@@ -159,52 +160,166 @@ double ExactLayerKernel::kernel_derivative(double sigma) const {
 
 namespace {
 
-// phi0 (flat punch) and phi_f (profile) on the Nystrom nodes, in xi = x/a in [0, 1].
-struct Nystrom {
-  Eigen::VectorXd xi, w;
-  Eigen::MatrixXd phi;  // columns: phi0, phi_f
-  double rho = 0.0, end0 = 0.0, endf = 0.0;
+// Composite Gauss-Legendre grid in units of h on [0, rho]: `panels` equal panels of
+// width b = rho / panels, p nodes each; node k p + q sits at b (k + s_q).
+struct Grid {
+  int panels = 0, p = 0;
+  double b = 0.0;
+  std::vector<double> s;     // the rule's nodes on [0, 1]
+  Eigen::VectorXd t, w;      // nodes and weights [h]
+  Eigen::VectorXd sqrt_w;
 };
 
-Nystrom nystrom_solve(const ExactLayerKernel& k, const Profile& profile, double a, int panels,
-                      int m) {
-  Nystrom out;
-  const double rho = a / k.layer().h;
-  out.rho = rho;
-  const int n = panels * m;
+Grid make_grid(double rho, int panels, int p) {
   std::unique_ptr<gsl_integration_glfixed_table, GlFree> gl(
-      gsl_integration_glfixed_table_alloc(static_cast<std::size_t>(m)));
-  out.xi.resize(n);
-  out.w.resize(n);
-  for (int p = 0; p < panels; ++p)
-    for (int q = 0; q < m; ++q) {
-      double x = 0.0, wq = 0.0;
-      gsl_integration_glfixed_point(double(p) / panels, double(p + 1) / panels,
-                                    static_cast<std::size_t>(q), &x, &wq, gl.get());
-      out.xi(p * m + q) = x;
-      out.w(p * m + q) = wq;
+      gsl_integration_glfixed_table_alloc(static_cast<std::size_t>(p)));
+  Grid g;
+  g.panels = panels;
+  g.p = p;
+  g.b = rho / panels;
+  std::vector<double> v(static_cast<std::size_t>(p));
+  g.s.resize(static_cast<std::size_t>(p));
+  for (int q = 0; q < p; ++q)
+    gsl_integration_glfixed_point(0.0, 1.0, static_cast<std::size_t>(q), &g.s[q], &v[q], gl.get());
+  const int n = panels * p;
+  g.t.resize(n);
+  g.w.resize(n);
+  for (int k = 0; k < panels; ++k)
+    for (int q = 0; q < p; ++q) {
+      g.t(k * p + q) = g.b * (k + g.s[q]);
+      g.w(k * p + q) = g.b * v[q];
     }
-  // Dimensionless x = a xi: A = I - (rho/pi) W [Ft(rho|xi-tau|) + Ft(rho(xi+tau))].
-  auto row = [&](double x, int j) {
-    return (rho / kPi) * out.w(j) * (k.kernel(rho * (x - out.xi(j))) + k.kernel(rho * (x + out.xi(j))));
-  };
-  Eigen::MatrixXd A(n, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) A(i, j) = (i == j ? 1.0 : 0.0) - row(out.xi(i), j);
-  Eigen::MatrixXd rhs(n, 2);
-  for (int i = 0; i < n; ++i) {
-    const double x = a * out.xi(i);
+  g.sqrt_w = g.w.cwiseSqrt();
+  return g;
+}
+
+// The symmetrised Nystrom matrix B = I - (1/pi) W^1/2 [Ft(t_i - t_j) + Ft(t_i + t_j)] W^1/2.
+// With equal panels the first part is block Toeplitz and the second block Hankel, so only
+// (2m-1) p^2 + m p^2 distinct kernel values are needed instead of (m p)^2. B is symmetric
+// positive definite: the kernel's symbol 1 - L(u) lies in (0, 1] for every nu <= 1/2.
+Eigen::MatrixXd symmetric_matrix(const ExactLayerKernel& k, const Grid& g) {
+  const int m = g.panels, p = g.p, n = m * p;
+  std::vector<Eigen::MatrixXd> toeplitz(static_cast<std::size_t>(m), Eigen::MatrixXd(p, p));
+  std::vector<Eigen::MatrixXd> hankel(static_cast<std::size_t>(2 * m - 1), Eigen::MatrixXd(p, p));
+  for (int d = 0; d < m; ++d)
+    for (int i = 0; i < p; ++i)
+      for (int j = 0; j < p; ++j) toeplitz[d](i, j) = k.kernel(g.b * (d + g.s[i] - g.s[j]));
+  for (int e = 0; e < 2 * m - 1; ++e)
+    for (int i = 0; i < p; ++i)
+      for (int j = 0; j <= i; ++j) hankel[e](i, j) = hankel[e](j, i) = k.kernel(g.b * (e + g.s[i] + g.s[j]));
+  Eigen::MatrixXd B(n, n);
+  for (int kb = 0; kb < m; ++kb)
+    for (int lb = 0; lb <= kb; ++lb) {
+      const Eigen::MatrixXd& T = toeplitz[kb - lb];
+      const Eigen::MatrixXd& H = hankel[kb + lb];
+      for (int i = 0; i < p; ++i)
+        for (int j = 0; j < p; ++j) {
+          const int r = kb * p + i, c = lb * p + j;
+          const double v = -(1.0 / kPi) * g.sqrt_w(r) * g.sqrt_w(c) * (T(i, j) + H(i, j));
+          B(r, c) = B(c, r) = v + (r == c ? 1.0 : 0.0);
+        }
+    }
+  return B;
+}
+
+// Right-hand sides on the nodes: 1 (flat punch) and x I0(x) [m], x = h t (the profile).
+Eigen::MatrixXd right_hand_sides(const Profile& profile, double h, const Eigen::VectorXd& t) {
+  Eigen::MatrixXd rhs(t.size(), 2);
+  for (Eigen::Index i = 0; i < t.size(); ++i) {
+    const double x = h * t(i);
     rhs(i, 0) = 1.0;
     rhs(i, 1) = x * profile.sneddon(x).I0;  // x int_0^x f'(r)/sqrt(x^2 - r^2) dr
   }
-  out.phi = A.partialPivLu().solve(rhs);
-  // Nystrom interpolation to the edge xi = 1.
-  out.end0 = 1.0;
-  out.endf = a * profile.sneddon(a).I0;
-  for (int j = 0; j < n; ++j) {
-    const double kj = row(1.0, j);
-    out.end0 += kj * out.phi(j, 0);
-    out.endf += kj * out.phi(j, 1);
+  return rhs;
+}
+
+// The Nystrom interpolant's kernel row at the edge t = rho, premultiplied by W^1/2 so that
+// edge = rhs(rho) + row . psi for psi = W^1/2 phi.
+Eigen::VectorXd edge_row(const ExactLayerKernel& k, const Grid& g, double rho, Eigen::Index n) {
+  Eigen::VectorXd row(n);
+  for (Eigen::Index j = 0; j < n; ++j)
+    row(j) = (1.0 / kPi) * g.sqrt_w(j) * (k.kernel(rho - g.t(j)) + k.kernel(rho + g.t(j)));
+  return row;
+}
+
+// What a state needs from the two solutions phi0 (flat punch) and phi_f (profile):
+// their integrals over [0, rho] [h] and their values at the edge.
+struct Moments {
+  double int0 = 0.0, intf = 0.0, end0 = 0.0, endf = 0.0;
+};
+
+HertzState state_from(const Moments& mo, double a, double h, double E_star) {
+  HertzState s;
+  s.a = a;
+  s.delta_H = mo.endf / mo.end0;
+  s.S = 2.0 * E_star * h * mo.int0;
+  s.P_H = 2.0 * E_star * h * (s.delta_H * mo.int0 - mo.intf);
+  s.dS_da = 2.0 * E_star * mo.end0 * mo.end0;  // S' = 2 E* phi0(a)^2: no differentiation
+  return s;
+}
+
+// One radius: factor B (Cholesky) on `panels` panels of [0, rho] and solve both columns.
+struct Solution {
+  Grid grid;
+  Eigen::MatrixXd phi;  // phi0, phi_f on the nodes
+  Moments moments;
+};
+
+Eigen::LLT<Eigen::MatrixXd> factor(const ExactLayerKernel& k, const Grid& g, double rho) {
+  Eigen::LLT<Eigen::MatrixXd> llt(symmetric_matrix(k, g));
+  if (llt.info() != Eigen::Success)
+    throw NumericalError("layerjkr::exact_layer: the Nystrom matrix is not positive definite at a/h = " +
+                         format_double(rho));
+  return llt;
+}
+
+Solution nystrom_solve(const ExactLayerKernel& k, const Profile& profile, double rho, int panels, int p) {
+  const double h = k.layer().h;
+  Solution out;
+  out.grid = make_grid(rho, panels, p);
+  const Grid& g = out.grid;
+  const Eigen::MatrixXd psi = factor(k, g, rho).solve(g.sqrt_w.asDiagonal() * right_hand_sides(profile, h, g.t));
+  const Eigen::VectorXd row = edge_row(k, g, rho, psi.rows());
+  Moments& mo = out.moments;
+  mo.int0 = g.sqrt_w.dot(psi.col(0));
+  mo.intf = g.sqrt_w.dot(psi.col(1));
+  mo.end0 = 1.0 + row.dot(psi.col(0));
+  mo.endf = h * rho * profile.sneddon(h * rho).I0 + row.dot(psi.col(1));
+  out.phi = g.sqrt_w.cwiseInverse().asDiagonal() * psi;
+  return out;
+}
+
+// Every radius rho_j = j b (j = 1..panels) from one factorisation on [0, rho_max]: the
+// matrix for j panels is the leading block of the full one, so with B = L L^T
+// psi_j = L_j^-T y_j where y = L^-1 W^1/2 rhs is shared. Integrals are running sums
+// z . y (z = L^-1 W^1/2 1), and each edge value needs one triangular solve L_j^-1 row_j.
+std::vector<Moments> nystrom_sweep(const ExactLayerKernel& k, const Profile& profile, double rho_max,
+                                   int panels, int p) {
+  const double h = k.layer().h;
+  const Grid g = make_grid(rho_max, panels, p);
+  const Eigen::LLT<Eigen::MatrixXd> llt = factor(k, g, rho_max);
+  const auto L = llt.matrixL();
+  Eigen::MatrixXd y = g.sqrt_w.asDiagonal() * right_hand_sides(profile, h, g.t);
+  L.solveInPlace(y);
+  Eigen::VectorXd z = g.sqrt_w;
+  L.solveInPlace(z);
+  const Eigen::MatrixXd& full = llt.matrixLLT();
+  std::vector<Moments> out(static_cast<std::size_t>(panels));
+  double int0 = 0.0, intf = 0.0;
+  for (int j = 1; j <= panels; ++j) {
+    const Eigen::Index n = static_cast<Eigen::Index>(j) * p;
+    for (Eigen::Index i = n - p; i < n; ++i) {
+      int0 += z(i) * y(i, 0);
+      intf += z(i) * y(i, 1);
+    }
+    const double rho = j * g.b;
+    Eigen::VectorXd e = edge_row(k, g, rho, n);
+    full.topLeftCorner(n, n).triangularView<Eigen::Lower>().solveInPlace(e);
+    Moments& mo = out[static_cast<std::size_t>(j - 1)];
+    mo.int0 = int0;
+    mo.intf = intf;
+    mo.end0 = 1.0 + e.dot(y.col(0).head(n));
+    mo.endf = h * rho * profile.sneddon(h * rho).I0 + e.dot(y.col(1).head(n));
   }
   return out;
 }
@@ -230,25 +345,15 @@ int panel_count(const ExactLayerOptions& o, double rho) {
 
 ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const {
   const double rho = checked_a_over_h(*this, "exact_layer", profile, a);
-  const int n_fine = panel_count(options_, rho);
-  auto to_state = [&](const Nystrom& r) {
-    const double int0 = r.w.dot(r.phi.col(0)), intf = r.w.dot(r.phi.col(1));
-    HertzState s;
-    s.a = a;
-    s.delta_H = r.endf / r.end0;
-    s.S = 2.0 * E_star_ * a * int0;
-    s.P_H = 2.0 * E_star_ * a * (s.delta_H * int0 - intf);
-    s.dS_da = 2.0 * E_star_ * r.end0 * r.end0;
-    return s;
-  };
-  const int m = options_.points_per_panel;
-  const Nystrom fine = nystrom_solve(*this, profile, a, n_fine, m);
+  const int panels = panel_count(options_, rho), p = options_.points_per_panel;
+  const double h = layer_.h;
   ExactLayerState out;
-  out.state = to_state(fine);
-  out.unknowns = static_cast<int>(fine.xi.size());
+  out.state = state_from(nystrom_solve(*this, profile, rho, panels, p).moments, a, h, E_star_);
+  out.unknowns = panels * p;
   out.P_H_error = out.delta_H_error = std::numeric_limits<double>::quiet_NaN();
   if (options_.estimate_error) {
-    const HertzState c = to_state(nystrom_solve(*this, profile, a, std::max(2, n_fine / 2), m));
+    const HertzState c =
+        state_from(nystrom_solve(*this, profile, rho, std::max(1, panels / 2), p).moments, a, h, E_star_);
     out.P_H_error = std::abs(out.state.P_H - c.P_H) / std::abs(out.state.P_H);
     out.delta_H_error = std::abs(out.state.delta_H - c.delta_H) / std::abs(out.state.delta_H);
   }
@@ -258,12 +363,32 @@ ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const 
   return out;
 }
 
+std::vector<HertzState> ExactLayerKernel::sweep(const Profile& profile, double a_max, int count) const {
+  if (count < 1) throw DomainError("ExactLayerKernel::sweep", "count", count, ">= 1");
+  const double rho = checked_a_over_h(*this, "ExactLayerKernel::sweep", profile, a_max);
+  // A whole number of panels per step a_max / count, each at most panel_width h wide, and
+  // at least min_panels in all.
+  const int per_step = std::max({1, static_cast<int>(std::ceil(rho / count / options_.panel_width)),
+                                 (options_.min_panels + count - 1) / count});
+  const std::vector<Moments> all =
+      nystrom_sweep(*this, profile, rho, per_step * count, options_.points_per_panel);
+  std::vector<HertzState> out;
+  for (int j = 1; j <= count; ++j) {
+    const double a = a_max * j / count;
+    HertzState s = state_from(all[static_cast<std::size_t>(j * per_step - 1)], a, layer_.h, E_star_);
+    if (!std::isfinite(s.P_H) || !std::isfinite(s.delta_H))
+      throw NumericalError("layerjkr::exact_layer: the Nystrom sweep is not finite at a = " + format_double(a));
+    out.push_back(s);
+  }
+  return out;
+}
+
 std::vector<double> ExactLayerKernel::pressure(const Profile& profile, double a,
                                                const std::vector<double>& radii) const {
   const double rho = checked_a_over_h(*this, "ExactLayerKernel::pressure", profile, a);
-  const Nystrom ny = nystrom_solve(*this, profile, a, panel_count(options_, rho),
-                                   options_.points_per_panel);
-  const double delta = ny.endf / ny.end0;
+  const Solution ny = nystrom_solve(*this, profile, rho, panel_count(options_, rho), options_.points_per_panel);
+  const double delta = ny.moments.endf / ny.moments.end0;
+  const double h = layer_.h;
   // d/dt [t I0(t)] for the profile column, by 6th-order differences in ln t.
   auto rhs_f_slope = [&](double t) {
     auto g = [&](double x) {
@@ -275,12 +400,11 @@ std::vector<double> ExactLayerKernel::pressure(const Profile& profile, double a,
   };
   // g'(t) = (E*/pi) [delta phi0'(t) - phi_f'(t)] from the Nystrom interpolant.
   auto g_slope = [&](double t) {
-    const double x = t / a;
+    const double x = t / h;  // units of h
     double d0 = 0.0, df = rhs_f_slope(t);
-    for (Eigen::Index j = 0; j < ny.xi.size(); ++j) {
-      const double kj = (ny.rho / kPi) * ny.w(j) * (ny.rho / a) *
-                        (kernel_derivative(ny.rho * (x - ny.xi(j))) +
-                         kernel_derivative(ny.rho * (x + ny.xi(j))));
+    for (Eigen::Index j = 0; j < ny.grid.t.size(); ++j) {
+      const double kj = ny.grid.w(j) / (kPi * h) *
+                        (kernel_derivative(x - ny.grid.t(j)) + kernel_derivative(x + ny.grid.t(j)));
       d0 += kj * ny.phi(j, 0);
       df += kj * ny.phi(j, 1);
     }

@@ -103,7 +103,7 @@ ThinLayerConstants thin_layer_constants(const ElasticLayer& layer) {
         "bonded layer with nu = " + format_double(nu) +
         " > 0.45: the compressible thin-layer expansion is non-uniform as nu -> 0.5; it needs "
         "a/h >> " + format_double(ratio) +
-        " and an incompressible layer follows a different law (theory.md section 2)");
+        " and an incompressible layer follows a different law (docs/theory.md section 2)");
   }
   return c;
 }

@@ -27,7 +27,7 @@ struct StateOf {
 };
 
 /// Two-term thin layer p = K w - G lap w inside the contact with p(a) = 0 (eqs. (43)-(45)
-/// with the corrected force, theory.md s.1); G = 0 is Winkler, eq. (41), exactly.
+/// with the corrected force, docs/theory.md s.1); G = 0 is Winkler, eq. (41), exactly.
 template <class T>
 StateOf<T> two_term_state(const T& a, const ProfileAt<T>& g, const T& K, const T& G) {
   constexpr double pi = boost::math::constants::pi<double>();
@@ -47,7 +47,7 @@ StateOf<T> two_term_state(const T& a, const ProfileAt<T>& g, const T& K, const T
 
 /// Full Pasternak (or Filonenko-Borodich, G = T) foundation on the whole plane with the
 /// decaying exterior w = c K0(lam r)/K0(lam a), lam = sqrt(K/G); slope continuity at the
-/// free boundary fixes delta_H (theory.md s.3). G > 0.
+/// free boundary fixes delta_H (docs/theory.md s.3). G > 0.
 template <class T>
 StateOf<T> full_foundation_state(const T& a, const ProfileAt<T>& g, const T& K, const T& G) {
   using std::sqrt;

@@ -77,6 +77,37 @@ TEST_CASE("exact layer stays within 1e-6 at a/h = 100, the end of its range", "[
   }
 }
 
+TEST_CASE("exact layer sweep: one factorisation gives every panel-boundary radius", "[exact][sweep]") {
+  // Oracle: an independent solve per radius on the same panels (the sweep's radius a_max j/n
+  // uses the leading j panels of its grid, so each single solve must see exactly those).
+  const auto sphere = make_sphere(40.0);  // not a paraboloid: the profile column is general
+  for (double nu : {0.3, 0.5}) {
+    for (Base base : {Base::bonded, Base::frictionless}) {
+      const ElasticLayer layer{3.0, nu, 1.0, base};
+      ExactLayerOptions o = range(12);
+      o.estimate_error = false;
+      o.panel_width = 0.5;
+      o.min_panels = 2;
+      const ExactLayerKernel k(layer, o);
+      const int count = 6;
+      const std::vector<HertzState> swept = k.sweep(*sphere, 12.0, count);  // 4 panels per step
+      REQUIRE(swept.size() == std::size_t(count));
+      for (int j = 1; j <= count; ++j) {
+        const HertzState single = k.solve(*sphere, 2.0 * j).state;
+        INFO("nu=" << nu << " bonded=" << (base == Base::bonded) << " a=" << 2.0 * j);
+        CHECK(swept[j - 1].a == Approx(2.0 * j));
+        CHECK(rel_err(swept[j - 1].P_H, single.P_H) < 1e-11);
+        CHECK(rel_err(swept[j - 1].delta_H, single.delta_H) < 1e-11);
+        CHECK(rel_err(swept[j - 1].S, single.S) < 1e-11);
+        CHECK(rel_err(swept[j - 1].dS_da, single.dS_da) < 1e-11);
+      }
+    }
+  }
+  const ExactLayerKernel k({1.0, 0.3, 1.0, Base::bonded}, range(5));
+  CHECK_THROWS_WITH(k.sweep(*sphere, 4.0, 0), Catch::Contains("count = 0"));
+  CHECK_THROWS_WITH(k.sweep(*sphere, 6.0, 3), Catch::Contains("a/h = 6"));
+}
+
 TEST_CASE("exact layer: thick limit is the half-space, with an O(a/h) shift", "[exact]") {
   const double R = 50.0, nu = 0.3, Es = 1.0 / (1 - nu * nu);
   const auto p = make_paraboloid(R);
