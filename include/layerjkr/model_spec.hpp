@@ -25,8 +25,18 @@ enum class ModelKind {
 
 /// The name reports print for a kind: "winkler", "two_term", "full_foundation",
 /// "half_space", "edge_corrected", "exact" (ContactModel::name() of what it builds;
-/// the ODE route prints "ode(<kind>)").
-const char* model_name(ModelKind kind);
+/// the ODE route prints "ode(<kind>)"). Inline: models name themselves on every query.
+constexpr const char* model_name(ModelKind kind) {
+  switch (kind) {
+    case ModelKind::winkler: return "winkler";
+    case ModelKind::two_term: return "two_term";
+    case ModelKind::full_foundation: return "full_foundation";
+    case ModelKind::half_space: return "half_space";
+    case ModelKind::edge_corrected: return "edge_corrected";
+    case ModelKind::exact: return "exact";
+  }
+  return "unknown";
+}
 
 /// The kind a model_name() names; nullopt for any other string.
 std::optional<ModelKind> model_kind(const std::string& name);

@@ -33,10 +33,15 @@ ProfileAt<T> profile_at(const Profile& p, bool paraboloid, const T& a, const T& 
           lift(p.moment(av), av * d.f, a)};
 }
 
-// The JKR curve point of a non-adhesive state (the one transform, jkr_transform.hpp).
-template <class T>
-void adhesive(const T& a, const StateOf<T>& h, const T& sqrt_w, T* delta, T* P) {
-  jkr_from_state(a, h.P_H, h.delta_H, h.S, h.dS_da, sqrt_w, delta, P);
+// The JKR curve point of a non-adhesive state (the one transform, jkr_transform.hpp); the
+// curve's adhesion parameter is s = sqrt(w).
+template <int N>
+void adhesive(const ceres::Jet<double, N>& a, const StateOf<ceres::Jet<double, N>>& h,
+              const ceres::Jet<double, N>& s, ceres::Jet<double, N>* delta, ceres::Jet<double, N>* P) {
+  jkr_from_state_sqrt_w(a, h.P_H, h.delta_H, h.S, h.dS_da, s, delta, P);
+}
+void adhesive(double a, const StateOf<double>& h, double s, double* delta, double* P) {
+  jkr_from_state(a, h.P_H, h.delta_H, h.S, h.dS_da, s * s, delta, P);
 }
 
 template <class Derived>
@@ -66,7 +71,9 @@ class FoundationCurve final : public CurveModelBase<FoundationCurve> {
   template <class T>
   void curve(const T& a, const CurveParameters<T>& p, T* delta, T* P) const {
     const ProfileAt<T> g = profile_at(*profile_, paraboloid_, a, p.R);
-    const StateOf<T> h = full_ ? full_foundation_state(a, g, p.K, p.G) : two_term_state(a, g, p.K, p.G);
+    using std::sqrt;
+    const StateOf<T> h =
+        full_ ? full_foundation_state(a, g, p.K, p.G, T(sqrt(p.K / p.G))) : two_term_state(a, g, p.K, p.G);
     adhesive(a, h, p.s, delta, P);
   }
 

@@ -113,10 +113,12 @@ void compute_error_bars(ceres::Problem* problem, double final_cost, const Parame
   cov.GetCovarianceBlock(x.data(), x.data(), C.data());
   const double dof = static_cast<double>(residuals - p_free);
   const double s2 = 2.0 * final_cost / dof;  // scaled by the residual variance
+  // Symmetric by construction: C from ceres may differ from its transpose in the last bit.
   for (std::size_t i = 0; i < p_free; ++i)
-    for (std::size_t j = 0; j < p_free; ++j)
+    for (std::size_t j = 0; j <= i; ++j)
       if (!(w_held && (i == held_slot || j == held_slot)))
-        out->correlation[i][j] = C[i * p_free + j] / std::sqrt(C[i * p_free + i] * C[j * p_free + j]);
+        out->correlation[i][j] = out->correlation[j][i] =
+            C[i * p_free + j] / std::sqrt(C[i * p_free + i] * C[j * p_free + j]);
   for (std::size_t j = 0; j < p_free; ++j) {
     if (!separable[j] || out->parameters[j].at_bound) continue;
     out->parameters[j].stderr_ = std::abs(map.derivative(options.free[j], x.data())) * std::sqrt(C[j * p_free + j] * s2);

@@ -22,7 +22,7 @@ AdhesiveState jkr_transform(const HertzState& h, double w) {
   if (!(h.dS_da > 0.0) || !std::isfinite(h.dS_da))
     throw DomainError("jkr_transform", "dS/da", h.dS_da,
                       "> 0 (the transform needs a stiffness that grows with a)");
-  detail::jkr_from_state(h.a, h.P_H, h.delta_H, h.S, h.dS_da, std::sqrt(w), &s.delta, &s.P);
+  detail::jkr_from_state(h.a, h.P_H, h.delta_H, h.S, h.dS_da, w, &s.delta, &s.P);
   return s;
 }
 

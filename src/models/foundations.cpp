@@ -20,29 +20,31 @@ HertzState hertz_state(double a, const detail::StateOf<double>& s) {
 
 class TwoTerm final : public ContactModel {
  public:
-  TwoTerm(ProfilePtr p, double K, double G) : ContactModel(std::move(p)), K_(K), G_(G) {}
+  TwoTerm(ProfilePtr p, double K, double G)
+      : ContactModel(std::move(p)), K_(K), G_(G), name_(model_name(G == 0.0 ? ModelKind::winkler : ModelKind::two_term)) {}
   HertzState state(double a) const override {
-    profile().require_contact_radius(model_name(kind()), a);
+    profile().require_contact_radius(name_, a);
     return hertz_state(a, detail::two_term_state(a, profile_at(profile(), a), K_, G_));
   }
-  std::string name() const override { return model_name(kind()); }
+  std::string name() const override { return name_; }
 
  private:
-  ModelKind kind() const { return G_ == 0.0 ? ModelKind::winkler : ModelKind::two_term; }
   double K_, G_;
+  const char* name_;
 };
 
 class FullFoundation final : public ContactModel {
  public:
-  FullFoundation(ProfilePtr p, double K, double G) : ContactModel(std::move(p)), K_(K), G_(G) {}
+  FullFoundation(ProfilePtr p, double K, double G)
+      : ContactModel(std::move(p)), K_(K), G_(G), lambda_(std::sqrt(K / G)) {}
   HertzState state(double a) const override {
     profile().require_contact_radius(model_name(ModelKind::full_foundation), a);
-    return hertz_state(a, detail::full_foundation_state(a, profile_at(profile(), a), K_, G_));
+    return hertz_state(a, detail::full_foundation_state(a, profile_at(profile(), a), K_, G_, lambda_));
   }
   std::string name() const override { return model_name(ModelKind::full_foundation); }
 
  private:
-  double K_, G_;
+  double K_, G_, lambda_;
 };
 
 }  // namespace

@@ -5,18 +5,6 @@
 
 namespace layerjkr {
 
-const char* model_name(ModelKind kind) {
-  switch (kind) {
-    case ModelKind::winkler: return "winkler";
-    case ModelKind::two_term: return "two_term";
-    case ModelKind::full_foundation: return "full_foundation";
-    case ModelKind::half_space: return "half_space";
-    case ModelKind::edge_corrected: return "edge_corrected";
-    case ModelKind::exact: return "exact";
-  }
-  return "unknown";
-}
-
 std::optional<ModelKind> model_kind(const std::string& name) {
   for (ModelKind k : {ModelKind::winkler, ModelKind::two_term, ModelKind::full_foundation,
                       ModelKind::half_space, ModelKind::edge_corrected, ModelKind::exact})

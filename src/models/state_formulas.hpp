@@ -47,12 +47,11 @@ StateOf<T> two_term_state(const T& a, const ProfileAt<T>& g, const T& K, const T
 
 /// Full Pasternak (or Filonenko-Borodich, G = T) foundation on the whole plane with the
 /// decaying exterior w = c K0(lam r)/K0(lam a), lam = sqrt(K/G); slope continuity at the
-/// free boundary fixes delta_H (docs/theory.md s.3). G > 0.
+/// free boundary fixes delta_H (docs/theory.md s.3). G > 0; lambda = sqrt(K/G), passed in
+/// so that a model with fixed constants computes it once.
 template <class T>
-StateOf<T> full_foundation_state(const T& a, const ProfileAt<T>& g, const T& K, const T& G) {
-  using std::sqrt;
+StateOf<T> full_foundation_state(const T& a, const ProfileAt<T>& g, const T& K, const T& G, const T& lambda) {
   constexpr double pi = boost::math::constants::pi<double>();
-  const T lambda = sqrt(K / G);
   const T x = lambda * a;
   const double xv = value_of(x);
   const double qv = bessel_k1_over_k0(xv);
