@@ -1,5 +1,5 @@
 // What this teaches: what each thin-layer model costs and how wrong it is, measured
-// against the exact layer solver - the numbers behind README's "which model do I need".
+// against the exact layer solver - the numbers behind docs/models.md, "which model do I need".
 //
 // How the data is made: nothing is measured in a lab. A rigid paraboloid with R = 100 h
 // (the paper's Appendix A ratio) indents a layer (E = 1, h = 1: the errors are
@@ -10,7 +10,7 @@
 // pull-off force is compared with the exact one (targets a/h <= 20: the exact search
 // costs ~150 solves). Costs are medians of repeated wall-clock timings on this machine.
 //
-// Run: build/bin/model_tradeoff TABLE_FILE [DOCS_DIR PLOT_PNG]   (about two minutes on 2 cores)
+// Run: build/bin/model_tradeoff TABLE_FILE [DOCS_DIR PLOT_PNG]   (a few minutes on 2 cores)
 // Writes TABLE_FILE, the worst measured error per model, base, nu and a/h, which
 // "model": "auto" uses (committed as src/models/model_error_table.inc), and, given
 // DOCS_DIR, the timed study: model_tradeoff.csv, model_tradeoff_pulloff.csv and, with
