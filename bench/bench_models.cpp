@@ -63,8 +63,8 @@ void BM_State_Exact(benchmark::State& st) {
 }
 BENCHMARK(BM_State_Exact)->Arg(1)->Arg(10)->Arg(50)->Unit(benchmark::kMillisecond);
 
-// A 200-point curve a_i = (a/h) h i / 200 on one kernel table. The Nystrom matrix depends
-// on a, so the factorisation cannot be reused across the sweep; the table is.
+// A 200-point curve a_i = (a/h) h i / 200 on one kernel table, radius by radius (one
+// factorisation each) and as one sweep (ContactModel::states: one factorisation).
 void BM_Curve200_Exact(benchmark::State& st) {
   ExactLayerOptions o;
   o.estimate_error = false;
@@ -74,6 +74,17 @@ void BM_Curve200_Exact(benchmark::State& st) {
     for (int i = 1; i <= 200; ++i) benchmark::DoNotOptimize(model->state(top * i / 200));
 }
 BENCHMARK(BM_Curve200_Exact)->Arg(1)->Arg(10)->Arg(50)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+void BM_Curve200_Exact_Sweep(benchmark::State& st) {
+  ExactLayerOptions o;
+  o.estimate_error = false;
+  static const auto model = make_exact_layer(make_paraboloid(1.0), {1.0, 0.3, 1.0, Base::bonded}, o);
+  const double top = static_cast<double>(st.range(0));
+  std::vector<double> radii;
+  for (int i = 1; i <= 200; ++i) radii.push_back(top * i / 200);
+  for (auto _ : st) benchmark::DoNotOptimize(model->states(radii));
+}
+BENCHMARK(BM_Curve200_Exact_Sweep)->Arg(1)->Arg(10)->Arg(50)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 void BM_ExactKernelTable(benchmark::State& st) {
   for (auto _ : st)

@@ -42,6 +42,10 @@ class ContactModel {
   /// Non-adhesive state at contact radius a (0 < a, a admissible for the profile).
   virtual HertzState state(double a) const = 0;
 
+  /// States at several radii, as state(a) for each. Models that can share work across
+  /// radii override it (the exact layer: an evenly spaced grid from one factorisation).
+  virtual std::vector<HertzState> states(const std::vector<double>& radii) const;
+
   /// Short model name, e.g. "winkler", "two_term", "full_foundation", "half_space".
   virtual std::string name() const = 0;
 

@@ -39,7 +39,7 @@ AdhesiveState JkrSolution::at(double a) const { return jkr_transform(model_->sta
 std::vector<AdhesiveState> JkrSolution::curve(const std::vector<double>& radii) const {
   std::vector<AdhesiveState> out;
   out.reserve(radii.size());
-  for (double a : radii) out.push_back(at(a));
+  for (const HertzState& h : model_->states(radii)) out.push_back(jkr_transform(h, w_));
   return out;
 }
 

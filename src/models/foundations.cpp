@@ -55,6 +55,13 @@ ContactModel::ContactModel(ProfilePtr profile) : profile_(std::move(profile)) {
 
 double ContactModel::max_radius() const { return profile_->max_radius(); }
 
+std::vector<HertzState> ContactModel::states(const std::vector<double>& radii) const {
+  std::vector<HertzState> out;
+  out.reserve(radii.size());
+  for (double a : radii) out.push_back(state(a));
+  return out;
+}
+
 ContactModelPtr make_winkler(ProfilePtr profile, double K) {
   detail::require_positive("make_winkler", "K", K);
   return std::make_shared<TwoTerm>(std::move(profile), K, 0.0);

@@ -108,6 +108,30 @@ TEST_CASE("exact layer sweep: one factorisation gives every panel-boundary radiu
   CHECK_THROWS_WITH(k.sweep(*sphere, 6.0, 3), Catch::Contains("a/h = 6"));
 }
 
+TEST_CASE("exact model: an evenly spaced curve comes from the sweep, others radius by radius", "[exact][sweep]") {
+  const auto p = make_paraboloid(30.0);
+  ExactLayerOptions o = range(20);
+  o.estimate_error = false;
+  const auto model = make_exact_layer(p, {1.0, 0.45, 1.0, Base::bonded}, o);
+  std::vector<double> even, uneven;
+  for (int j = 1; j <= 40; ++j) even.push_back(20.0 * j / 40);
+  for (int j = 1; j <= 7; ++j) uneven.push_back(0.3 * j * j);
+  const std::vector<HertzState> swept = model->states(even), single = model->states(uneven);
+  for (std::size_t j = 0; j < even.size(); ++j) {  // different panels: both converged to 1e-8
+    const HertzState r = model->state(even[j]);
+    INFO("a/h=" << even[j]);
+    CHECK(swept[j].a == even[j]);
+    CHECK(rel_err(swept[j].P_H, r.P_H) < 1e-8);
+    CHECK(rel_err(swept[j].delta_H, r.delta_H) < 1e-8);
+    CHECK(rel_err(swept[j].dS_da, r.dS_da) < 1e-8);
+  }
+  for (std::size_t j = 0; j < uneven.size(); ++j) CHECK(single[j].P_H == model->state(uneven[j]).P_H);
+  // The curve uses the same path.
+  const JkrSolution jkr(model, 1e-3);
+  const std::vector<AdhesiveState> c = jkr.curve(even);
+  CHECK(c.back().P == jkr_transform(swept.back(), 1e-3).P);
+}
+
 TEST_CASE("exact layer: thick limit is the half-space, with an O(a/h) shift", "[exact]") {
   const double R = 50.0, nu = 0.3, Es = 1.0 / (1 - nu * nu);
   const auto p = make_paraboloid(R);
