@@ -46,7 +46,8 @@ void BM_FitRealSpot3(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(fit(data, scene, o));
 }
 
-// Exact-layer fit: the table is built inside every fit (its dominant cost).
+// Exact-layer fit: the kernel table is cached across fits (built once per process); the
+// fit still tabulates the model over its radius range inside every fit.
 void BM_FitExactLayer(benchmark::State& state) {
   const Scene truth = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 1e-3},
       "medium": {"type": "layer", "E": 1e6, "nu": 0.45, "h": 5e-5}, "model": "exact", "w": 0.05})");

@@ -91,12 +91,17 @@ class ExactLayerKernel {
   /// Flat-punch factor P/(2 E* a delta) at a/h (> 0).
   double flat_punch_factor(double a_over_h) const;
 
- private:
+ public:
+  /// The kernel table (exact_layer.cpp). It depends only on nu, the base, the range and the
+  /// spacing, so kernels share it: the first kernel for a layer builds it, later ones (any
+  /// E and h) reuse it, thread-safely.
   struct Table;
+
+ private:
   ElasticLayer layer_;
   ExactLayerOptions options_;
   double E_star_;
-  std::unique_ptr<Table> table_;
+  std::shared_ptr<const Table> table_;  // shared by every kernel with the same nu, base, range
 };
 
 /// Edge-correction length of a thin layer in units of h: the exact layer behaves like a

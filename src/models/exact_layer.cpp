@@ -10,6 +10,9 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <map>
+#include <mutex>
+#include <tuple>
 
 #include <Eigen/Dense>
 #include <boost/math/differentiation/finite_difference.hpp>
@@ -79,23 +82,23 @@ void ExactLayerOptions::Validate() const {
     throw DomainError(fn, "table_spacing", table_spacing, "[1e-4, 0.2]");
 }
 
-ExactLayerKernel::ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions options)
-    : layer_(layer), options_(options), table_(std::make_unique<Table>()) {
-  detail::silence_gsl_errors();
-  options_.Validate();
-  detail::require_positive("ExactLayerKernel", "h", layer.h);
-  E_star_ = layerjkr::effective_modulus(layer.E, layer.nu);  // validates E, nu in (-1, 0.5]
-  const bool bonded = layer.base == Base::bonded;
-  const double kappa = 3.0 - 4.0 * layer.nu;
+namespace {
+
+// The remainder's transform depends only on nu, the base, the range and the spacing (in
+// units of h), not on E or h: one table serves every layer with those.
+std::shared_ptr<const ExactLayerKernel::Table> build_table(double nu, bool bonded, double sigma_max,
+                                                          double spacing) {
+  auto table = std::make_shared<ExactLayerKernel::Table>();
+  const double kappa = 3.0 - 4.0 * nu;
   Remainder rem{kappa, slope_at_zero(kappa, bonded) + kBeta, bonded};
-  table_->gamma = rem.gamma;
-  table_->sigma_max = 2.0 * options_.max_a_over_h + 1.0;
+  table->gamma = rem.gamma;
+  table->sigma_max = sigma_max;
 
   // Graded grid: spacing table_spacing up to sigma = 10, then growing like sigma (the remainder
   // varies on an O(1) scale and decays like sigma^-4).
   std::vector<double> sigma{0.0}, value;
-  while (sigma.back() < table_->sigma_max)
-    sigma.push_back(sigma.back() + options_.table_spacing * std::max(1.0, sigma.back() / 10.0));
+  while (sigma.back() < table->sigma_max)
+    sigma.push_back(sigma.back() + spacing * std::max(1.0, sigma.back() / 10.0));
   constexpr std::size_t kLimit = 2000;
   gsl_integration_workspace* ws = gsl_integration_workspace_alloc(kLimit);
   gsl_integration_workspace* cycles = gsl_integration_workspace_alloc(kLimit);
@@ -129,8 +132,37 @@ ExactLayerKernel::ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions 
     y[n - 1 - i] = value[i];
     y[n - 1 + i] = value[i];
   }
-  table_->spline.reset(gsl_spline_alloc(gsl_interp_cspline, x.size()));
-  gsl_spline_init(table_->spline.get(), x.data(), y.data(), x.size());
+  table->spline.reset(gsl_spline_alloc(gsl_interp_cspline, x.size()));
+  gsl_spline_init(table->spline.get(), x.data(), y.data(), x.size());
+  return table;
+}
+
+// Tables are shared between kernels (a force map fits every curve with the same layer), so
+// each is built once per process. Building holds the lock: concurrent requests for the same
+// table wait for it instead of building it twice.
+std::shared_ptr<const ExactLayerKernel::Table> shared_table(double nu, bool bonded, double sigma_max,
+                                                           double spacing) {
+  using Key = std::tuple<double, bool, double, double>;
+  static std::mutex mutex;
+  static std::map<Key, std::shared_ptr<const ExactLayerKernel::Table>> cache;
+  constexpr std::size_t kMaxTables = 64;  // ~100 kB each; a session rarely needs more layers
+  const std::lock_guard<std::mutex> lock(mutex);
+  const Key key{nu, bonded, sigma_max, spacing};
+  if (const auto it = cache.find(key); it != cache.end()) return it->second;
+  if (cache.size() >= kMaxTables) cache.clear();
+  return cache[key] = build_table(nu, bonded, sigma_max, spacing);
+}
+
+}  // namespace
+
+ExactLayerKernel::ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions options)
+    : layer_(layer), options_(options) {
+  detail::silence_gsl_errors();
+  options_.Validate();
+  detail::require_positive("ExactLayerKernel", "h", layer.h);
+  E_star_ = layerjkr::effective_modulus(layer.E, layer.nu);  // validates E, nu in (-1, 0.5]
+  table_ = shared_table(layer.nu, layer.base == Base::bonded, 2.0 * options_.max_a_over_h + 1.0,
+                        options_.table_spacing);
 }
 
 ExactLayerKernel::~ExactLayerKernel() = default;
