@@ -73,8 +73,11 @@ class ExactLayerKernel {
   const ElasticLayer& layer() const { return layer_; }
   const ExactLayerOptions& options() const { return options_; }
 
-  /// Non-adhesive state at contact radius a for `profile`, with error estimates.
+  /// Non-adhesive state at contact radius a for `profile`, with error estimates (when
+  /// ExactLayerOptions::estimate_error: a second solve on half the panels).
   ExactLayerState solve(const Profile& profile, double a) const;
+  /// The same state without an error estimate (one solve).
+  HertzState state(const Profile& profile, double a) const;
 
   /// Non-adhesive states at a = a_max j / count, j = 1..count, from one factorisation: the
   /// radii are panel boundaries of one grid, and each smaller radius is the leading block

@@ -397,23 +397,29 @@ bool sweep_is_cheaper(const ExactLayerOptions& o, double rho, int count) {
 
 }  // namespace
 
-ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const {
+HertzState ExactLayerKernel::state(const Profile& profile, double a) const {
   const double rho = checked_a_over_h(*this, "exact_layer", profile, a);
-  const int panels = panel_count(options_, rho), p = options_.points_per_panel;
-  const double h = layer_.h;
+  const HertzState s = state_from(
+      nystrom_solve(*this, profile, rho, panel_count(options_, rho), options_.points_per_panel).moments, a,
+      layer_.h, E_star_);
+  if (!std::isfinite(s.P_H) || !std::isfinite(s.delta_H))
+    throw NumericalError("layerjkr::exact_layer: the Nystrom solve is not finite at a = " + format_double(a));
+  return s;
+}
+
+ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const {
   ExactLayerState out;
-  out.state = state_from(nystrom_solve(*this, profile, rho, panels, p).moments, a, h, E_star_);
+  out.state = state(profile, a);
+  const double rho = a / layer_.h;
+  const int panels = panel_count(options_, rho), p = options_.points_per_panel;
   out.unknowns = panels * p;
   out.P_H_error = out.delta_H_error = std::numeric_limits<double>::quiet_NaN();
-  if (options_.estimate_error) {
+  if (options_.estimate_error) {  // the same equation on half the panels
     const HertzState c =
-        state_from(nystrom_solve(*this, profile, rho, std::max(1, panels / 2), p).moments, a, h, E_star_);
+        state_from(nystrom_solve(*this, profile, rho, std::max(1, panels / 2), p).moments, a, layer_.h, E_star_);
     out.P_H_error = std::abs(out.state.P_H - c.P_H) / std::abs(out.state.P_H);
     out.delta_H_error = std::abs(out.state.delta_H - c.delta_H) / std::abs(out.state.delta_H);
   }
-  if (!std::isfinite(out.state.P_H) || !std::isfinite(out.state.delta_H))
-    throw NumericalError("layerjkr::exact_layer: the Nystrom solve is not finite at a = " +
-                         format_double(a));
   return out;
 }
 
@@ -503,7 +509,8 @@ class ExactLayerModel final : public ContactModel {
  public:
   ExactLayerModel(ProfilePtr p, const ElasticLayer& layer, ExactLayerOptions o)
       : ContactModel(std::move(p)), kernel_(layer, o) {}
-  HertzState state(double a) const override { return kernel_.solve(profile(), a).state; }
+  // A ContactModel returns no error estimate, so none is computed (solve() has it).
+  HertzState state(double a) const override { return kernel_.state(profile(), a); }
   // An evenly spaced grid a_max j / n (as `layerjkr curve --a-max A --points N` asks for)
   // comes from one factorisation; any other set of radii is solved radius by radius.
   std::vector<HertzState> states(const std::vector<double>& radii) const override {

@@ -206,7 +206,7 @@ SceneModel read_model(const Reader& in, const json& root, MediumType medium) {
   const MediumModels models = models_for(medium);
   std::string list;
   for (SceneModel m : models.allowed) list += (list.empty() ? "" : ", ") + std::string(to_string(m));
-  const std::string medium_name = root["medium"]["type"].get<std::string>();
+  const std::string medium_name = root.at("medium").at("type").get<std::string>();
   if (!root.contains("model")) {
     if (!models.has_default) in.fail("model", "is missing; medium '" + medium_name + "' needs one of: " + list);
     return models.allowed.front();
