@@ -70,8 +70,12 @@ class FoundationCurve final : public CurveModelBase<FoundationCurve> {
 
   template <class T>
   void curve(const T& a, const CurveParameters<T>& p, T* delta, T* P) const {
-    const ProfileAt<T> g = profile_at(*profile_, paraboloid_, a, p.R);
     using std::sqrt;
+    if (paraboloid_ && !full_) {
+      adhesive(a, two_term_paraboloid_state(a, p.R, p.K, p.G), p.s, delta, P);
+      return;
+    }
+    const ProfileAt<T> g = profile_at(*profile_, paraboloid_, a, p.R);
     const StateOf<T> h =
         full_ ? full_foundation_state(a, g, p.K, p.G, T(sqrt(p.K / p.G))) : two_term_state(a, g, p.K, p.G);
     adhesive(a, h, p.s, delta, P);

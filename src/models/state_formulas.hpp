@@ -45,6 +45,21 @@ StateOf<T> two_term_state(const T& a, const ProfileAt<T>& g, const T& K, const T
   return s;
 }
 
+/// two_term_state for a paraboloid f = r^2/(2R) in closed form: the G-terms cancel in P_H
+/// and shift delta_H by -2G/(KR) (docs/theory.md s.1). The fit uses it so that R can vary
+/// and the Jacobian costs few operations; a test checks it against two_term_state.
+template <class T>
+StateOf<T> two_term_paraboloid_state(const T& a, const T& R, const T& K, const T& G) {
+  constexpr double pi = boost::math::constants::pi<double>();
+  const T a2 = a * a;
+  StateOf<T> s;
+  s.delta_H = (0.5 * a2 - 2.0 * G / K) / R;
+  s.P_H = 0.25 * pi * K * a2 * a2 / R;
+  s.S = pi * K * a2;
+  s.dS_da = 2.0 * pi * K * a;
+  return s;
+}
+
 /// Full Pasternak (or Filonenko-Borodich, G = T) foundation on the whole plane with the
 /// decaying exterior w = c K0(lam r)/K0(lam a), lam = sqrt(K/G); slope continuity at the
 /// free boundary fixes delta_H (docs/theory.md s.3). G > 0; lambda = sqrt(K/G), passed in
