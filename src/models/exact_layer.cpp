@@ -254,13 +254,15 @@ Eigen::MatrixXd symmetric_matrix(const ExactLayerKernel& k, const Grid& g) {
   return B;
 }
 
-// Right-hand sides on the nodes: 1 (flat punch) and x I0(x) [m], x = h t (the profile).
+// The profile's right-hand side x I0(x) = x int_0^x f'(r)/sqrt(x^2 - r^2) dr [m].
+double profile_term(const Profile& profile, double x) { return x * profile.sneddon(x).I0; }
+
+// Right-hand sides on the nodes: 1 (flat punch) and the profile term at x = h t.
 Eigen::MatrixXd right_hand_sides(const Profile& profile, double h, const Eigen::VectorXd& t) {
   Eigen::MatrixXd rhs(t.size(), 2);
   for (Eigen::Index i = 0; i < t.size(); ++i) {
-    const double x = h * t(i);
     rhs(i, 0) = 1.0;
-    rhs(i, 1) = x * profile.sneddon(x).I0;  // x int_0^x f'(r)/sqrt(x^2 - r^2) dr
+    rhs(i, 1) = profile_term(profile, h * t(i));
   }
   return rhs;
 }
@@ -316,7 +318,7 @@ Solution nystrom_solve(const ExactLayerKernel& k, const Profile& profile, double
   mo.int0 = g.sqrt_w.dot(psi.col(0));
   mo.intf = g.sqrt_w.dot(psi.col(1));
   mo.end0 = 1.0 + row.dot(psi.col(0));
-  mo.endf = h * rho * profile.sneddon(h * rho).I0 + row.dot(psi.col(1));
+  mo.endf = profile_term(profile, h * rho) + row.dot(psi.col(1));
   out.phi = g.sqrt_w.cwiseInverse().asDiagonal() * psi;
   return out;
 }
@@ -351,7 +353,7 @@ std::vector<Moments> nystrom_sweep(const ExactLayerKernel& k, const Profile& pro
     mo.int0 = int0;
     mo.intf = intf;
     mo.end0 = 1.0 + e.dot(y.col(0).head(n));
-    mo.endf = h * rho * profile.sneddon(h * rho).I0 + e.dot(y.col(1).head(n));
+    mo.endf = profile_term(profile, h * rho) + e.dot(y.col(1).head(n));
   }
   return out;
 }
@@ -450,7 +452,7 @@ std::vector<double> ExactLayerKernel::pressure(const Profile& profile, double a,
   auto rhs_f_slope = [&](double t) {
     auto g = [&](double x) {
       const double r = std::exp(x);
-      return r * profile.sneddon(r).I0;
+      return profile_term(profile, r);
     };
     return boost::math::differentiation::finite_difference_derivative<decltype(g), double, 6>(
                g, std::log(t)) / t;
