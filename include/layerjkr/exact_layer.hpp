@@ -11,12 +11,14 @@
 // S' = 2E* phi0(a)^2 and P_H = 2E* (delta_H int phi0 - int phi_f).
 //
 // Numerics, all in units of h:
-// * Ft = (closed-form transform of e^{-2u}(1 + c u), which carries Ft's slow 1/sigma^2
-//   tail) + (transform of the smooth remainder, by GSL's QAWF). The remainder is tabulated
-//   once per layer on a graded grid and interpolated with a cubic spline.
+// * Ft, for sigma <= 64: the closed-form transform of e^{-2u}(1 + c u), which carries Ft's
+//   slow 1/sigma^2 tail, plus a Chebyshev table of the smooth remainder's transform (GSL
+//   QAWO at Chebyshev points); beyond 64, the asymptotic series of Ft in 1/sigma^2 from the
+//   Taylor coefficients of 1 - L(u) at u = 0. Accurate to ~1e-14 absolute; built once per
+//   (nu, base) in ~16 ms and shared by every kernel.
 // * Nystrom method with composite Gauss-Legendre panels no wider than `panel_width` h,
-//   and a dense LU solve (Eigen).
-// * Every state is computed twice, on n and n/2 panels. The difference is the returned
+//   symmetrised and factored by Cholesky (Eigen LLT).
+// * solve() computes a state twice, with p and 3p/4 nodes a panel. The difference is the returned
 //   error estimate, as quadrature::tanh_sinh does.
 #pragma once
 
@@ -27,26 +29,33 @@
 #include "layerjkr/model.hpp"
 
 namespace layerjkr {
+namespace detail {
+class LayerKernelFunction;
+}
 
 struct ExactLayerOptions {
-  /// Largest contact radius the kernel table must cover, in units of h (> 0, <= 1000).
+  /// Largest contact radius the solver accepts, in units of h (> 0, <= 1000).
   double max_a_over_h = 100.0;
-  /// Gauss-Legendre nodes per panel (4..20).
-  int points_per_panel = 8;
-  /// Panel width in units of h (0 < width <= 2).
-  double panel_width = 0.5;
+  /// Gauss-Legendre nodes per panel (4..32). The defaults (16 nodes on 3h panels) come from
+  /// the measured convergence study (docs/data/exact_layer_convergence.md).
+  int points_per_panel = 16;
+  /// Panel width in units of h (0 < width <= 8).
+  double panel_width = 3.0;
   /// Minimum number of panels (>= 2).
   int min_panels = 4;
-  /// Kernel-table spacing in sigma near the origin (1e-4..0.2); it grows like sigma
-  /// beyond sigma = 10.
-  double table_spacing = 0.025;
-  /// Solve a second time on half the panels to estimate the error (about +15 % cost).
+  /// ContactModel "exact" with a paraboloid, cone or power law: take states from the shared
+  /// per-(nu, base, d) table in ln(a/h) (~0.2 us a state; each unit piece of ln(a/h) is built
+  /// on first use by 21 solves) instead of solving each radius. Covers a/h in [0.01, 220].
+  bool tabulate_power_laws = true;
+  /// Solve a second time with 3/4 of the nodes per panel to estimate the error (about +45 %
+  /// cost). The estimate is that of the coarser solve, so it bounds the returned error.
   bool estimate_error = true;
   /// Throws DomainError naming the first invalid field.
   void Validate() const;
 };
 
-/// One non-adhesive state with error estimates (|fine - coarse| over relative size).
+/// One non-adhesive state with error estimates: |fine - coarse| / |fine|, the error of the
+/// coarser solve, which with spectral convergence is orders above that of the returned one.
 struct ExactLayerState {
   HertzState state;
   double P_H_error = 0.0;      ///< estimated relative error of P_H (NaN if not estimated)
@@ -54,9 +63,9 @@ struct ExactLayerState {
   int unknowns = 0;            ///< Nystrom nodes of the fine solve
 };
 
-/// The kernel table for one layer (E, nu, h, base). Building it is the expensive step
-/// (~0.1 s); queries reuse it. nu in (-1, 0.5] (0.5: incompressible, bonded or
-/// frictionless), E > 0, h > 0.
+/// The exact-layer solver for one layer (E, nu, h, base). The kernel function depends only
+/// on nu and the base; it is built once per process (~16 ms) and shared. nu in (-1, 0.5]
+/// (0.5: incompressible, bonded or frictionless), E > 0, h > 0.
 class ExactLayerKernel {
  public:
   ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions options = {});
@@ -64,7 +73,7 @@ class ExactLayerKernel {
   ExactLayerKernel(const ExactLayerKernel&) = delete;
   ExactLayerKernel& operator=(const ExactLayerKernel&) = delete;
 
-  /// Ft(sigma), even in sigma (dimensionless; |sigma| <= 2 max_a_over_h + 1).
+  /// Ft(sigma), even in sigma (dimensionless; any finite sigma).
   double kernel(double sigma) const;
   /// dFt/dsigma, odd in sigma.
   double kernel_derivative(double sigma) const;
@@ -74,7 +83,7 @@ class ExactLayerKernel {
   const ExactLayerOptions& options() const { return options_; }
 
   /// Non-adhesive state at contact radius a for `profile`, with error estimates (when
-  /// ExactLayerOptions::estimate_error: a second solve on half the panels).
+  /// ExactLayerOptions::estimate_error: a second solve with 3/4 of the nodes).
   ExactLayerState solve(const Profile& profile, double a) const;
   /// The same state without an error estimate (one solve).
   HertzState state(const Profile& profile, double a) const;
@@ -94,17 +103,11 @@ class ExactLayerKernel {
   /// Flat-punch factor P/(2 E* a delta) at a/h (> 0).
   double flat_punch_factor(double a_over_h) const;
 
- public:
-  /// The kernel table (exact_layer.cpp). It depends only on nu, the base, the range and the
-  /// spacing, so kernels share it: the first kernel for a layer builds it, later ones (any
-  /// E and h) reuse it, thread-safely.
-  struct Table;
-
  private:
   ElasticLayer layer_;
   ExactLayerOptions options_;
   double E_star_;
-  std::shared_ptr<const Table> table_;  // shared by every kernel with the same nu, base, range
+  std::shared_ptr<const detail::LayerKernelFunction> kernel_;  // shared per (nu, base)
 };
 
 /// Edge-correction length of a thin layer in units of h: the exact layer behaves like a
@@ -122,7 +125,7 @@ double edge_correction_beta(const ElasticLayer& layer);
 /// or frictionless), against Winkler's 13 % and 7 %. Requires a + beta h > 0.
 ContactModelPtr make_edge_corrected(ProfilePtr profile, const ElasticLayer& layer);
 
-/// ContactModel "exact": the exact layer for a profile. The kernel table is built in
+/// ContactModel "exact": the exact layer for a profile. The shared kernel is fetched in
 /// the constructor; state(a) costs one Nystrom solve pair (ms to s, docs/benchmarks.md).
 ContactModelPtr make_exact_layer(ProfilePtr profile, const ElasticLayer& layer,
                                  ExactLayerOptions options = {});

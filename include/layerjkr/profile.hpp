@@ -13,6 +13,7 @@
 
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,13 @@ struct ProfileDerivatives {
 struct SneddonIntegrals {
   double I0 = 0.0;
   double I2 = 0.0;
+};
+
+/// f = B r^d: the form for which the exact layer's state is a function of a/h alone,
+/// tabulated once per (nu, base, d) (exact_layer.hpp).
+struct PowerLawForm {
+  double B = 0.0;  ///< [m^(1-d)]
+  double d = 0.0;  ///< exponent >= 1
 };
 
 class Profile {
@@ -69,6 +77,9 @@ class Profile {
   /// True if f = r^2/(2R) exactly (paraboloid, or power law with d = 2): the profile for
   /// which model "auto"'s error table was measured.
   virtual bool is_paraboloid() const { return false; }
+  /// {B, d} if f = B r^d exactly (paraboloid: {1/(2R), 2}, cone: {cot alpha, 1}, power
+  /// law), else nothing.
+  virtual std::optional<PowerLawForm> power_law_form() const { return std::nullopt; }
 
   /// Human-readable description, e.g. "paraboloid(R=0.01)".
   virtual std::string describe() const = 0;

@@ -1,10 +1,9 @@
-// Exact elastic layer: kernel table (GSL QAWF + spline) and Nystrom solve (Eigen).
+// Exact elastic layer: the Nystrom solve (Eigen) on the kernel of models/layer_kernel.hpp.
 #include "layerjkr/exact_layer.hpp"
 #include "layerjkr/model_spec.hpp"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
-#include <gsl/gsl_spline.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,54 +19,21 @@
 #include <boost/math/constants/constants.hpp>
 
 #include "core/gsl_support.hpp"
+#include "models/exact_layer_solver.hpp"
+#include "models/exact_power_law_table.hpp"
+#include "models/layer_kernel.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr {
 namespace {
 
 constexpr double kPi = boost::math::constants::pi<double>();
-constexpr double kBeta = 2.0;  // decay rate of the subtracted model e^{-beta u}(1 + gamma u)
 
-// q(u) = 1 - L(u), written with E = exp(-2u): no overflow and no cancellation.
-double one_minus_L(double u, double kappa, bool bonded) {
-  const double E = std::exp(-2.0 * u);
-  if (bonded) {
-    const double s = 1.0 + 2.0 * u;
-    return E * (2.0 * kappa * E + s * s + kappa * kappa) /
-           (kappa * (1.0 + E * E) + (4.0 * u * u + 1.0 + kappa * kappa) * E);
-  }
-  const double one_minus_E = -std::expm1(-2.0 * u);
-  return 2.0 * E * (one_minus_E + 2.0 * u) / (-std::expm1(-4.0 * u) + 4.0 * u * E);
-}
-
-// q'(0) = -L'(0): bonded -4(kappa-1)/(kappa+1)^2 (0 when incompressible), frictionless -1/2.
-double slope_at_zero(double kappa, bool bonded) {
-  return bonded ? -4.0 * (kappa - 1.0) / ((kappa + 1.0) * (kappa + 1.0)) : -0.5;
-}
-
-struct Remainder {
-  double kappa, gamma;
-  bool bonded;
-};
-
-double remainder(double u, void* p) {
-  const auto* r = static_cast<const Remainder*>(p);
-  return one_minus_L(u, r->kappa, r->bonded) - std::exp(-kBeta * u) * (1.0 + r->gamma * u);
-}
-
-struct SplineFree {
-  void operator()(gsl_spline* s) const { gsl_spline_free(s); }
-};
 struct GlFree {
   void operator()(gsl_integration_glfixed_table* t) const { gsl_integration_glfixed_table_free(t); }
 };
 
 }  // namespace
-
-struct ExactLayerKernel::Table {
-  double gamma = 0.0, sigma_max = 0.0;
-  std::unique_ptr<gsl_spline, SplineFree> spline;
-};
 
 void ExactLayerOptions::Validate() const {
   const char* fn = "ExactLayerOptions::Validate";
@@ -78,82 +44,7 @@ void ExactLayerOptions::Validate() const {
   if (!(panel_width > 0.0 && panel_width <= 8.0))
     throw DomainError(fn, "panel_width", panel_width, "(0, 8]");
   if (min_panels < 2) throw DomainError(fn, "min_panels", min_panels, ">= 2");
-  if (!(table_spacing >= 1e-4 && table_spacing <= 0.2))
-    throw DomainError(fn, "table_spacing", table_spacing, "[1e-4, 0.2]");
 }
-
-namespace {
-
-// The remainder's transform depends only on nu, the base, the range and the spacing (in
-// units of h), not on E or h: one table serves every layer with those.
-std::shared_ptr<const ExactLayerKernel::Table> build_table(double nu, bool bonded, double sigma_max,
-                                                          double spacing) {
-  auto table = std::make_shared<ExactLayerKernel::Table>();
-  const double kappa = 3.0 - 4.0 * nu;
-  Remainder rem{kappa, slope_at_zero(kappa, bonded) + kBeta, bonded};
-  table->gamma = rem.gamma;
-  table->sigma_max = sigma_max;
-
-  // Graded grid: spacing table_spacing up to sigma = 10, then growing like sigma (the remainder
-  // varies on an O(1) scale and decays like sigma^-4).
-  std::vector<double> sigma{0.0}, value;
-  while (sigma.back() < table->sigma_max)
-    sigma.push_back(sigma.back() + spacing * std::max(1.0, sigma.back() / 10.0));
-  constexpr std::size_t kLimit = 2000;
-  gsl_integration_workspace* ws = gsl_integration_workspace_alloc(kLimit);
-  gsl_integration_workspace* cycles = gsl_integration_workspace_alloc(kLimit);
-  gsl_function fn{&remainder, &rem};
-  int status = GSL_SUCCESS;
-  for (double s : sigma) {
-    double result = 0.0, abserr = 0.0;
-    if (s == 0.0) {
-      status = gsl_integration_qagiu(&fn, 0.0, 1e-15, 1e-12, kLimit, ws, &result, &abserr);
-    } else {
-      gsl_integration_qawo_table* wf =
-          gsl_integration_qawo_table_alloc(s, 1.0, GSL_INTEG_COSINE, 50);
-      status = gsl_integration_qawf(&fn, 0.0, 1e-15, kLimit, ws, cycles, wf, &result, &abserr);
-      gsl_integration_qawo_table_free(wf);
-    }
-    if (status != GSL_SUCCESS) break;
-    value.push_back(result);
-  }
-  gsl_integration_workspace_free(ws);
-  gsl_integration_workspace_free(cycles);
-  if (status != GSL_SUCCESS)
-    throw NumericalError(std::string("layerjkr::ExactLayerKernel: kernel transform failed (") +
-                         gsl_strerror(status) + ")");
-  // Ft is even in sigma: mirror the table so the spline sees that (a natural spline
-  // on [0, ...] would force Ft''(0) = 0 and lose two orders near the origin).
-  std::vector<double> x(2 * sigma.size() - 1), y(2 * sigma.size() - 1);
-  const std::size_t n = sigma.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    x[n - 1 - i] = -sigma[i];
-    x[n - 1 + i] = sigma[i];
-    y[n - 1 - i] = value[i];
-    y[n - 1 + i] = value[i];
-  }
-  table->spline.reset(gsl_spline_alloc(gsl_interp_cspline, x.size()));
-  gsl_spline_init(table->spline.get(), x.data(), y.data(), x.size());
-  return table;
-}
-
-// Tables are shared between kernels (a force map fits every curve with the same layer), so
-// each is built once per process. Building holds the lock: concurrent requests for the same
-// table wait for it instead of building it twice.
-std::shared_ptr<const ExactLayerKernel::Table> shared_table(double nu, bool bonded, double sigma_max,
-                                                           double spacing) {
-  using Key = std::tuple<double, bool, double, double>;
-  static std::mutex mutex;
-  static std::map<Key, std::shared_ptr<const ExactLayerKernel::Table>> cache;
-  constexpr std::size_t kMaxTables = 64;  // ~100 kB each; a session rarely needs more layers
-  const std::lock_guard<std::mutex> lock(mutex);
-  const Key key{nu, bonded, sigma_max, spacing};
-  if (const auto it = cache.find(key); it != cache.end()) return it->second;
-  if (cache.size() >= kMaxTables) cache.clear();
-  return cache[key] = build_table(nu, bonded, sigma_max, spacing);
-}
-
-}  // namespace
 
 ExactLayerKernel::ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions options)
     : layer_(layer), options_(options) {
@@ -161,33 +52,20 @@ ExactLayerKernel::ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions 
   options_.Validate();
   detail::require_positive("ExactLayerKernel", "h", layer.h);
   E_star_ = layerjkr::effective_modulus(layer.E, layer.nu);  // validates E, nu in (-1, 0.5]
-  table_ = shared_table(layer.nu, layer.base == Base::bonded, 2.0 * options_.max_a_over_h + 1.0,
-                        options_.table_spacing);
+  kernel_ = detail::shared_layer_kernel(layer.nu, layer.base == Base::bonded);
 }
 
 ExactLayerKernel::~ExactLayerKernel() = default;
 
 double ExactLayerKernel::kernel(double sigma) const {
-  sigma = std::abs(sigma);
-  if (!(sigma <= table_->sigma_max))
-    throw DomainError("ExactLayerKernel::kernel", "sigma", sigma,
-                      "[0, " + format_double(table_->sigma_max) +
-                          "]; raise ExactLayerOptions::max_a_over_h");
-  const double b2 = kBeta * kBeta, s2 = sigma * sigma, d = b2 + s2;
-  const double model = kBeta / d + table_->gamma * (b2 - s2) / (d * d);
-  return model + gsl_spline_eval(table_->spline.get(), sigma, nullptr);
+  if (!std::isfinite(sigma)) throw DomainError("ExactLayerKernel::kernel", "sigma", sigma, "finite");
+  return kernel_->value(sigma);
 }
 
 double ExactLayerKernel::kernel_derivative(double sigma) const {
-  const double x = std::abs(sigma);
-  if (!(x <= table_->sigma_max))
-    throw DomainError("ExactLayerKernel::kernel_derivative", "sigma", sigma,
-                      "[0, " + format_double(table_->sigma_max) + "]");
-  const double b2 = kBeta * kBeta, s2 = x * x, d = b2 + s2;
-  const double model = -2.0 * kBeta * x / (d * d) +
-                       table_->gamma * (-2.0 * x / (d * d) - 4.0 * x * (b2 - s2) / (d * d * d));
-  const double value = model + gsl_spline_eval_deriv(table_->spline.get(), x, nullptr);
-  return sigma < 0.0 ? -value : value;
+  if (!std::isfinite(sigma))
+    throw DomainError("ExactLayerKernel::kernel_derivative", "sigma", sigma, "finite");
+  return kernel_->derivative(sigma);
 }
 
 namespace {
@@ -276,21 +154,8 @@ Eigen::VectorXd edge_row(const ExactLayerKernel& k, const Grid& g, double rho, E
   return row;
 }
 
-// What a state needs from the two solutions phi0 (flat punch) and phi_f (profile):
-// their integrals over [0, rho] [h] and their values at the edge.
-struct Moments {
-  double int0 = 0.0, intf = 0.0, end0 = 0.0, endf = 0.0;
-};
-
-HertzState state_from(const Moments& mo, double a, double h, double E_star) {
-  HertzState s;
-  s.a = a;
-  s.delta_H = mo.endf / mo.end0;
-  s.S = 2.0 * E_star * h * mo.int0;
-  s.P_H = 2.0 * E_star * h * (s.delta_H * mo.int0 - mo.intf);
-  s.dS_da = 2.0 * E_star * mo.end0 * mo.end0;  // S' = 2 E* phi0(a)^2: no differentiation
-  return s;
-}
+using Moments = detail::ExactMoments;
+using detail::exact_state_from;
 
 // One radius: factor B (Cholesky) on `panels` panels of [0, rho] and solve both columns.
 struct Solution {
@@ -322,6 +187,18 @@ Solution nystrom_solve(const ExactLayerKernel& k, const Profile& profile, double
   out.phi = g.sqrt_w.cwiseInverse().asDiagonal() * psi;
   return out;
 }
+
+int panel_count(const ExactLayerOptions& o, double rho) {
+  return std::max(o.min_panels, static_cast<int>(std::ceil(rho / o.panel_width)));
+}
+
+}  // namespace
+
+detail::ExactMoments detail::exact_moments(const ExactLayerKernel& k, const Profile& profile, double rho) {
+  return nystrom_solve(k, profile, rho, panel_count(k.options(), rho), k.options().points_per_panel).moments;
+}
+
+namespace {
 
 // Every radius rho_j = j b (j = 1..panels) from one factorisation on [0, rho_max]: the
 // matrix for j panels is the leading block of the full one, so with B = L L^T
@@ -371,10 +248,6 @@ double checked_a_over_h(const ExactLayerKernel& k, const char* function, const P
   return rho;
 }
 
-int panel_count(const ExactLayerOptions& o, double rho) {
-  return std::max(o.min_panels, static_cast<int>(std::ceil(rho / o.panel_width)));
-}
-
 // A sweep over count steps of [0, rho] uses a whole number of panels per step, each at most
 // panel_width h wide, and at least min_panels in all.
 int sweep_panels_per_step(const ExactLayerOptions& o, double rho, int count) {
@@ -401,7 +274,7 @@ bool sweep_is_cheaper(const ExactLayerOptions& o, double rho, int count) {
 
 HertzState ExactLayerKernel::state(const Profile& profile, double a) const {
   const double rho = checked_a_over_h(*this, "exact_layer", profile, a);
-  const HertzState s = state_from(
+  const HertzState s = exact_state_from(
       nystrom_solve(*this, profile, rho, panel_count(options_, rho), options_.points_per_panel).moments, a,
       layer_.h, E_star_);
   if (!std::isfinite(s.P_H) || !std::isfinite(s.delta_H))
@@ -416,9 +289,10 @@ ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const 
   const int panels = panel_count(options_, rho), p = options_.points_per_panel;
   out.unknowns = panels * p;
   out.P_H_error = out.delta_H_error = std::numeric_limits<double>::quiet_NaN();
-  if (options_.estimate_error) {  // the same equation on half the panels
+  if (options_.estimate_error) {  // the same panels with 3/4 of the nodes
+    const int coarse = std::max(2, 3 * p / 4);
     const HertzState c =
-        state_from(nystrom_solve(*this, profile, rho, std::max(1, panels / 2), p).moments, a, layer_.h, E_star_);
+        exact_state_from(nystrom_solve(*this, profile, rho, panels, coarse).moments, a, layer_.h, E_star_);
     out.P_H_error = std::abs(out.state.P_H - c.P_H) / std::abs(out.state.P_H);
     out.delta_H_error = std::abs(out.state.delta_H - c.delta_H) / std::abs(out.state.delta_H);
   }
@@ -434,7 +308,7 @@ std::vector<HertzState> ExactLayerKernel::sweep(const Profile& profile, double a
   std::vector<HertzState> out;
   for (int j = 1; j <= count; ++j) {
     const double a = a_max * j / count;
-    HertzState s = state_from(all[static_cast<std::size_t>(j * per_step - 1)], a, layer_.h, E_star_);
+    HertzState s = exact_state_from(all[static_cast<std::size_t>(j * per_step - 1)], a, layer_.h, E_star_);
     if (!std::isfinite(s.P_H) || !std::isfinite(s.delta_H))
       throw NumericalError("layerjkr::exact_layer: the Nystrom sweep is not finite at a = " + format_double(a));
     out.push_back(s);
@@ -510,14 +384,32 @@ bool evenly_spaced(const std::vector<double>& radii) {
 class ExactLayerModel final : public ContactModel {
  public:
   ExactLayerModel(ProfilePtr p, const ElasticLayer& layer, ExactLayerOptions o)
-      : ContactModel(std::move(p)), kernel_(layer, o) {}
+      : ContactModel(std::move(p)), kernel_(layer, o) {
+    if (o.tabulate_power_laws)
+      if (const auto form = profile().power_law_form()) {
+        form_ = *form;
+        table_ = detail::shared_power_law_table(layer.nu, layer.base, form->d, o);
+      }
+  }
   // A ContactModel returns no error estimate, so none is computed (solve() has it).
-  HertzState state(double a) const override { return kernel_.state(profile(), a); }
-  // An evenly spaced grid a_max j / n (as `layerjkr curve --a-max A --points N` asks for)
+  HertzState state(double a) const override {
+    if (table_) {
+      const double h = kernel_.layer().h, rho = checked_a_over_h(kernel_, "exact_layer", profile(), a);
+      if (table_->covers(rho)) {  // the unit profile's moments, scaled to B r^d on this layer
+        detail::ExactMoments m = table_->at(rho);
+        const double scale = form_.B * std::pow(h, form_.d);
+        m.intf *= scale;
+        m.endf *= scale;
+        return exact_state_from(m, a, h, kernel_.effective_modulus());
+      }
+    }
+    return kernel_.state(profile(), a);
+  }
+  // A tabulated power law is cheapest radius by radius. Otherwise an evenly spaced grid a_max j / n (as `layerjkr curve --a-max A --points N` asks for)
   // comes from one factorisation; any other set of radii is solved radius by radius.
   std::vector<HertzState> states(const std::vector<double>& radii) const override {
     const std::size_t n = radii.size();
-    if (n < 2 || !evenly_spaced(radii) || !(radii.back() <= max_radius()) ||
+    if (table_ || n < 2 || !evenly_spaced(radii) || !(radii.back() <= max_radius()) ||
         !sweep_is_cheaper(kernel_.options(), radii.back() / kernel_.layer().h, static_cast<int>(n)))
       return ContactModel::states(radii);
     std::vector<HertzState> out = kernel_.sweep(profile(), radii.back(), static_cast<int>(n));
@@ -532,6 +424,8 @@ class ExactLayerModel final : public ContactModel {
 
  private:
   ExactLayerKernel kernel_;
+  PowerLawForm form_;
+  std::shared_ptr<const detail::ExactPowerLawTable> table_;  // null: solve every radius
 };
 
 class EdgeCorrected final : public ContactModel {

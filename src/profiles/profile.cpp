@@ -51,6 +51,7 @@ class Paraboloid final : public Profile {
   }
   double length_scale() const override { return R_; }
   bool is_paraboloid() const override { return true; }
+  std::optional<PowerLawForm> power_law_form() const override { return PowerLawForm{0.5 / R_, 2.0}; }
   std::string describe() const override { return "paraboloid(R=" + format_double(R_) + ")"; }
 
  private:
@@ -128,6 +129,7 @@ class Cone final : public Profile {
     return {cot_ * kHalfPi, cot_ * kHalfPi / 2.0};
   }
   double length_scale() const override { return 1e-6; }  // scale-free: any seed works
+  std::optional<PowerLawForm> power_law_form() const override { return PowerLawForm{cot_, 1.0}; }
   std::string describe() const override {
     return "cone(semi_angle_rad=" + format_double(alpha_) + ")";
   }
@@ -163,6 +165,7 @@ class PowerLaw final : public Profile {
     return d_ > 1.0 ? std::pow(B_, -1.0 / (d_ - 1.0)) : 1e-6;
   }
   bool is_paraboloid() const override { return d_ == 2.0; }
+  std::optional<PowerLawForm> power_law_form() const override { return PowerLawForm{B_, d_}; }
   std::string describe() const override {
     return "power_law(B=" + format_double(B_) + ", d=" + format_double(d_) + ")";
   }

@@ -20,7 +20,6 @@ ExactLayerOptions fine_options(double max_a_over_h) {
   o.max_a_over_h = max_a_over_h;
   o.points_per_panel = 12;
   o.panel_width = 0.25;
-  o.table_spacing = 0.0125;
   return o;
 }
 ExactLayerOptions range(double max_a_over_h) {
@@ -68,7 +67,6 @@ TEST_CASE("exact layer stays within 1e-6 at a/h = 100, the end of its range", "[
     normal.estimate_error = finer.estimate_error = false;
     finer.points_per_panel = 10;
     finer.panel_width = 0.4;
-    finer.table_spacing = 0.0125;
     const HertzState a = ExactLayerKernel(layer, normal).solve(*p, 100.0).state;
     const HertzState b = ExactLayerKernel(layer, finer).solve(*p, 100.0).state;
     INFO("nu=" << nu);

@@ -1,0 +1,125 @@
+// Per-(nu, base, d) tables of the exact layer's power-law moments in ln(a/h).
+#include "models/exact_power_law_table.hpp"
+
+#include <gsl/gsl_chebyshev.h>
+
+#include <algorithm>
+#include <array>
+#include <iterator>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <map>
+#include <mutex>
+#include <tuple>
+#include <vector>
+
+#include <boost/math/constants/constants.hpp>
+
+#include "layerjkr/error.hpp"
+
+namespace layerjkr::detail {
+namespace {
+
+constexpr int kOrder = 16;  // Chebyshev terms a piece (17 solves): their decay reaches the
+                            // solver's 1e-13 noise by then (measured)
+// Pieces in ln(a/h) - ln 0.01, of unit width (pieces twice as wide lose four digits below
+// a/h = 1.5, measured). The last ends at a/h = 220.
+constexpr double kBreaks[] = {0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0};
+constexpr int kPieces = static_cast<int>(std::size(kBreaks)) - 1;
+
+struct ChebFree {
+  void operator()(gsl_cheb_series* s) const { gsl_cheb_free(s); }
+};
+using Cheb = std::unique_ptr<gsl_cheb_series, ChebFree>;
+
+double x_min() { return std::log(ExactPowerLawTable::kMinRho); }
+
+}  // namespace
+
+struct ExactPowerLawTable::Pieces {
+  struct Piece {
+    std::array<Cheb, 4> series;  // int0/rho, end0, intf/(C rho^(d+1)), endf/(C rho^d)
+  };
+  std::array<std::once_flag, kPieces> built;
+  std::array<Piece, kPieces> piece;
+};
+
+double ExactPowerLawTable::max_rho() { return std::exp(x_min() + kBreaks[kPieces]); }
+
+ExactPowerLawTable::ExactPowerLawTable(double nu, Base base, double d, const ExactLayerOptions& options)
+    : d_(d),
+      unit_profile_(make_power_law(1.0, d)),
+      unit_kernel_(std::make_unique<ExactLayerKernel>(ElasticLayer{1.0, nu, 1.0, base}, options)),
+      pieces_(std::make_unique<Pieces>()) {
+  C_ = unit_profile_->sneddon(1.0).I0;
+}
+
+ExactPowerLawTable::~ExactPowerLawTable() = default;
+
+// The solves happen here, in C++, at the points where gsl_cheb_init will sample (its
+// documented Chebyshev points); the sampler it calls only looks them up, so no exception
+// crosses GSL's C frames.
+void ExactPowerLawTable::build_piece(int k) const {
+  const double lo = x_min() + kBreaks[k], hi = x_min() + kBreaks[k + 1];
+  std::vector<std::pair<double, std::array<double, 4>>> solved;
+  for (int j = 0; j <= kOrder; ++j) {
+    const double y = std::cos(boost::math::constants::pi<double>() * (j + 0.5) / (kOrder + 1.0));
+    const double xs = y * 0.5 * (hi - lo) + 0.5 * (hi + lo), r = std::exp(xs);
+    const ExactMoments m = exact_moments(*unit_kernel_, *unit_profile_, r);
+    solved.push_back({xs, {m.int0 / r, m.end0, m.intf / (C_ * std::pow(r, d_ + 1.0)),
+                           m.endf / (C_ * std::pow(r, d_))}});
+  }
+  struct Sampler {
+    const std::vector<std::pair<double, std::array<double, 4>>>* solved;
+    std::size_t which;
+    static double at(double xs, void* p) {
+      const auto* s = static_cast<const Sampler*>(p);
+      for (const auto& [x, v] : *s->solved)
+        if (std::abs(x - xs) <= 1e-12 * (1.0 + std::abs(x))) return v[s->which];
+      return std::numeric_limits<double>::quiet_NaN();  // checked below
+    }
+  };
+  Pieces::Piece& piece = pieces_->piece[static_cast<std::size_t>(k)];
+  for (std::size_t w = 0; w < 4; ++w) {
+    Sampler sampler{&solved, w};
+    gsl_function f{&Sampler::at, &sampler};
+    Cheb c(gsl_cheb_alloc(kOrder));
+    gsl_cheb_init(c.get(), &f, lo, hi);
+    if (!std::isfinite(gsl_cheb_eval(c.get(), 0.5 * (lo + hi))))
+      throw NumericalError("layerjkr exact layer: power-law table piece " + std::to_string(k) +
+                           " is not finite");
+    piece.series[w] = std::move(c);
+  }
+}
+
+ExactMoments ExactPowerLawTable::at(double rho) const {
+  if (!covers(rho))
+    throw DomainError("ExactPowerLawTable::at", "a/h", rho,
+                      "[" + format_double(kMinRho) + ", " + format_double(max_rho()) + "]");
+  const double x = std::log(rho);
+  const int k = std::min<int>(kPieces - 1, static_cast<int>(std::upper_bound(std::begin(kBreaks), std::end(kBreaks),
+                                                                            x - x_min()) - std::begin(kBreaks)) - 1);
+  const Pieces::Piece& piece = pieces_->piece[static_cast<std::size_t>(k)];
+  std::call_once(pieces_->built[static_cast<std::size_t>(k)], [&] { build_piece(k); });
+  const double n0 = gsl_cheb_eval(piece.series[0].get(), x), e0 = gsl_cheb_eval(piece.series[1].get(), x);
+  const double nf = gsl_cheb_eval(piece.series[2].get(), x), ef = gsl_cheb_eval(piece.series[3].get(), x);
+  const double rd = std::pow(rho, d_);
+  return {n0 * rho, nf * C_ * rd * rho, e0, ef * C_ * rd};
+}
+
+std::shared_ptr<const ExactPowerLawTable> shared_power_law_table(double nu, Base base, double d,
+                                                                 const ExactLayerOptions& o) {
+  using Key = std::tuple<double, bool, double, int, double, int>;
+  static std::mutex mutex;
+  static std::map<Key, std::shared_ptr<const ExactPowerLawTable>> cache;
+  constexpr std::size_t kMaxTables = 64;
+  const std::lock_guard<std::mutex> lock(mutex);
+  const Key key{nu, base == Base::bonded, d, o.points_per_panel, o.panel_width, o.min_panels};
+  if (const auto it = cache.find(key); it != cache.end()) return it->second;
+  if (cache.size() >= kMaxTables) cache.clear();
+  return cache[key] = std::make_shared<const ExactPowerLawTable>(nu, base, d, o);
+}
+
+}  // namespace layerjkr::detail

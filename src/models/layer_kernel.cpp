@@ -1,0 +1,261 @@
+// The exact layer's kernel: Chebyshev tables near the origin, an asymptotic series beyond.
+#include "models/layer_kernel.hpp"
+
+#include <gsl/gsl_chebyshev.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+
+#include <boost/math/quadrature/exp_sinh.hpp>
+#include <boost/math/quadrature/ooura_fourier_integrals.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <map>
+#include <mutex>
+#include <string>
+#include <utility>
+
+#include "core/gsl_support.hpp"
+#include "layerjkr/error.hpp"
+
+namespace layerjkr::detail {
+namespace {
+
+constexpr double kBeta = 2.0;       // decay rate of the subtracted model e^{-beta u}(1 + gamma u)
+constexpr int kChebOrder = 20;      // terms a piece
+constexpr int kTailTerms = 24;      // asymptotic terms beyond kNear
+// Pieces of the Chebyshev table. The remainder's transform is singular only on the imaginary
+// axis (at +-2i, +-4i, ...: q(u) is a series in e^{-2u} times polynomials for large u), so a
+// piece may be as wide as its distance from the origin: 21 points a piece reach rounding.
+constexpr double kBreaks[] = {0, 1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64};
+
+// q(u) = 1 - L(u), written with E = exp(-2u): no overflow and no cancellation.
+double one_minus_L(double u, double kappa, bool bonded) {
+  const double E = std::exp(-2.0 * u);
+  if (bonded) {
+    const double s = 1.0 + 2.0 * u;
+    return E * (2.0 * kappa * E + s * s + kappa * kappa) /
+           (kappa * (1.0 + E * E) + (4.0 * u * u + 1.0 + kappa * kappa) * E);
+  }
+  if (u == 0.0) return 1.0;  // 0/0 below; quadrature rules with end nodes evaluate it
+  const double one_minus_E = -std::expm1(-2.0 * u);
+  return 2.0 * E * (one_minus_E + 2.0 * u) / (-std::expm1(-4.0 * u) + 4.0 * u * E);
+}
+
+// Truncated power series in u: coefficient k of u^k.
+using Series = std::vector<double>;
+
+Series exp_series(double c, int n) {  // e^{c u}
+  Series s(static_cast<std::size_t>(n));
+  double term = 1.0;
+  for (int k = 0; k < n; ++k) {
+    s[static_cast<std::size_t>(k)] = term;
+    term *= c / (k + 1);
+  }
+  return s;
+}
+
+Series operator*(const Series& a, const Series& b) {
+  Series c(a.size(), 0.0);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; i + j < a.size(); ++j) c[i + j] += a[i] * b[j];
+  return c;
+}
+
+Series operator+(Series a, const Series& b) {
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] += b[i];
+  return a;
+}
+
+Series operator*(double c, Series a) {
+  for (double& v : a) v *= c;
+  return a;
+}
+
+Series operator/(const Series& a, const Series& b) {  // b[0] != 0
+  Series c(a.size(), 0.0);
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    double v = a[k];
+    for (std::size_t j = 1; j <= k; ++j) v -= b[j] * c[k - j];
+    c[k] = v / b[0];
+  }
+  return c;
+}
+
+Series polynomial(std::initializer_list<double> coefficients, int n) {
+  Series s(static_cast<std::size_t>(n), 0.0);
+  std::size_t k = 0;
+  for (double c : coefficients) s[k++] = c;
+  return s;
+}
+
+// (1 - e^{c u}) / u, exactly: the constant terms cancel before the division.
+Series one_minus_exp_over_u(double c, int n) {
+  const Series e = exp_series(c, n + 1);
+  Series s(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) s[static_cast<std::size_t>(k)] = -e[static_cast<std::size_t>(k + 1)];
+  return s;
+}
+
+struct Remainder {
+  double kappa, gamma;
+  bool bonded;
+};
+
+double remainder(double u, void* p) {
+  const auto* r = static_cast<const Remainder*>(p);
+  return one_minus_L(u, r->kappa, r->bonded) - std::exp(-kBeta * u) * (1.0 + r->gamma * u);
+}
+
+// int_0^inf fn(u) cos(sigma u) du for fn decaying like u^2 e^{-2u}: the tail beyond
+// u = kCutoff is below 1e-30, so GSL's QAWO on [0, kCutoff] (QAG at sigma = 0) is used.
+double cosine_transform(gsl_function fn, double sigma) {
+  constexpr std::size_t kLimit = 4000;
+  constexpr double kCutoff = 40.0;
+  struct Workspace {
+    gsl_integration_workspace* ws = gsl_integration_workspace_alloc(kLimit);
+    ~Workspace() { gsl_integration_workspace_free(ws); }
+  } w;
+  double result = 0.0, abserr = 0.0;
+  int status = GSL_SUCCESS;
+  sigma = std::abs(sigma);
+  if (sigma == 0.0) {
+    status = gsl_integration_qag(&fn, 0.0, kCutoff, 1e-15, 1e-13, kLimit, GSL_INTEG_GAUSS41, w.ws,
+                                 &result, &abserr);
+  } else {
+    gsl_integration_qawo_table* wf =
+        gsl_integration_qawo_table_alloc(sigma, kCutoff, GSL_INTEG_COSINE, 60);
+    status = gsl_integration_qawo(&fn, 0.0, 1e-15, 1e-13, kLimit, w.ws, wf, &result, &abserr);
+    gsl_integration_qawo_table_free(wf);
+  }
+  // The integral is O(1) and asked for to 1e-15, so QAWO may report that rounding stops it;
+  // its error estimate says whether the result is still good enough to use.
+  if (status == GSL_EROUND && abserr < 1e-13) status = GSL_SUCCESS;
+  if (status != GSL_SUCCESS)
+    throw NumericalError(std::string("layerjkr exact layer: kernel transform failed at sigma = ") +
+                         format_double(sigma) + " (" + gsl_strerror(status) + ")");
+  return result;
+}
+
+double slope_at_zero(double kappa, bool bonded) {  // q'(0) = -L'(0)
+  return bonded ? -4.0 * (kappa - 1.0) / ((kappa + 1.0) * (kappa + 1.0)) : -0.5;
+}
+
+struct ChebFree {
+  void operator()(gsl_cheb_series* s) const { gsl_cheb_free(s); }
+};
+using Cheb = std::unique_ptr<gsl_cheb_series, ChebFree>;
+
+}  // namespace
+
+struct LayerKernelFunction::Pieces {
+  std::vector<Cheb> value, slope;  // on [kBreaks[i], kBreaks[i + 1]]
+  static std::size_t index(double x) {  // x in [0, kNear)
+    return static_cast<std::size_t>(std::upper_bound(std::begin(kBreaks), std::end(kBreaks), x) -
+                                    std::begin(kBreaks)) - 1;
+  }
+};
+
+std::vector<double> LayerKernelFunction::taylor_one_minus_L(double nu, bool bonded, int n) {
+  const double kappa = 3.0 - 4.0 * nu;
+  const Series E = exp_series(-2.0, n);
+  if (bonded) {
+    const Series s2 = polynomial({1.0, 4.0, 4.0}, n);  // (1 + 2u)^2
+    const Series num = E * ((2.0 * kappa) * E + s2 + polynomial({kappa * kappa}, n));
+    const Series den = kappa * (E * E + polynomial({1.0}, n)) +
+                       polynomial({1.0 + kappa * kappa, 0.0, 4.0}, n) * E;
+    return num / den;
+  }
+  // q = 2E (1 - E + 2u) / (1 - E^2 + 4u E): numerator and denominator divided by u.
+  const Series num = 2.0 * (E * (one_minus_exp_over_u(-2.0, n) + polynomial({2.0}, n)));
+  const Series den = one_minus_exp_over_u(-4.0, n) + 4.0 * E;
+  return num / den;
+}
+
+double LayerKernelFunction::direct(double nu, bool bonded, double sigma) {
+  // Boost's Ooura double-exponential Fourier rule: independent of the GSL table it checks.
+  const double kappa = 3.0 - 4.0 * nu;
+  auto q = [&](double u) { return one_minus_L(u, kappa, bonded); };
+  sigma = std::abs(sigma);
+  if (sigma == 0.0) return boost::math::quadrature::exp_sinh<double>().integrate(q, 1e-15);
+  static thread_local boost::math::quadrature::ooura_fourier_cos<double> rule(1e-15);
+  return rule.integrate(q, sigma).first;
+}
+
+LayerKernelFunction::LayerKernelFunction(double nu, bool bonded) : pieces_(std::make_unique<Pieces>()) {
+  silence_gsl_errors();
+  const double kappa = 3.0 - 4.0 * nu;
+  gamma_ = slope_at_zero(kappa, bonded) + kBeta;
+
+  const std::vector<double> q = taylor_one_minus_L(nu, bonded, 2 * kTailTerms + 1);
+  double factorial = 1.0;  // (2k+1)!
+  for (int k = 0; k < kTailTerms; ++k) {
+    factorial *= (k == 0) ? 1.0 : (2.0 * k) * (2.0 * k + 1.0);
+    const double sign = (k % 2 == 0) ? -1.0 : 1.0;
+    tail_.push_back(sign * factorial * q[static_cast<std::size_t>(2 * k + 1)]);
+  }
+
+  Remainder rem{kappa, gamma_, bonded};
+  struct Transform {
+    Remainder* rem;
+    static double at(double sigma, void* p) {
+      return cosine_transform(gsl_function{&remainder, static_cast<Transform*>(p)->rem}, sigma);
+    }
+  } transform{&rem};
+  gsl_function f{&Transform::at, &transform};
+  for (std::size_t i = 0; i + 1 < std::size(kBreaks); ++i) {
+    Cheb c(gsl_cheb_alloc(kChebOrder));
+    gsl_cheb_init(c.get(), &f, kBreaks[i], kBreaks[i + 1]);
+    Cheb d(gsl_cheb_alloc(kChebOrder));
+    gsl_cheb_calc_deriv(d.get(), c.get());
+    pieces_->value.push_back(std::move(c));
+    pieces_->slope.push_back(std::move(d));
+  }
+}
+
+LayerKernelFunction::~LayerKernelFunction() = default;
+
+double LayerKernelFunction::value(double sigma) const {
+  const double x = std::abs(sigma);
+  if (x < kNear) {
+    const double b2 = kBeta * kBeta, s2 = x * x, d = b2 + s2;
+    const double model = kBeta / d + gamma_ * (b2 - s2) / (d * d);
+    return model + gsl_cheb_eval(pieces_->value[Pieces::index(x)].get(), x);
+  }
+  const double y = 1.0 / (x * x);
+  double sum = 0.0;
+  for (auto c = tail_.rbegin(); c != tail_.rend(); ++c) sum = sum * y + *c;
+  return sum * y;
+}
+
+double LayerKernelFunction::derivative(double sigma) const {
+  const double x = std::abs(sigma);
+  double value = 0.0;
+  if (x < kNear) {
+    const double b2 = kBeta * kBeta, s2 = x * x, d = b2 + s2;
+    const double model = -2.0 * kBeta * x / (d * d) +
+                         gamma_ * (-2.0 * x / (d * d) - 4.0 * x * (b2 - s2) / (d * d * d));
+    value = model + gsl_cheb_eval(pieces_->slope[Pieces::index(x)].get(), x);
+  } else {
+    // d/dx sum c_k x^-(2k+2) = -sum (2k+2) c_k x^-(2k+3)
+    const double y = 1.0 / (x * x);
+    double sum = 0.0;
+    for (int k = kTailTerms - 1; k >= 0; --k) sum = sum * y - (2.0 * k + 2.0) * tail_[static_cast<std::size_t>(k)];
+    value = sum * y / x;
+  }
+  return sigma < 0.0 ? -value : value;
+}
+
+std::shared_ptr<const LayerKernelFunction> shared_layer_kernel(double nu, bool bonded) {
+  static std::mutex mutex;
+  static std::map<std::pair<double, bool>, std::shared_ptr<const LayerKernelFunction>> cache;
+  constexpr std::size_t kMaxKernels = 64;  // ~50 kB each; a session rarely needs more layers
+  const std::lock_guard<std::mutex> lock(mutex);  // concurrent requests wait, not rebuild
+  const std::pair<double, bool> key{nu, bonded};
+  if (const auto it = cache.find(key); it != cache.end()) return it->second;
+  if (cache.size() >= kMaxKernels) cache.clear();
+  return cache[key] = std::make_shared<const LayerKernelFunction>(nu, bonded);
+}
+
+}  // namespace layerjkr::detail

@@ -1,0 +1,69 @@
+// The exact layer's per-(nu, base, d) power-law tables against direct solves: the tabulated
+// model must be indistinguishable from solving each radius (oracle: ExactLayerKernel::state).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <thread>
+#include <vector>
+
+#include "layerjkr/exact_layer.hpp"
+#include "models/exact_power_law_table.hpp"
+#include "support/test_support.hpp"
+
+using namespace layerjkr;
+using test::rel_err;
+
+namespace {
+double worst_rel_err(const HertzState& s, const HertzState& r) {
+  return std::max({rel_err(s.P_H, r.P_H), rel_err(s.delta_H, r.delta_H), rel_err(s.S, r.S),
+                   rel_err(s.dS_da, r.dS_da)});
+}
+}  // namespace
+
+TEST_CASE("tabulated power laws equal direct solves from a/h = 0.005 to 60", "[exact][table]") {
+  struct Case {
+    ElasticLayer layer;
+    ProfilePtr profile;
+  };
+  const Case cases[] = {{{2.0, 0.49, 1.5, Base::bonded}, make_paraboloid(300.0)},
+                        {{2.0, 0.5, 1.5, Base::bonded}, make_cone(1.2)},
+                        {{2.0, 0.3, 1.5, Base::frictionless}, make_power_law(0.1, 1.5)},
+                        {{2.0, 0.0, 1.5, Base::bonded}, make_power_law(0.02, 3.0)}};
+  for (const Case& c : cases) {
+    ExactLayerOptions o;
+    const auto model = make_exact_layer(c.profile, c.layer, o);
+    const ExactLayerKernel direct(c.layer, o);
+    double worst = 0.0;
+    for (double rho = 0.005; rho < 60.0; rho *= 1.37) {
+      const double a = rho * c.layer.h;
+      worst = std::max(worst, worst_rel_err(model->state(a), direct.state(*c.profile, a)));
+    }
+    INFO(c.profile->describe() << " nu = " << c.layer.nu);
+    CHECK(worst < 1e-9);
+  }
+}
+
+TEST_CASE("power-law tables: the first query of a piece is safe from several threads", "[exact][table]") {
+  ExactLayerOptions o;
+  o.points_per_panel = 12;  // a discretisation no other test uses: the table is new here
+  const auto table = detail::shared_power_law_table(0.45, Base::bonded, 2.0, o);
+  std::vector<detail::ExactMoments> got(4);
+  std::vector<std::thread> threads;
+  for (std::size_t i = 0; i < got.size(); ++i) threads.emplace_back([&, i] { got[i] = table->at(3.3); });
+  for (std::thread& t : threads) t.join();
+  for (const detail::ExactMoments& m : got) {
+    CHECK(m.int0 == got[0].int0);
+    CHECK(m.endf == got[0].endf);
+  }
+  CHECK(detail::shared_power_law_table(0.45, Base::bonded, 2.0, o) == table);
+  CHECK_THROWS_WITH(table->at(0.001), Catch::Contains("a/h = 0.001"));
+}
+
+TEST_CASE("profiles say when they are power laws", "[exact][table]") {
+  CHECK(make_paraboloid(2.0)->power_law_form()->B == 0.25);
+  CHECK(make_paraboloid(2.0)->power_law_form()->d == 2.0);
+  CHECK(make_cone(0.5)->power_law_form()->B == Approx(1.0 / std::tan(0.5)).epsilon(1e-15));
+  CHECK(make_power_law(3.0, 1.5)->power_law_form()->d == 1.5);
+  CHECK_FALSE(make_sphere(1.0)->power_law_form());
+  CHECK_FALSE(make_table_profile({0.0, 1.0, 2.0}, {0.0, 0.5, 2.0})->power_law_form());
+}
