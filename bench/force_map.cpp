@@ -7,19 +7,29 @@
 // +-30 % across the map), each pixel a base curve shifted by its own contact point and
 // given fresh 200 pN noise, so no two pixels are equal. Generation is not timed.
 //
-// Run: build/bin/force_map [side = 128]
+// With the argument `exact` the same map is simulated and fitted with the exact layer on a
+// nearly incompressible film (nu = 0.49, the case users measure), whose states come from the
+// shared per-(nu, base, d) table.
+//
+// Run: build/bin/force_map [side = 128] [two_term | exact]
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
+#include <string>
 
 #include "layerjkr/layerjkr.hpp"
 
 int main(int argc, char** argv) {
   using namespace layerjkr;
   const int side = argc > 1 ? std::atoi(argv[1]) : 128;
-  if (side < 1) return 2;
-  const Scene base = load_scene(LAYERJKR_SOURCE_DIR "/data/scenes/hydrogel_film_two_term.json");
+  const std::string model = argc > 2 ? argv[2] : "two_term";
+  if (side < 1 || (model != "two_term" && model != "exact")) return 2;
+  Scene base = load_scene(LAYERJKR_SOURCE_DIR "/data/scenes/hydrogel_film_two_term.json");
+  if (model == "exact") {
+    base.model = SceneModel::exact;
+    base.medium.nu = 0.49;
+  }
   std::vector<CurveData> templates;
   for (int k = 0; k < 16; ++k) {
     Scene s = base;
@@ -46,8 +56,8 @@ int main(int argc, char** argv) {
   FitOptions o;
   o.free = {FitParameter::E, FitParameter::w, FitParameter::delta0, FitParameter::P0};
   o.branch = Branch::all;
-  std::printf("| curves | samples each | threads | wall time [s] | per curve [ms] | failed |\n");
-  std::printf("|---|---|---|---|---|---|\n");
+  std::printf("| model | curves | samples each | threads | wall time [s] | per curve [ms] | failed |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
   for (int jobs : {1, 2}) {
     BatchOptions b;
     b.jobs = jobs;
@@ -56,7 +66,7 @@ int main(int argc, char** argv) {
     const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::size_t failed = 0;
     for (const auto& it : items) failed += (it.ok && it.summary.converged) ? 0 : 1;
-    std::printf("| %zu | %zu | %d | %.2f | %.3f | %zu |\n", map.size(), map.front().size(), jobs, t,
+    std::printf("| %s | %zu | %zu | %d | %.2f | %.3f | %zu |\n", model.c_str(), map.size(), map.front().size(), jobs, t,
                 1e3 * t / static_cast<double>(map.size()), failed);
   }
   return 0;

@@ -24,9 +24,10 @@ namespace {
 
 constexpr int kOrder = 16;  // Chebyshev terms a piece (17 solves): their decay reaches the
                             // solver's 1e-13 noise by then (measured)
-// Pieces in ln(a/h) - ln 0.01, of unit width (pieces twice as wide lose four digits below
-// a/h = 1.5, measured). The last ends at a/h = 220.
-constexpr double kBreaks[] = {0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0};
+// Pieces in ln(a/h) - ln 0.01. Below a/h = 0.01 the normalised moments are constants plus
+// O(a/h) (the half-space limit), so one piece spans [1e-6, 0.01]; above, unit pieces (pieces
+// twice as wide lose four digits below a/h = 1.5, measured). The last ends at a/h = 220.
+constexpr double kBreaks[] = {-9.210340371976183, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0};
 constexpr int kPieces = static_cast<int>(std::size(kBreaks)) - 1;
 
 struct ChebFree {
@@ -34,7 +35,7 @@ struct ChebFree {
 };
 using Cheb = std::unique_ptr<gsl_cheb_series, ChebFree>;
 
-double x_min() { return std::log(ExactPowerLawTable::kMinRho); }
+double x_min() { return std::log(0.01); }  // the origin of kBreaks
 
 }  // namespace
 
@@ -47,6 +48,7 @@ struct ExactPowerLawTable::Pieces {
 };
 
 double ExactPowerLawTable::max_rho() { return std::exp(x_min() + kBreaks[kPieces]); }
+double ExactPowerLawTable::min_rho() { return std::exp(x_min() + kBreaks[0]); }
 
 ExactPowerLawTable::ExactPowerLawTable(double nu, Base base, double d, const ExactLayerOptions& options)
     : d_(d),
@@ -97,10 +99,11 @@ void ExactPowerLawTable::build_piece(int k) const {
 ExactMoments ExactPowerLawTable::at(double rho) const {
   if (!covers(rho))
     throw DomainError("ExactPowerLawTable::at", "a/h", rho,
-                      "[" + format_double(kMinRho) + ", " + format_double(max_rho()) + "]");
+                      "[" + format_double(min_rho()) + ", " + format_double(max_rho()) + "]");
   const double x = std::log(rho);
-  const int k = std::min<int>(kPieces - 1, static_cast<int>(std::upper_bound(std::begin(kBreaks), std::end(kBreaks),
-                                                                            x - x_min()) - std::begin(kBreaks)) - 1);
+  const int k = std::clamp<int>(static_cast<int>(std::upper_bound(std::begin(kBreaks), std::end(kBreaks),
+                                                                    x - x_min()) - std::begin(kBreaks)) - 1,
+                                0, kPieces - 1);
   const Pieces::Piece& piece = pieces_->piece[static_cast<std::size_t>(k)];
   std::call_once(pieces_->built[static_cast<std::size_t>(k)], [&] { build_piece(k); });
   const double n0 = gsl_cheb_eval(piece.series[0].get(), x), e0 = gsl_cheb_eval(piece.series[1].get(), x);

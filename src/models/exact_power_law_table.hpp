@@ -6,7 +6,7 @@
 // are B h^d times the unit ones. Every state of a paraboloid, cone or power law on that layer
 // (any E, h, B, radius, curve or fit step) is then four Chebyshev sums (~0.2 us).
 //
-// Representation: Chebyshev series (GSL cheb) in x = ln rho on unit pieces of x, of the
+// Representation: Chebyshev series (GSL cheb) in x = ln rho on pieces of x (unit width above a/h = 0.01), of the
 // normalised moments int0/rho, end0, intf/(C rho^(d+1)) and endf/(C rho^d) (C = I0 of r^d
 // at 1), which tend to constants as rho -> 0 and grow like powers of rho beyond 1. A piece is
 // built the first time a query falls in it (21 solves), so a scene pays only for the radii
@@ -30,9 +30,9 @@ class ExactPowerLawTable {
   ExactPowerLawTable& operator=(const ExactPowerLawTable&) = delete;
 
   /// Range of rho = a/h the table covers; outside it the caller solves directly.
-  static constexpr double kMinRho = 0.01;
-  static double max_rho();
-  bool covers(double rho) const { return rho >= kMinRho && rho <= max_rho(); }
+  static double min_rho();  ///< 1e-6
+  static double max_rho();  ///< 220
+  bool covers(double rho) const { return rho >= min_rho() && rho <= max_rho(); }
 
   /// Moments of the unit profile r^d at rho on the unit layer (h = 1). Thread-safe.
   ExactMoments at(double rho) const;

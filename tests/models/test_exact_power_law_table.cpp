@@ -20,7 +20,7 @@ double worst_rel_err(const HertzState& s, const HertzState& r) {
 }
 }  // namespace
 
-TEST_CASE("tabulated power laws equal direct solves from a/h = 0.005 to 60", "[exact][table]") {
+TEST_CASE("tabulated power laws equal direct solves from a/h = 3e-7 to 60", "[exact][table]") {
   struct Case {
     ElasticLayer layer;
     ProfilePtr profile;
@@ -34,7 +34,7 @@ TEST_CASE("tabulated power laws equal direct solves from a/h = 0.005 to 60", "[e
     const auto model = make_exact_layer(c.profile, c.layer, o);
     const ExactLayerKernel direct(c.layer, o);
     double worst = 0.0;
-    for (double rho = 0.005; rho < 60.0; rho *= 1.37) {
+    for (double rho = 3e-7; rho < 60.0; rho *= 1.37) {
       const double a = rho * c.layer.h;
       worst = std::max(worst, worst_rel_err(model->state(a), direct.state(*c.profile, a)));
     }
@@ -56,7 +56,7 @@ TEST_CASE("power-law tables: the first query of a piece is safe from several thr
     CHECK(m.endf == got[0].endf);
   }
   CHECK(detail::shared_power_law_table(0.45, Base::bonded, 2.0, o) == table);
-  CHECK_THROWS_WITH(table->at(0.001), Catch::Contains("a/h = 0.001"));
+  CHECK_THROWS_WITH(table->at(1e-7), Catch::Contains("a/h = 9.99") && Catch::Contains("valid range"));
 }
 
 TEST_CASE("profiles say when they are power laws", "[exact][table]") {
