@@ -17,7 +17,8 @@
 //   Taylor coefficients of 1 - L(u) at u = 0. Accurate to ~1e-14 absolute; built once per
 //   (nu, base) in ~16 ms and shared by every kernel.
 // * Nystrom method with composite Gauss-Legendre panels no wider than `panel_width` h,
-//   symmetrised and factored by Cholesky (Eigen LLT).
+//   symmetrised and factored by Cholesky (Eigen LLT); above `dense_max_unknowns`, solved by
+//   conjugate gradients with FFT Toeplitz/Hankel products and a two-level preconditioner.
 // * solve() computes a state twice, with p and 3p/4 nodes a panel. The difference is the returned
 //   error estimate, as quadrature::tanh_sinh does.
 #pragma once
@@ -35,12 +36,16 @@ class LayerKernelFunction;
 
 struct ExactLayerOptions {
   /// Largest contact radius the solver accepts, in units of h (> 0, <= 1000).
-  double max_a_over_h = 100.0;
+  double max_a_over_h = 1000.0;
   /// Gauss-Legendre nodes per panel (4..32). The defaults (16 nodes on 3h panels) come from
   /// the measured convergence study (docs/data/exact_layer_convergence.md).
   int points_per_panel = 16;
   /// Panel width in units of h (0 < width <= 8).
   double panel_width = 3.0;
+  /// Systems with more unknowns (panels x nodes) are solved by two-level preconditioned
+  /// conjugate gradients with FFT products instead of a dense Cholesky factor (>= 1; the
+  /// crossover measured in bench/exact_layer_scaling.cpp). Sweeps always factor.
+  int dense_max_unknowns = 500;
   /// Minimum number of panels (>= 2).
   int min_panels = 4;
   /// ContactModel "exact" with a paraboloid, cone or power law: take states from the shared

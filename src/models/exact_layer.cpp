@@ -19,6 +19,7 @@
 #include <boost/math/constants/constants.hpp>
 
 #include "core/gsl_support.hpp"
+#include "models/exact_layer_iterative.hpp"
 #include "models/exact_layer_solver.hpp"
 #include "models/exact_power_law_table.hpp"
 #include "models/layer_kernel.hpp"
@@ -44,6 +45,7 @@ void ExactLayerOptions::Validate() const {
   if (!(panel_width > 0.0 && panel_width <= 8.0))
     throw DomainError(fn, "panel_width", panel_width, "(0, 8]");
   if (min_panels < 2) throw DomainError(fn, "min_panels", min_panels, ">= 2");
+  if (dense_max_unknowns < 1) throw DomainError(fn, "dense_max_unknowns", dense_max_unknowns, ">= 1");
 }
 
 ExactLayerKernel::ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions options)
@@ -68,26 +70,18 @@ double ExactLayerKernel::kernel_derivative(double sigma) const {
   return kernel_->derivative(sigma);
 }
 
-namespace {
+using detail::Grid;
+using detail::make_grid;
 
-// Composite Gauss-Legendre grid in units of h on [0, rho]: `panels` equal panels of
-// width b = rho / panels, p nodes each; node k p + q sits at b (k + s_q).
-struct Grid {
-  int panels = 0, p = 0;
-  double b = 0.0;
-  std::vector<double> s;     // the rule's nodes on [0, 1]
-  Eigen::VectorXd t, w;      // nodes and weights [h]
-  Eigen::VectorXd sqrt_w;
-};
-
-Grid make_grid(double rho, int panels, int p) {
+Grid detail::make_grid(double rho, int panels, int p) {
   std::unique_ptr<gsl_integration_glfixed_table, GlFree> gl(
       gsl_integration_glfixed_table_alloc(static_cast<std::size_t>(p)));
   Grid g;
   g.panels = panels;
   g.p = p;
   g.b = rho / panels;
-  std::vector<double> v(static_cast<std::size_t>(p));
+  std::vector<double>& v = g.v;
+  v.resize(static_cast<std::size_t>(p));
   g.s.resize(static_cast<std::size_t>(p));
   for (int q = 0; q < p; ++q)
     gsl_integration_glfixed_point(0.0, 1.0, static_cast<std::size_t>(q), &g.s[q], &v[q], gl.get());
@@ -103,25 +97,35 @@ Grid make_grid(double rho, int panels, int p) {
   return g;
 }
 
+detail::KernelBlocks detail::kernel_blocks(const ExactLayerKernel& k, const Grid& g) {
+  const int m = g.panels, p = g.p;
+  KernelBlocks out;
+  out.toeplitz.assign(static_cast<std::size_t>(m), Eigen::MatrixXd(p, p));
+  out.hankel.assign(static_cast<std::size_t>(2 * m - 1), Eigen::MatrixXd(p, p));
+  for (int d = 0; d < m; ++d)
+    for (int i = 0; i < p; ++i)
+      for (int j = 0; j < p; ++j) out.toeplitz[d](i, j) = k.kernel(g.b * (d + g.s[i] - g.s[j]));
+  for (int e = 0; e < 2 * m - 1; ++e)
+    for (int i = 0; i < p; ++i)
+      for (int j = 0; j <= i; ++j)
+        out.hankel[e](i, j) = out.hankel[e](j, i) = k.kernel(g.b * (e + g.s[i] + g.s[j]));
+  return out;
+}
+
+namespace {
+
 // The symmetrised Nystrom matrix B = I - (1/pi) W^1/2 [Ft(t_i - t_j) + Ft(t_i + t_j)] W^1/2.
 // With equal panels the first part is block Toeplitz and the second block Hankel, so only
 // (2m-1) p^2 + m p^2 distinct kernel values are needed instead of (m p)^2. B is symmetric
 // positive definite: the kernel's symbol 1 - L(u) lies in (0, 1] for every nu <= 1/2.
 Eigen::MatrixXd symmetric_matrix(const ExactLayerKernel& k, const Grid& g) {
   const int m = g.panels, p = g.p, n = m * p;
-  std::vector<Eigen::MatrixXd> toeplitz(static_cast<std::size_t>(m), Eigen::MatrixXd(p, p));
-  std::vector<Eigen::MatrixXd> hankel(static_cast<std::size_t>(2 * m - 1), Eigen::MatrixXd(p, p));
-  for (int d = 0; d < m; ++d)
-    for (int i = 0; i < p; ++i)
-      for (int j = 0; j < p; ++j) toeplitz[d](i, j) = k.kernel(g.b * (d + g.s[i] - g.s[j]));
-  for (int e = 0; e < 2 * m - 1; ++e)
-    for (int i = 0; i < p; ++i)
-      for (int j = 0; j <= i; ++j) hankel[e](i, j) = hankel[e](j, i) = k.kernel(g.b * (e + g.s[i] + g.s[j]));
+  const detail::KernelBlocks blocks = detail::kernel_blocks(k, g);
   Eigen::MatrixXd B(n, n);
   for (int kb = 0; kb < m; ++kb)
     for (int lb = 0; lb <= kb; ++lb) {
-      const Eigen::MatrixXd& T = toeplitz[kb - lb];
-      const Eigen::MatrixXd& H = hankel[kb + lb];
+      const Eigen::MatrixXd& T = blocks.toeplitz[kb - lb];
+      const Eigen::MatrixXd& H = blocks.hankel[kb + lb];
       for (int i = 0; i < p; ++i)
         for (int j = 0; j < p; ++j) {
           const int r = kb * p + i, c = lb * p + j;
@@ -177,7 +181,10 @@ Solution nystrom_solve(const ExactLayerKernel& k, const Profile& profile, double
   Solution out;
   out.grid = make_grid(rho, panels, p);
   const Grid& g = out.grid;
-  const Eigen::MatrixXd psi = factor(k, g, rho).solve(g.sqrt_w.asDiagonal() * right_hand_sides(profile, h, g.t));
+  const Eigen::MatrixXd rhs = g.sqrt_w.asDiagonal() * right_hand_sides(profile, h, g.t);
+  const Eigen::MatrixXd psi = g.t.size() > k.options().dense_max_unknowns
+                                  ? detail::solve_iteratively(k, g, rhs).psi
+                                  : factor(k, g, rho).solve(rhs).eval();
   const Eigen::VectorXd row = edge_row(k, g, rho, psi.rows());
   Moments& mo = out.moments;
   mo.int0 = g.sqrt_w.dot(psi.col(0));
@@ -241,7 +248,8 @@ double checked_a_over_h(const ExactLayerKernel& k, const char* function, const P
                         double a) {
   profile.require_contact_radius(function, a);
   const double rho = a / k.layer().h;
-  if (!(rho <= k.options().max_a_over_h))
+  // A few ulps of slack: a = 1 mm on h = 1 um gives a/h = 1000.0000000000001.
+  if (!(rho <= k.options().max_a_over_h * (1.0 + 8.0 * std::numeric_limits<double>::epsilon())))
     throw DomainError(function, "a/h", rho,
                       "(0, " + format_double(k.options().max_a_over_h) +
                           "] (ExactLayerOptions::max_a_over_h)");

@@ -2,6 +2,10 @@
 // (exact_layer.cpp) and the per-(nu, base, d) power-law tables (exact_power_law_table.cpp).
 #pragma once
 
+#include <vector>
+
+#include <Eigen/Dense>
+
 #include "layerjkr/contact.hpp"
 #include "layerjkr/exact_layer.hpp"
 #include "layerjkr/profile.hpp"
@@ -25,6 +29,25 @@ inline HertzState exact_state_from(const ExactMoments& mo, double a, double h, d
   s.dS_da = 2.0 * E_star * mo.end0 * mo.end0;
   return s;
 }
+
+// Composite Gauss-Legendre grid in units of h on [0, rho]: `panels` equal panels of width
+// b = rho / panels, p nodes each; node k p + q sits at b (k + s_q) with weight b v_q.
+struct Grid {
+  int panels = 0, p = 0;
+  double b = 0.0;
+  std::vector<double> s, v;  // the rule's nodes and weights on [0, 1]
+  Eigen::VectorXd t, w;      // nodes and weights [h]
+  Eigen::VectorXd sqrt_w;
+};
+Grid make_grid(double rho, int panels, int p);
+
+// The distinct p x p blocks of the kernel matrix on an equal-panel grid:
+// toeplitz[d](i, j) = Ft(b (d + s_i - s_j)), d = 0..m-1 (offset -d is the transpose), and
+// hankel[e](i, j) = Ft(b (e + s_i + s_j)), e = 0..2m-2.
+struct KernelBlocks {
+  std::vector<Eigen::MatrixXd> toeplitz, hankel;
+};
+KernelBlocks kernel_blocks(const ExactLayerKernel& kernel, const Grid& grid);
 
 // One Nystrom solve at a/h = rho with the kernel's options (no range checks).
 ExactMoments exact_moments(const ExactLayerKernel& kernel, const Profile& profile, double rho);

@@ -122,7 +122,6 @@ ModelChoice choose_layer_model(ProfilePtr profile, const ElasticLayer& layer, do
   ModelSpec exact;
   exact.kind = ModelKind::exact;
   exact.layer = layer;
-  exact.exact.max_a_over_h = std::max(100.0, a_min / layer.h);
   choice.model = model_name(ModelKind::exact);
   choice.estimated_error = kExactAccuracy;
   choice.contact_model = make_contact_model(std::move(profile), exact);

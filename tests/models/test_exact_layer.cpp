@@ -283,3 +283,48 @@ TEST_CASE("exact-layer searches stay inside the solver's a/h range", "[exact][co
   CHECK(jkr.pull_off()->P < 0.0);
   CHECK_THROWS_WITH(jkr.contact_radius_at_force(1e6), Catch::Contains("a <= 0.002"));
 }
+
+TEST_CASE("exact layer: conjugate gradients agree with the dense Cholesky solve", "[exact][iterative]") {
+  // Oracle: the dense factorisation of the same Nystrom system (dense_max_unknowns forces
+  // one path or the other).
+  const auto sphere = make_sphere(1e4);
+  for (double nu : {0.0, 0.49, 0.5}) {
+    for (Base base : {Base::bonded, Base::frictionless}) {
+      ExactLayerOptions dense = range(200), iterative = range(200);
+      dense.dense_max_unknowns = 100000;
+      iterative.dense_max_unknowns = 1;
+      const ElasticLayer layer{2.0, nu, 1.0, base};
+      const ExactLayerKernel kd(layer, dense), ki(layer, iterative);
+      for (double a : {0.3, 7.0, 60.0, 150.0}) {
+        const HertzState d = kd.state(*sphere, a), i = ki.state(*sphere, a);
+        INFO("nu=" << nu << " bonded=" << (base == Base::bonded) << " a/h=" << a);
+        const double tol = nu == 0.5 ? 1e-10 : 1e-12;  // conditioning ~0.2 (a/h)^3 at nu = 0.5
+        CHECK(rel_err(i.P_H, d.P_H) < tol);
+        CHECK(rel_err(i.delta_H, d.delta_H) < tol);
+        CHECK(rel_err(i.S, d.S) < tol);
+        CHECK(rel_err(i.dS_da, d.dS_da) < tol);
+      }
+    }
+  }
+  ExactLayerOptions bad;
+  bad.dense_max_unknowns = 0;
+  CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("dense_max_unknowns = 0"));
+}
+
+TEST_CASE("exact layer at a/h = 1000 approaches the edge-corrected thin layer as O(h/a)", "[exact][iterative]") {
+  // Oracle: Winkler at a + beta h (theory.md s.6), whose residual against the exact layer
+  // falls like h/a; at a/h = 300 and 1000 the exact layer is solved by conjugate gradients.
+  const auto p = make_paraboloid(1e5);
+  ExactLayerOptions o;
+  o.tabulate_power_laws = false;
+  for (Base base : {Base::bonded, Base::frictionless}) {
+    const ElasticLayer layer{1.0, 0.3, 1.0, base};
+    const auto exact = make_exact_layer(p, layer, o), thin = make_edge_corrected(p, layer);
+    const double e300 = rel_err(exact->state(300.0).P_H, thin->state(300.0).P_H);
+    const double e1000 = rel_err(exact->state(1000.0).P_H, thin->state(1000.0).P_H);
+    INFO("bonded=" << (base == Base::bonded) << " err 300: " << e300 << " err 1000: " << e1000);
+    CHECK(e1000 < (base == Base::bonded ? 1e-5 : 1e-7));
+    CHECK(e300 / e1000 > 2.5);  // O(h/a): 10/3 in the limit
+    CHECK(e300 / e1000 < 4.5);
+  }
+}
