@@ -50,7 +50,7 @@ struct ExactLayerOptions {
   int min_panels = 4;
   /// ContactModel "exact" with a paraboloid, cone or power law: take states from the shared
   /// per-(nu, base, d) table in ln(a/h) (~0.2 us a state; each unit piece of ln(a/h) is built
-  /// on first use by 21 solves) instead of solving each radius. Covers a/h in [1e-6, 220].
+  /// on first use by 13 solves) instead of solving each radius. Covers a/h in [1e-6, 220].
   bool tabulate_power_laws = true;
   /// Solve a second time with 3/4 of the nodes per panel to estimate the error (about +45 %
   /// cost). The estimate is that of the coarser solve, so it bounds the returned error.

@@ -57,6 +57,11 @@ class ContactModel {
   /// bounded (exact layer: ExactLayerOptions::max_a_over_h * h).
   virtual double max_radius() const;
 
+  /// A typical contact radius [m], used only to seed root and minimum searches (never
+  /// changes a result): the profile's length scale, or for the exact layer the smaller of
+  /// that and h, so searches start where its states are cheap.
+  virtual double typical_radius() const;
+
   const Profile& profile() const { return *profile_; }
   const ProfilePtr& profile_ptr() const { return profile_; }
 

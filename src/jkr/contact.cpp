@@ -51,7 +51,7 @@ double JkrSolution::upper_radius() const {
 }
 
 double JkrSolution::seed_radius() const {
-  const double seed = std::min(model_->profile().length_scale(), 0.5 * upper_radius());
+  const double seed = std::min(model_->typical_radius(), 0.5 * upper_radius());
   return std::max(seed, 2.0 * model_->min_radius());
 }
 

@@ -22,12 +22,16 @@
 namespace layerjkr::detail {
 namespace {
 
-constexpr int kOrder = 16;  // Chebyshev terms a piece (17 solves): their decay reaches the
-                            // solver's 1e-13 noise by then (measured)
+constexpr int kOrder = 12;  // Chebyshev terms a piece (13 solves): 1e-10 against direct
+                            // solves (16 terms: 1e-13, a third more solves; measured)
 // Pieces in ln(a/h) - ln 0.01. Below a/h = 0.01 the normalised moments are constants plus
-// O(a/h) (the half-space limit), so one piece spans [1e-6, 0.01]; above, unit pieces (pieces
-// twice as wide lose four digits below a/h = 1.5, measured). The last ends at a/h = 220.
-constexpr double kBreaks[] = {-9.210340371976183, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0};
+// O(a/h) (the half-space limit), so two pieces span [1e-6, 1e-4] and [1e-4, 0.01] (one
+// piece there loses two digits with 13 points, measured); above, unit pieces (pieces
+// twice as wide lose four digits below a/h = 1.5, measured), and half-unit pieces beyond
+// a/h = 11, where a solve costs ~(a/h)^3 and a narrower piece spares the largest radii
+// until a query needs them. The last ends at a/h = 220.
+constexpr double kBreaks[] = {-9.210340371976183, -4.605170185988091, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0,
+                              7.5, 8.0, 8.5, 9.0, 9.5, 10.0};
 constexpr int kPieces = static_cast<int>(std::size(kBreaks)) - 1;
 
 struct ChebFree {

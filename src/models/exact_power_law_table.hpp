@@ -9,7 +9,7 @@
 // Representation: Chebyshev series (GSL cheb) in x = ln rho on pieces of x (unit width above a/h = 0.01), of the
 // normalised moments int0/rho, end0, intf/(C rho^(d+1)) and endf/(C rho^d) (C = I0 of r^d
 // at 1), which tend to constants as rho -> 0 and grow like powers of rho beyond 1. A piece is
-// built the first time a query falls in it (21 solves), so a scene pays only for the radii
+// built the first time a query falls in it (13 solves), so a scene pays only for the radii
 // it reaches. Measured against direct solves: see tests/models/test_exact_power_law_table.cpp
 // and docs/exact-layer.md.
 #pragma once

@@ -55,6 +55,8 @@ ContactModel::ContactModel(ProfilePtr profile) : profile_(std::move(profile)) {
 
 double ContactModel::max_radius() const { return profile_->max_radius(); }
 
+double ContactModel::typical_radius() const { return profile_->length_scale(); }
+
 std::vector<HertzState> ContactModel::states(const std::vector<double>& radii) const {
   std::vector<HertzState> out;
   out.reserve(radii.size());
