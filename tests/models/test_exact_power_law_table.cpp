@@ -6,6 +6,7 @@
 #include <thread>
 #include <vector>
 
+#include "layerjkr/contact.hpp"
 #include "layerjkr/exact_layer.hpp"
 #include "models/exact_power_law_table.hpp"
 #include "support/test_support.hpp"
@@ -66,4 +67,28 @@ TEST_CASE("profiles say when they are power laws", "[exact][table]") {
   CHECK(make_power_law(3.0, 1.5)->power_law_form()->d == 1.5);
   CHECK_FALSE(make_sphere(1.0)->power_law_form());
   CHECK_FALSE(make_table_profile({0.0, 1.0, 2.0}, {0.0, 0.5, 2.0})->power_law_form());
+}
+
+TEST_CASE("tabulated exact layer: pull-off equals the fine dense solver's to 1e-8", "[exact][table]") {
+  // Oracle: the fine setting (h/4 panels, 12 nodes, dense, every radius solved) that was the
+  // reference before the tables; the accuracy target is 1e-8 for the pull-off.
+  ExactLayerOptions fine;
+  fine.points_per_panel = 12;
+  fine.panel_width = 0.25;
+  fine.max_a_over_h = 60.0;
+  fine.dense_max_unknowns = 100000;
+  fine.tabulate_power_laws = false;
+  const auto p = make_paraboloid(200.0);
+  for (double nu : {0.3, 0.49, 0.5}) {
+    for (Base base : {Base::bonded, Base::frictionless}) {
+      const ElasticLayer layer{1.0, nu, 1.0, base};
+      const JkrSolution fast(make_exact_layer(p, layer), 0.05), reference(make_exact_layer(p, layer, fine), 0.05);
+      const auto a = fast.pull_off(), b = reference.pull_off();
+      REQUIRE(a);
+      REQUIRE(b);
+      INFO("nu = " << nu << " bonded = " << (base == Base::bonded) << " pull-off a/h = " << b->a);
+      CHECK(rel_err(a->P, b->P) < 1e-8);
+      CHECK(rel_err(a->delta, b->delta) < 1e-8);
+    }
+  }
 }
