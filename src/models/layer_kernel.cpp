@@ -94,7 +94,7 @@ Series polynomial(std::initializer_list<double> coefficients, int n) {
 Series one_minus_exp_over_u(double c, int n) {
   const Series e = exp_series(c, n + 1);
   Series s(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) s[static_cast<std::size_t>(k)] = -e[static_cast<std::size_t>(k + 1)];
+  for (std::size_t k = 0; k < s.size(); ++k) s[k] = -e[k + 1];
   return s;
 }
 
@@ -157,7 +157,8 @@ struct LayerKernelFunction::Pieces {
   }
 };
 
-std::vector<double> LayerKernelFunction::taylor_one_minus_L(double nu, bool bonded, int n) {
+std::vector<double> LayerKernelFunction::taylor_one_minus_L(double nu, bool bonded, int count) {
+  const int n = count;
   const double kappa = 3.0 - 4.0 * nu;
   const Series E = exp_series(-2.0, n);
   if (bonded) {
@@ -193,7 +194,7 @@ LayerKernelFunction::LayerKernelFunction(double nu, bool bonded) : pieces_(std::
   for (int k = 0; k < kTailTerms; ++k) {
     factorial *= (k == 0) ? 1.0 : (2.0 * k) * (2.0 * k + 1.0);
     const double sign = (k % 2 == 0) ? -1.0 : 1.0;
-    tail_.push_back(sign * factorial * q[static_cast<std::size_t>(2 * k + 1)]);
+    tail_.push_back(sign * factorial * q[2 * static_cast<std::size_t>(k) + 1]);
   }
 
   Remainder rem{kappa, gamma_, bonded};
