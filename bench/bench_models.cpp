@@ -46,6 +46,8 @@ STATE_BENCH(TwoTerm_Sphere, make_two_term(make_sphere(1e-2), kFilm.K, kFilm.G));
 STATE_BENCH(TwoTerm_Table, make_two_term(table(), kFilm.K, kFilm.G));
 STATE_BENCH(TwoTerm_Callable, make_two_term(callable(), kFilm.K, kFilm.G));
 STATE_BENCH(FullFoundation_Paraboloid, make_full_foundation(make_paraboloid(1e-2), kFilm.K, kFilm.G));
+STATE_BENCH(Incompressible_Paraboloid, make_incompressible_layer(make_paraboloid(1e-2), {3e6, 0.5, 1e-4, Base::bonded}));
+STATE_BENCH(Incompressible_Sphere, make_incompressible_layer(make_sphere(1e-2), {3e6, 0.5, 1e-4, Base::bonded}));
 STATE_BENCH(HalfSpace_Paraboloid, make_half_space(make_paraboloid(1e-2), 3e6, 0.3));
 STATE_BENCH(HalfSpace_Sphere, make_half_space(make_sphere(1e-2), 3e6, 0.3));
 STATE_BENCH(HalfSpace_Table, make_half_space(table(), 3e6, 0.3));

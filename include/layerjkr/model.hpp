@@ -110,6 +110,17 @@ struct ElasticLayer {
   Base base = Base::bonded;
 };
 
+/// Thin incompressible layer bonded to a rigid base (nu = 0.5 exactly): the lubrication-type
+/// leading-order law w = -(h^3 / (3 mu)) lap p with p(a) = 0 (docs/theory.md s.2). For any
+/// profile, with M(a) = int_0^a f r dr: delta_H = 2 M(a)/a^2 (no pressure gradient at the
+/// edge), P_H = (pi E / (4 h^3)) int_0^a f r (2 r^2 - a^2) dr, S = pi E a^4 / (8 h^3),
+/// S' = pi E a^3 / (2 h^3); a paraboloid gives a^2 = 4 R delta_H and
+/// P_H = pi mu a^6 / (32 R h^3) = 2 pi mu R^2 delta^3 / h^3. It lies below the exact layer by
+/// O(h/a): 8.7 h/a in P_H, 5.8 h/a in S, 2.9 h/a in delta_H (docs/models.md). Closed forms
+/// for power laws, else tanh-sinh quadrature (1e-13). E > 0 [Pa], h > 0 [m]; nu other than
+/// 0.5 or a frictionless base throw.
+ContactModelPtr make_incompressible_layer(ProfilePtr profile, const ElasticLayer& layer);
+
 /// Foundation constants of a thin layer, with warnings about validity.
 struct ThinLayerConstants {
   double K = 0.0;  ///< [N/m^3]

@@ -33,7 +33,7 @@ enum class MediumType { winkler, pasternak, filonenko_borodich, layer, half_spac
 /// winkler: winkler; half_space: half_space; layer: leading, two_term, edge_corrected,
 /// exact, automatic ("auto"); pasternak and filonenko_borodich: asymptotic, full.
 enum class SceneModel { winkler, half_space, leading, two_term, edge_corrected, exact, automatic,
-                        asymptotic, full };
+                        asymptotic, full, incompressible };
 
 /// The scene's spelling of a SceneModel ("auto" for automatic).
 const char* to_string(SceneModel model);

@@ -7,7 +7,8 @@ namespace layerjkr {
 
 std::optional<ModelKind> model_kind(const std::string& name) {
   for (ModelKind k : {ModelKind::winkler, ModelKind::two_term, ModelKind::full_foundation,
-                      ModelKind::half_space, ModelKind::edge_corrected, ModelKind::exact})
+                      ModelKind::half_space, ModelKind::edge_corrected, ModelKind::exact,
+                      ModelKind::incompressible})
     if (name == model_name(k)) return k;
   return std::nullopt;
 }
@@ -36,6 +37,9 @@ void validate(const ModelSpec& spec) {
       (void)effective_modulus(spec.layer.E, spec.layer.nu);
       spec.exact.Validate();
       return;
+    case ModelKind::incompressible:
+      (void)make_incompressible_layer(make_paraboloid(1.0), spec.layer);  // checks; costs nothing
+      return;
   }
 }
 
@@ -59,6 +63,8 @@ ContactModelPtr make_contact_model(ProfilePtr profile, const ModelSpec& spec) {
       return make_edge_corrected(std::move(profile), spec.layer);
     case ModelKind::exact:
       return make_exact_layer(std::move(profile), spec.layer, spec.exact);
+    case ModelKind::incompressible:
+      return make_incompressible_layer(std::move(profile), spec.layer);
   }
   throw Error("make_contact_model: unknown model kind");
 }

@@ -174,7 +174,7 @@ constexpr std::pair<SceneModel, const char*> kSceneModelNames[] = {
     {SceneModel::leading, "leading"},   {SceneModel::two_term, "two_term"},
     {SceneModel::edge_corrected, "edge_corrected"}, {SceneModel::exact, "exact"},
     {SceneModel::automatic, "auto"},    {SceneModel::asymptotic, "asymptotic"},
-    {SceneModel::full, "full"}};
+    {SceneModel::full, "full"},         {SceneModel::incompressible, "incompressible"}};
 
 // The models a medium accepts, and its default (none: the scene must name one).
 struct MediumModels {
@@ -188,7 +188,7 @@ MediumModels models_for(MediumType t) {
     case MediumType::half_space: return {{SceneModel::half_space}, true};
     case MediumType::layer:
       return {{SceneModel::leading, SceneModel::two_term, SceneModel::edge_corrected,
-               SceneModel::exact, SceneModel::automatic},
+               SceneModel::exact, SceneModel::incompressible, SceneModel::automatic},
               false};
     case MediumType::pasternak:
     case MediumType::filonenko_borodich: return {{SceneModel::asymptotic, SceneModel::full}, false};
@@ -307,6 +307,10 @@ ResolvedModel resolve_model(const Scene& s) {
     throw Error("resolve_model: model \"auto\" resolves only for a contact radius (build_scene)");
   if (s.model == SceneModel::exact) {  // needs no thin-layer constants (allows nu = 0.5)
     spec.kind = ModelKind::exact;
+    return r;
+  }
+  if (s.model == SceneModel::incompressible) {  // nu = 0.5 only: no compressible constants
+    spec.kind = ModelKind::incompressible;
     return r;
   }
   const ThinLayerConstants c = thin_layer_constants(spec.layer);
