@@ -121,6 +121,41 @@ struct ElasticLayer {
 /// 0.5 or a frictionless base throw.
 ContactModelPtr make_incompressible_layer(ProfilePtr profile, const ElasticLayer& layer);
 
+/// The two-term compliance expansion of a bonded layer, w = eps p - D lap p
+/// (docs/theory.md s.2a): finite for every nu in (-1, 0.5], unlike K = 1/eps and
+/// G = -D K^2, which blow up at nu = 1/2.
+///   eps = h (1+nu)(1-2nu) / [E (1-nu)]               [m^3/N]
+///   D   = h^3 nu (4nu-1)(1+nu) / [3 E (1-nu)^2]     [m^5/N]  (nu = 1/2: h^3/E)
+struct UniformLayerConstants {
+  double eps = 0.0;
+  double D = 0.0;
+};
+/// Throws DomainError for E <= 0, h <= 0, nu outside (-1, 0.5] or a frictionless base.
+UniformLayerConstants uniform_layer_constants(const ElasticLayer& layer);
+
+/// Thin bonded layer, uniformly valid in nu up to 1/2 (`"model": "uniform"`,
+/// docs/theory.md s.2a). Where D > 0 (nu > 1/4 or nu < 0) the pressure form
+/// eps p - D lap p = w with p(a) = 0 (and p'(a) = 0 for the non-adhesive state); with
+/// k = sqrt(eps/D), x = k a:
+///   delta_H = int_0^a f I0(k r) r dr / int_0^a I0(k r) r dr,
+///   S = pi a^4 phi(x) / D with phi = (1 - 2 I1/(x I0)) / x^2,  S' = 2 pi a^3 (I1/(x I0))^2 / D,
+/// which is the incompressible law at nu = 1/2 and Winkler as D -> 0. Where D < 0
+/// (0 < nu < 1/4) the pressure form is ill-posed and the same two terms are taken in stiffness
+/// form, the full Pasternak model with K = 1/eps, G = -D/eps^2; D = 0 is Winkler.
+/// With edge_correction (the default) the state is that law's at a + beta h, beta from
+/// uniform_layer_beta. Measured against the exact layer (docs/models.md), worst of P_H,
+/// delta_H and S over paraboloid, sphere, cone and r^4: without the correction O(h/a) with a
+/// coefficient up to 8.6 (nu = 0.5); with it at most 6 (h/a)^2 for nu <= 0.49 (0.7 % at
+/// a/h = 10 for nu = 0.45), and 0.5 h/a at nu = 0.5. Tanh-sinh quadrature (1e-13) for every
+/// profile, 6-50 us a state; the first use of a nu costs one exact solve (~20 ms).
+ContactModelPtr make_uniform_layer(ProfilePtr profile, const ElasticLayer& layer,
+                                   bool edge_correction = true);
+
+/// Edge-correction length of the uniform model in units of h, fitted once per nu (and cached)
+/// so that a paraboloid's approach matches the exact layer's at a/h = 50.
+/// Measured: 0.18 (nu = 0), 0.39 (0.3), 0.93 (0.45), 1.23 (0.49), 1.39 (0.5).
+double uniform_layer_beta(const ElasticLayer& layer);
+
 /// Foundation constants of a thin layer, with warnings about validity.
 struct ThinLayerConstants {
   double K = 0.0;  ///< [N/m^3]

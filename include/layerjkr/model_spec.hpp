@@ -22,10 +22,11 @@ enum class ModelKind {
   edge_corrected,   ///< Winkler at a + beta h (exact_layer.hpp)
   exact,            ///< the exact elastic layer (exact_layer.hpp)
   incompressible,   ///< thin incompressible bonded layer, lubrication law (model.hpp)
+  uniform,          ///< bonded thin layer, two-term compliance form uniform in nu (model.hpp)
 };
 
 /// The name reports print for a kind: "winkler", "two_term", "full_foundation",
-/// "half_space", "edge_corrected", "exact", "incompressible" (ContactModel::name() of what it builds;
+/// "half_space", "edge_corrected", "exact", "incompressible", "uniform" (ContactModel::name() of what it builds;
 /// the ODE route prints "ode(<kind>)"). Inline: models name themselves on every query.
 constexpr const char* model_name(ModelKind kind) {
   switch (kind) {
@@ -36,6 +37,7 @@ constexpr const char* model_name(ModelKind kind) {
     case ModelKind::edge_corrected: return "edge_corrected";
     case ModelKind::exact: return "exact";
     case ModelKind::incompressible: return "incompressible";
+    case ModelKind::uniform: return "uniform";
   }
   return "unknown";
 }
@@ -48,7 +50,7 @@ struct ModelSpec {
   ModelKind kind = ModelKind::winkler;
   double K = 0.0;        ///< foundation modulus [N/m^3] (winkler, two_term, full_foundation)
   double G = 0.0;        ///< shear modulus or tension [N/m] (two_term: any sign; full: > 0)
-  ElasticLayer layer;    ///< exact, edge_corrected, incompressible: the layer; half_space: E and nu
+  ElasticLayer layer;    ///< exact, edge_corrected, incompressible, uniform: the layer; half_space: E and nu
   bool ode = false;      ///< foundations: P_H by the ODE route (make_ode_foundation)
   ExactLayerOptions exact;  ///< exact: discretisation and range
 };

@@ -9,7 +9,8 @@
 //                 | table {r: [...], z: [...]}
 // medium.type:    winkler {K} | pasternak {K, G} | filonenko_borodich {K, T}
 //                 | layer {E, nu, h, base: bonded|frictionless} | half_space {E, nu}
-// model:          layer: leading | two_term | edge_corrected | exact (nu may be 0.5) | auto (needs
+// model:          layer: leading | two_term | edge_corrected | exact (nu may be 0.5) | incompressible
+//                 (nu = 0.5, bonded) | uniform (bonded, nu up to 0.5) | auto (needs
 //                 "tolerance": the cheapest model whose measured error is within it);  pasternak, filonenko_borodich: asymptotic |
 //                 full;  winkler: winkler (default);  half_space: half_space (default)
 // solver:         closed_form (default) | ode  (foundation models only)
@@ -31,9 +32,9 @@ enum class MediumType { winkler, pasternak, filonenko_borodich, layer, half_spac
 
 /// The scene's "model" key: what the user asked for. Which ones a medium accepts:
 /// winkler: winkler; half_space: half_space; layer: leading, two_term, edge_corrected,
-/// exact, automatic ("auto"); pasternak and filonenko_borodich: asymptotic, full.
+/// exact, incompressible, uniform, automatic ("auto"); pasternak and filonenko_borodich: asymptotic, full.
 enum class SceneModel { winkler, half_space, leading, two_term, edge_corrected, exact, automatic,
-                        asymptotic, full, incompressible };
+                        asymptotic, full, incompressible, uniform };
 
 /// The scene's spelling of a SceneModel ("auto" for automatic).
 const char* to_string(SceneModel model);

@@ -63,7 +63,8 @@ double at_grid(bool bonded, double nu, double r, ModelKind model) {
 
 double estimated_model_error(const std::string& model, const ElasticLayer& layer, double a) {
   const std::optional<ModelKind> kind = model_kind(model);
-  if (!kind || *kind == ModelKind::half_space || *kind == ModelKind::exact || *kind == ModelKind::incompressible)
+  if (!kind || *kind == ModelKind::half_space || *kind == ModelKind::exact || *kind == ModelKind::incompressible ||
+      *kind == ModelKind::uniform)
     throw DomainError("estimated_model_error", "model (" + model + ")", 0.0,
                       "one of winkler, edge_corrected, two_term, full_foundation");
   return estimated_model_error(*kind, layer, a);
@@ -73,7 +74,8 @@ double estimated_model_error(ModelKind model, const ElasticLayer& layer, double 
   detail::require_positive("estimated_model_error", "a", a);
   detail::require_positive("estimated_model_error", "h", layer.h);
   const bool bonded = layer.base == Base::bonded;
-  if (model == ModelKind::half_space || model == ModelKind::exact || model == ModelKind::incompressible)
+  if (model == ModelKind::half_space || model == ModelKind::exact || model == ModelKind::incompressible ||
+      model == ModelKind::uniform)
     throw DomainError("estimated_model_error", std::string("model (") + model_name(model) + ")", 0.0,
                       "one of winkler, edge_corrected, two_term, full_foundation");
   const ThinLayerConstants c = thin_layer_constants(layer);  // validates E, nu, h

@@ -8,7 +8,7 @@ namespace layerjkr {
 std::optional<ModelKind> model_kind(const std::string& name) {
   for (ModelKind k : {ModelKind::winkler, ModelKind::two_term, ModelKind::full_foundation,
                       ModelKind::half_space, ModelKind::edge_corrected, ModelKind::exact,
-                      ModelKind::incompressible})
+                      ModelKind::incompressible, ModelKind::uniform})
     if (name == model_name(k)) return k;
   return std::nullopt;
 }
@@ -40,6 +40,9 @@ void validate(const ModelSpec& spec) {
     case ModelKind::incompressible:
       (void)make_incompressible_layer(make_paraboloid(1.0), spec.layer);  // checks; costs nothing
       return;
+    case ModelKind::uniform:
+      (void)uniform_layer_constants(spec.layer);
+      return;
   }
 }
 
@@ -65,6 +68,8 @@ ContactModelPtr make_contact_model(ProfilePtr profile, const ModelSpec& spec) {
       return make_exact_layer(std::move(profile), spec.layer, spec.exact);
     case ModelKind::incompressible:
       return make_incompressible_layer(std::move(profile), spec.layer);
+    case ModelKind::uniform:
+      return make_uniform_layer(std::move(profile), spec.layer);
   }
   throw Error("make_contact_model: unknown model kind");
 }

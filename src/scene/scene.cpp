@@ -174,7 +174,8 @@ constexpr std::pair<SceneModel, const char*> kSceneModelNames[] = {
     {SceneModel::leading, "leading"},   {SceneModel::two_term, "two_term"},
     {SceneModel::edge_corrected, "edge_corrected"}, {SceneModel::exact, "exact"},
     {SceneModel::automatic, "auto"},    {SceneModel::asymptotic, "asymptotic"},
-    {SceneModel::full, "full"},         {SceneModel::incompressible, "incompressible"}};
+    {SceneModel::full, "full"},         {SceneModel::incompressible, "incompressible"},
+    {SceneModel::uniform, "uniform"}};
 
 // The models a medium accepts, and its default (none: the scene must name one).
 struct MediumModels {
@@ -188,7 +189,7 @@ MediumModels models_for(MediumType t) {
     case MediumType::half_space: return {{SceneModel::half_space}, true};
     case MediumType::layer:
       return {{SceneModel::leading, SceneModel::two_term, SceneModel::edge_corrected,
-               SceneModel::exact, SceneModel::incompressible, SceneModel::automatic},
+               SceneModel::exact, SceneModel::incompressible, SceneModel::uniform, SceneModel::automatic},
               false};
     case MediumType::pasternak:
     case MediumType::filonenko_borodich: return {{SceneModel::asymptotic, SceneModel::full}, false};
@@ -311,6 +312,10 @@ ResolvedModel resolve_model(const Scene& s) {
   }
   if (s.model == SceneModel::incompressible) {  // nu = 0.5 only: no compressible constants
     spec.kind = ModelKind::incompressible;
+    return r;
+  }
+  if (s.model == SceneModel::uniform) {  // finite up to nu = 0.5: no compressible constants
+    spec.kind = ModelKind::uniform;
     return r;
   }
   const ThinLayerConstants c = thin_layer_constants(spec.layer);

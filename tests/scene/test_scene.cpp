@@ -72,7 +72,7 @@ TEST_CASE("invalid scenes name the key and the value", "[scene][errors]") {
       {scene(kPara, R"({"type": "layer", "E": -3e6, "nu": 0.3, "h": 1e-4})", R"(, "model": "two_term")"), "E = -3000000"},
       {scene(kPara, R"({"type": "layer", "E": 3e6, "nu": 0.3, "h": 1e-4, "base": "glued"})", R"(, "model": "two_term")"), "medium.base = \"glued\""},
       {scene(kPara, kLayer), "model is missing; medium 'layer' needs one of: leading, two_term"},
-      {scene(kPara, kLayer, R"(, "model": "full")"), "model = \"full\" is not available for medium 'layer' (available: leading, two_term, edge_corrected, exact, incompressible, auto)"},
+      {scene(kPara, kLayer, R"(, "model": "full")"), "model = \"full\" is not available for medium 'layer' (available: leading, two_term, edge_corrected, exact, incompressible, uniform, auto)"},
       {scene(kPara, R"({"type": "layer", "E": 3e6, "nu": 0.6, "h": 1e-4})", R"(, "model": "exact")"), "nu = 0.59999999999999998"},
       {scene(kPara, R"({"type": "pasternak", "K": 1e10, "G": -5})", R"(, "model": "full")"), "G (or tension T) = -5"},
       {scene(kPara, R"({"type": "pasternak", "K": 1e10})", R"(, "model": "full")"), "medium.G is missing"},
