@@ -9,6 +9,7 @@
 #include "layerjkr/jkr.hpp"
 #include "layerjkr/model.hpp"
 #include "layerjkr/model_choice.hpp"
+#include "layerjkr/model_error.hpp"
 #include "layerjkr/model_spec.hpp"
 #include "layerjkr/profile.hpp"
 #include "layerjkr/scene.hpp"

@@ -62,6 +62,12 @@ class ContactModel {
   /// that and h, so searches start where its states are cheap.
   virtual double typical_radius() const;
 
+  /// Estimated relative error of this model's own numerics at contact radius a [m] - not of
+  /// the model against the exact layer (model_error.hpp). 1e-12 for the closed forms and
+  /// quadratures, which the tests hold to that level; the exact layer solves once more with
+  /// 3/4 of the nodes and returns the difference (and at least its tables' 1e-9).
+  virtual double numerical_error(double a) const;
+
   const Profile& profile() const { return *profile_; }
   const ProfilePtr& profile_ptr() const { return profile_; }
 

@@ -1,44 +1,49 @@
 // layerjkr: automatic model choice for a thin layer ("model": "auto").
 //
-// The error of every asymptotic model against the exact layer was measured once
-// (tools/model_tradeoff.cpp; table in src/models/model_error_table.inc, summary in
-// docs/models.md):
-// the worst relative error of P_H, delta_H and the pull-off force, per base, nu in
-// {0, 0.1, 0.2, 0.25, 0.3, 0.4, 0.45, 0.49} and a/h in {0.5, ..., 100}. The estimate for
-// a scene interpolates that table conservatively: the maximum over the bracketing grid
-// points in nu and in a/h, and beyond a/h = 100 the O(h/a) law err(100) * 100/(a/h).
-// Outside the measured domain (a/h < 0.5, nu < 0, bonded nu >= 0.49) no estimate
-// exists and only the exact solver qualifies. The table holds for a paraboloid only:
-// for a cone, a sphere or a power law d != 2 the measured errors exceeded it (f ~ r^4:
-// up to 5x; the edge error grows with the force exponent), so for any profile that is
-// not a paraboloid "auto" chooses the exact solver.
+// Every candidate is judged a posteriori on the scene itself, against the exact layer for
+// the same profile (model_error.hpp), so the choice holds for any profile - sphere, cone,
+// power law, table, callable - and any nu up to 1/2. The candidates, cheapest per state first
+// (bench_models, docs/benchmarks.md): winkler, two_term, edge_corrected, full_foundation,
+// incompressible (nu = 1/2), uniform (bonded), and the exact layer when none is within the
+// tolerance. Validated on 200 random scenes (tests/models/test_model_choice.cpp): the estimate
+// bounds the error against a finer exact solution in every scene, and the choice is the
+// cheapest model within tolerance in every scene as well.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "layerjkr/model.hpp"
 #include "layerjkr/model_spec.hpp"
 
 namespace layerjkr {
 
-/// Estimated worst relative error of an asymptotic model ("winkler", "edge_corrected",
-/// "two_term", "full_foundation") for `layer` at contact radius a [m]; +inf where the model does not
-/// apply or was not measured. The exact solver's own error (< 1e-7) is not included.
-double estimated_model_error(ModelKind model, const ElasticLayer& layer, double a);
-/// The same by name; throws DomainError for a name that is not one of the four.
-double estimated_model_error(const std::string& model, const ElasticLayer& layer, double a);
+/// The reduced models "auto" considers for `layer`, cheapest per state first (the exact layer,
+/// the fallback, is not listed). Models that do not apply are left out: two_term where G = 0,
+/// full_foundation where G <= 0, the compressible ones at nu = 1/2, incompressible for
+/// nu < 1/2, uniform on a frictionless base.
+std::vector<ModelKind> layer_model_candidates(const ElasticLayer& layer);
+
+/// The spec of a layer model `kind` (thin-layer constants filled in where it needs them).
+ModelSpec layer_model_spec(ModelKind kind, const ElasticLayer& layer);
 
 struct ModelChoice {
-  std::string model;             ///< winkler | edge_corrected | two_term | full_foundation | exact
-  double estimated_error = 0.0;  ///< from estimated_model_error (exact: 1e-7, its accuracy bound)
-  double reference_radius = 0.0; ///< the contact radius the choice was made for [m]
+  std::string model;             ///< one of layer_model_candidates' names, or "exact"
+  double estimated_error = 0.0;  ///< the chosen model's worst estimate where it was judged
   ContactModelPtr contact_model;
+  ContactModelPtr reference;     ///< the exact layer it was judged by (null if it is the choice)
 };
 
-/// Cheapest model (winkler < edge_corrected < two_term < full_foundation < exact) whose estimated error
-/// at every contact radius >= a_min [m] is within `tolerance` (in (0, 1)). The error
-/// estimates fall with a/h, so the check is made at a_min.
-ModelChoice choose_layer_model(ProfilePtr profile, const ElasticLayer& layer, double tolerance,
-                               double a_min);
+/// Cheapest model whose estimated error (ModelErrorEstimator::at, work of adhesion w [J/m^2])
+/// at every radius in `radii` [m] (non-empty, > 0) is within `tolerance` (in (0, 1)). With more
+/// than 24 radii the estimate comes from 24 anchors spanning them.
+ModelChoice choose_layer_model(ProfilePtr profile, const ElasticLayer& layer, double w, double tolerance,
+                               const std::vector<double>& radii);
+
+/// Cheapest model whose summary (pull-off force, zero-load radius; ModelErrorEstimator::summary)
+/// is within `tolerance` of the exact layer's. Costs one exact summary plus one summary per
+/// candidate tried.
+ModelChoice choose_layer_model_for_summary(ProfilePtr profile, const ElasticLayer& layer, double w,
+                                           double tolerance);
 
 }  // namespace layerjkr

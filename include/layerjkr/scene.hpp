@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "layerjkr/model.hpp"
+#include "layerjkr/model_error.hpp"
 #include "layerjkr/model_spec.hpp"
 #include "layerjkr/profile.hpp"
 
@@ -62,17 +63,20 @@ struct Scene {
 /// The scene turned into a contact model, with the constants it used.
 struct BuiltScene {
   ContactModelPtr model;
+  /// The model `model` approximates, which its errors are estimated against
+  /// (model_error.hpp): the exact layer for every thin-layer law, the full foundation for an
+  /// asymptotic one with G > 0; null where `model` solves its medium exactly.
+  ContactModelPtr reference;
   bool has_foundation_constants = false;
   double K = 0.0;  ///< foundation modulus [N/m^3] (layers: mapped)
   double G = 0.0;  ///< shear modulus or tension [N/m] (layers: mapped)
   bool has_effective_modulus = false;
   double E_star = 0.0;  ///< [Pa], layers and half-space
   std::vector<std::string> warnings;
-  /// Model "auto": what was chosen, its estimated error, and at which radius [m].
+  /// Model "auto": what was chosen and its estimated error where it was judged.
   bool automatic = false;
   std::string chosen_model;
   double estimated_error = 0.0;
-  double reference_radius = 0.0;
 };
 
 /// Parses a scene from JSON text; `source` names it in error messages.
@@ -93,13 +97,20 @@ struct ResolvedModel {
 };
 ResolvedModel resolve_model(const Scene& scene);
 
-/// Builds the contact model of a parsed scene (through make_contact_model). Model "auto" chooses for contact radii
-/// >= a_min [m] (required > 0 for "auto", ignored otherwise).
+/// Builds the contact model of a parsed scene (through make_contact_model). Model "auto"
+/// chooses the cheapest model within the scene's tolerance at contact radii a_min * 2^k,
+/// k = 0..4 (a_min [m] required > 0 for "auto", ignored otherwise): every reduced model's
+/// error falls as a/h grows, so a range starting at a_min is judged by its first octaves.
 BuiltScene build_scene(const Scene& scene, double a_min = 0.0);
 
-/// The radius model "auto" should be chosen at for a summary: half the Winkler pull-off
-/// radius (which covers the fixed-grips point), or h when there is no adhesion; 0 for
-/// scenes whose model is not "auto" (build_scene ignores it then).
-double summary_reference_radius(const Scene& scene);
+/// The same, with "auto" judged at exactly these contact radii [m] (a curve's).
+BuiltScene build_scene_for_radii(const Scene& scene, const std::vector<double>& radii);
+
+/// The same, with "auto" judged by what a summary reports: the pull-off force and the
+/// zero-load radius, against the exact layer's.
+BuiltScene build_scene_for_summary(const Scene& scene);
+
+/// The judge of a built scene's answers: its model against its reference, for the scene's w.
+ModelErrorEstimator error_estimator(const Scene& scene, const BuiltScene& built);
 
 }  // namespace layerjkr

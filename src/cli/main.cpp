@@ -49,11 +49,19 @@ void print_warnings(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) std::cerr << "layerjkr: warning: " << w << "\n";
 }
 
-void print_choice(const layerjkr::BuiltScene& built) {
+void print_choice(const layerjkr::BuiltScene& built, const std::string& judged_at) {
   if (built.automatic)
     std::cerr << "layerjkr: auto chose model '" << built.chosen_model << "' (estimated error "
-              << format_double(built.estimated_error) << " for a >= "
-              << format_double(built.reference_radius) << " m)\n";
+              << format_double(built.estimated_error) << " " << judged_at << ")\n";
+}
+
+// Answers whose estimated model error exceeds this get a warning (stderr and "warnings").
+constexpr double kWarnError = 0.05;
+
+std::string percent(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g %%", 100.0 * x);
+  return buf;
 }
 
 int run_curve(const std::string& path, const std::string& at, double a_max, int points) {
@@ -67,27 +75,36 @@ int run_curve(const std::string& path, const std::string& at, double a_max, int 
     if (points < 1) throw layerjkr::InputError("--points = " + std::to_string(points) + " must be >= 1");
     for (int i = 1; i <= points; ++i) radii.push_back(a_max * i / points);
   }
-  const layerjkr::BuiltScene built =
-      layerjkr::build_scene(scene, *std::min_element(radii.begin(), radii.end()));
+  layerjkr::BuiltScene built = layerjkr::build_scene_for_radii(scene, radii);
   const layerjkr::JkrSolution solution(built.model, scene.w);
+  const std::vector<double> errors = layerjkr::error_estimator(scene, built).along(radii);
   // Compute everything before printing so a failure never leaves partial output.
-  std::string out = "a,P,delta,P_H,delta_H,S\n";
-  for (const auto& s : solution.curve(radii))
+  std::string out = "a,P,delta,P_H,delta_H,S,error_est\n";
+  const std::vector<layerjkr::AdhesiveState> states = solution.curve(radii);
+  double worst = 0.0, worst_a = 0.0;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const auto& s = states[i];
     out += format_double(s.a) + "," + format_double(s.P) + "," + format_double(s.delta) + "," +
            format_double(s.hertz.P_H) + "," + format_double(s.hertz.delta_H) + "," +
-           format_double(s.hertz.S) + "\n";
+           format_double(s.hertz.S) + "," + format_double(errors[i]) + "\n";
+    if (errors[i] > worst) worst = errors[i], worst_a = s.a;
+  }
+  if (worst > kWarnError)
+    built.warnings.push_back("model '" + built.model->name() + "' is estimated " + percent(worst) +
+                             " off its reference model '" + layerjkr::error_estimator(scene, built).reference_name() +
+                             "' at a = " + format_double(worst_a) + " m (column error_est)");
   print_warnings(built.warnings);
-  print_choice(built);
+  print_choice(built, "over the curve's radii");
   std::cout << out;
   return 0;
 }
 
 int run_summary(const std::string& path) {
   const layerjkr::Scene scene = layerjkr::load_scene(path);
-  const layerjkr::BuiltScene built =
-      layerjkr::build_scene(scene, layerjkr::summary_reference_radius(scene));
+  layerjkr::BuiltScene built = layerjkr::build_scene_for_summary(scene);
   const layerjkr::JkrSolution solution(built.model, scene.w);
   const layerjkr::ContactSummary s = layerjkr::summarize(solution);
+  const layerjkr::SummaryError error = layerjkr::error_estimator(scene, built).summary(s);
   nlohmann::ordered_json j;
   j["model"] = s.model;
   j["profile"] = scene.profile->describe();
@@ -103,6 +120,11 @@ int run_summary(const std::string& path) {
                                  {"delta", s.fixed_grips->delta}};
   else
     j["fixed_grips_critical"] = nullptr;
+  // JSON has no infinity: a point the model misses is null, and the warning says why.
+  auto finite_or_null = [](double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nullptr; };
+  j["model_error_estimate"] = {{"pull_off_force", finite_or_null(error.pull_off_force)},
+                               {"zero_load_radius", finite_or_null(error.zero_load_radius)},
+                               {"reference", error.reference}};
   if (built.has_foundation_constants) {
     j["K"] = built.K;
     j[scene.medium.type == layerjkr::MediumType::filonenko_borodich ? "T" : "G"] = built.G;
@@ -111,11 +133,17 @@ int run_summary(const std::string& path) {
   if (built.automatic)
     j["model_choice"] = {{"model", built.chosen_model},
                          {"estimated_error", built.estimated_error},
-                         {"tolerance", scene.tolerance},
-                         {"reference_radius", built.reference_radius}};
+                         {"tolerance", scene.tolerance}};
+  if (!std::isfinite(error.worst()))
+    built.warnings.push_back("model '" + s.model + "' misses a critical point its reference model '" +
+                             error.reference + "' has (estimated error unbounded)");
+  else if (error.worst() > kWarnError)
+    built.warnings.push_back("model '" + s.model + "' is estimated " + percent(error.pull_off_force) +
+                             " off its reference model '" + error.reference + "' in the pull-off force and " +
+                             percent(error.zero_load_radius) + " in the zero-load radius");
   j["warnings"] = built.warnings;
   print_warnings(built.warnings);
-  print_choice(built);
+  print_choice(built, "at the pull-off and zero-load point");
   std::cout << j.dump(2) << "\n";
   return 0;
 }
@@ -132,7 +160,8 @@ static int run_main(int argc, char** argv) {
   int points = 0;
 
   CLI::App* curve = app.add_subcommand(
-      "curve", "Adhesive curve at given contact radii: CSV a,P,delta,P_H,delta_H,S (SI)");
+      "curve", "Adhesive curve at given contact radii: CSV a,P,delta,P_H,delta_H,S,error_est (SI; error_est: "
+               "estimated relative model error)");
   curve->add_option("scene", scene_path, "Scene JSON file")->required();
   auto* at_opt = curve->add_option("--at", at, "Comma-separated contact radii [m]");
   auto* max_opt = curve->add_option("--a-max", a_max, "Largest contact radius of an even grid [m]");
@@ -142,7 +171,7 @@ static int run_main(int argc, char** argv) {
   at_opt->excludes(max_opt);
 
   CLI::App* summary = app.add_subcommand(
-      "summary", "JSON summary: pull-off, zero-load radius, fixed-grips critical point, K, G");
+      "summary", "JSON summary: pull-off, zero-load radius, fixed-grips critical point, model error estimate, K, G");
   summary->add_option("scene", scene_path, "Scene JSON file")->required();
 
   layerjkr::cli::FitArguments fit_args;

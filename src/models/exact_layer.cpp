@@ -410,6 +410,10 @@ double ExactLayerKernel::flat_punch_factor(double a_over_h) const {
 
 namespace {
 
+// The power-law tables' interpolation error, as the tests bound it against direct solves
+// (tests/models/test_exact_power_law_table.cpp).
+constexpr double kTableAccuracy = 1e-9;
+
 // True for radii a_max j / n, j = 1..n, to rounding.
 bool evenly_spaced(const std::vector<double>& radii) {
   const double a_max = radii.back(), n = static_cast<double>(radii.size());
@@ -455,6 +459,12 @@ class ExactLayerModel final : public ContactModel {
     return out;
   }
   std::string name() const override { return model_name(ModelKind::exact); }
+  double numerical_error(double a) const override {
+    const ExactLayerState s = kernel_.solve(profile(), a);
+    const double solve_error = std::max(s.P_H_error, s.delta_H_error);
+    const double estimate = std::isfinite(solve_error) ? solve_error : kTableAccuracy;
+    return table_ ? std::max(estimate, kTableAccuracy) : std::max(estimate, 1e-13);
+  }
   double max_radius() const override {
     return std::min(profile().max_radius(),
                     kernel_.options().max_a_over_h * kernel_.layer().h);

@@ -57,6 +57,8 @@ double ContactModel::max_radius() const { return profile_->max_radius(); }
 
 double ContactModel::typical_radius() const { return profile_->length_scale(); }
 
+double ContactModel::numerical_error(double /*a*/) const { return 1e-12; }
+
 std::vector<HertzState> ContactModel::states(const std::vector<double>& radii) const {
   std::vector<HertzState> out;
   out.reserve(radii.size());

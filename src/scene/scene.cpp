@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -333,17 +334,6 @@ ResolvedModel resolve_model(const Scene& s) {
   return r;
 }
 
-double summary_reference_radius(const Scene& s) {
-  const MediumSpec& m = s.medium;
-  if (s.model != SceneModel::automatic) return 0.0;  // only "auto" chooses by radius
-  if (s.w > 0.0 && m.nu < 0.5) {
-    const ThinLayerConstants c = thin_layer_constants({m.E, m.nu, m.h, m.base});
-    if (const auto po = JkrSolution(make_winkler(s.profile, c.K), s.w).pull_off())
-      return 0.5 * po->a;
-  }
-  return m.h;
-}
-
 Scene load_scene(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(path + ": cannot open the scene file");
@@ -353,7 +343,37 @@ Scene load_scene(const std::string& path) {
   return parse_scene(text.str(), path);
 }
 
-BuiltScene build_scene(const Scene& s, double a_min) {
+namespace {
+
+using Choose = std::function<ModelChoice(const ElasticLayer&)>;
+
+// What a resolved model approximates (BuiltScene::reference).
+ContactModelPtr reference_model(const Scene& s, const ModelSpec& spec) {
+  const MediumSpec& m = s.medium;
+  switch (spec.kind) {
+    case ModelKind::winkler:
+    case ModelKind::two_term:
+    case ModelKind::edge_corrected:
+    case ModelKind::incompressible:
+    case ModelKind::uniform:
+      if (m.type == MediumType::layer) return layer_reference(s.profile, {m.E, m.nu, m.h, m.base});
+      if (spec.kind == ModelKind::two_term && spec.G > 0.0) {  // asymptotic Pasternak / F-B
+        ModelSpec full = spec;
+        full.kind = ModelKind::full_foundation;
+        return make_contact_model(s.profile, full);
+      }
+      return nullptr;
+    case ModelKind::full_foundation:
+      if (m.type == MediumType::layer) return layer_reference(s.profile, {m.E, m.nu, m.h, m.base});
+      return nullptr;
+    case ModelKind::half_space:
+    case ModelKind::exact:
+      return nullptr;
+  }
+  return nullptr;
+}
+
+BuiltScene build(const Scene& s, const Choose& choose) {
   Reader in("scene");
   BuiltScene b;
   const MediumSpec& m = s.medium;
@@ -369,16 +389,12 @@ BuiltScene build_scene(const Scene& s, double a_min) {
       b.K = c.K;
       b.G = c.G;
     }
-    if (!(a_min > 0.0) || !std::isfinite(a_min))
-      throw DomainError("build_scene", "a_min (smallest contact radius of interest)", a_min,
-                        "finite and > 0 for model auto");
-    const ModelChoice choice =
-        in.checked("medium", [&] { return choose_layer_model(s.profile, layer, s.tolerance, a_min); });
+    const ModelChoice choice = in.checked("medium", [&] { return choose(layer); });
     b.model = choice.contact_model;
+    b.reference = choice.reference;
     b.automatic = true;
     b.chosen_model = choice.model;
     b.estimated_error = choice.estimated_error;
-    b.reference_radius = choice.reference_radius;
     return b;
   }
   const ResolvedModel r = in.checked("medium", [&] { return resolve_model(s); });
@@ -387,7 +403,36 @@ BuiltScene build_scene(const Scene& s, double a_min) {
   b.K = r.K;
   b.G = r.G;
   b.model = in.checked("medium", [&] { return make_contact_model(s.profile, r.spec); });
+  b.reference = in.checked("medium", [&] { return reference_model(s, r.spec); });
   return b;
+}
+
+}  // namespace
+
+BuiltScene build_scene(const Scene& s, double a_min) {
+  if (s.model != SceneModel::automatic) return build(s, nullptr);
+  if (!(a_min > 0.0) || !std::isfinite(a_min))
+    throw DomainError("build_scene", "a_min (smallest contact radius of interest)", a_min,
+                      "finite and > 0 for model auto");
+  std::vector<double> radii;
+  for (int k = 0; k <= 4; ++k) radii.push_back(a_min * std::ldexp(1.0, k));
+  return build_scene_for_radii(s, radii);
+}
+
+BuiltScene build_scene_for_radii(const Scene& s, const std::vector<double>& radii) {
+  return build(s, [&](const ElasticLayer& layer) {
+    return choose_layer_model(s.profile, layer, s.w, s.tolerance, radii);
+  });
+}
+
+BuiltScene build_scene_for_summary(const Scene& s) {
+  return build(s, [&](const ElasticLayer& layer) {
+    return choose_layer_model_for_summary(s.profile, layer, s.w, s.tolerance);
+  });
+}
+
+ModelErrorEstimator error_estimator(const Scene& s, const BuiltScene& b) {
+  return ModelErrorEstimator(b.model, b.reference, s.w);
 }
 
 }  // namespace layerjkr

@@ -30,21 +30,26 @@ TEST_CASE("curve --at prints the CSV contract at full precision", "[cli]") {
   REQUIRE(r.code == 0);
   const auto rows = lines(r.out);
   REQUIRE(rows.size() == 3);
-  CHECK(rows[0] == "a,P,delta,P_H,delta_H,S");
+  CHECK(rows[0] == "a,P,delta,P_H,delta_H,S,error_est");
   // Values round-trip: parse and compare with the library.
   const layerjkr::Scene s = layerjkr::load_scene(kScene);
-  const layerjkr::JkrSolution jkr(layerjkr::build_scene(s).model, s.w);
+  const layerjkr::BuiltScene built = layerjkr::build_scene(s);
+  const layerjkr::JkrSolution jkr(built.model, s.w);
   const layerjkr::AdhesiveState st = jkr.at(4e-4);
   std::vector<double> v;
   std::stringstream row(rows[2]);
   for (std::string cell; std::getline(row, cell, ',');) v.push_back(std::stod(cell));
-  REQUIRE(v.size() == 6);
+  REQUIRE(v.size() == 7);
   CHECK(v[0] == 4e-4);
   CHECK(v[1] == st.P);
   CHECK(v[2] == st.delta);
   CHECK(v[3] == st.hertz.P_H);
   CHECK(v[4] == st.hertz.delta_H);
   CHECK(v[5] == st.hertz.S);
+  CHECK(v[6] == layerjkr::error_estimator(s, built).at(4e-4));
+  // a/h = 4 with the two-term model: several per cent off the exact layer, so it warns.
+  CHECK(v[6] > 0.05);
+  CHECK(r.err.find("column error_est") != std::string::npos);
 }
 
 TEST_CASE("curve --a-max --points gives an even grid", "[cli]") {
@@ -61,8 +66,14 @@ TEST_CASE("summary prints the documented JSON keys", "[cli]") {
   REQUIRE(r.code == 0);
   const auto j = nlohmann::json::parse(r.out);
   for (const char* key : {"pull_off_force", "pull_off_radius", "pull_off_delta",
-                          "zero_load_radius", "K", "G", "model", "warnings"})
+                          "zero_load_radius", "model_error_estimate", "K", "G", "model", "warnings"})
     CHECK(j.contains(key));
+  // The two-term model at a/h = 1.8: the estimate says how far off it is, and it warns.
+  CHECK(j["model_error_estimate"]["reference"] == "exact");
+  CHECK(j["model_error_estimate"]["pull_off_force"].get<double>() > 0.05);
+  REQUIRE(j["warnings"].size() == 1);
+  CHECK(j["warnings"][0].get<std::string>().find("pull-off force") != std::string::npos);
+  CHECK(r.err.find("layerjkr: warning: model 'two_term' is estimated") != std::string::npos);
   CHECK(j["pull_off_force"].get<double>() == Approx(-2 * M_PI * 0.05 * 0.01).epsilon(1e-10));
   CHECK(j["fixed_grips_critical"].is_null());  // Winkler-like: delta(a) is monotone
 }
@@ -117,5 +128,25 @@ TEST_CASE("near-incompressible layers warn on stderr and in the summary", "[cli]
   const Run r = run("summary " + path);
   REQUIRE(r.code == 0);
   CHECK(r.err.find("warning") != std::string::npos);
-  CHECK(nlohmann::json::parse(r.out)["warnings"].size() == 1);
+  const auto warnings = nlohmann::json::parse(r.out)["warnings"];
+  REQUIRE(warnings.size() == 2);  // the non-uniform expansion, and its estimated error
+  CHECK(warnings[1].get<std::string>().find("is estimated") != std::string::npos);
+}
+
+TEST_CASE("auto on a nu = 0.49 hydrogel: uniform where it is within 1 %, exact elsewhere", "[cli][auto]") {
+  const std::string scene = std::string(LAYERJKR_SOURCE_DIR) + "/data/scenes/hydrogel_film_auto.json";
+  const Run summary = run("summary " + scene);
+  REQUIRE(summary.code == 0);
+  const auto j = nlohmann::json::parse(summary.out);
+  CHECK(j["model"] == "uniform");  // pull-off at a/h = 18
+  CHECK(j["model_choice"]["estimated_error"].get<double>() < 0.01);
+  CHECK(j["model_error_estimate"]["pull_off_force"].get<double>() == j["model_choice"]["estimated_error"].get<double>());
+  CHECK(j["warnings"].empty());
+  CHECK(summary.err.find("auto chose model 'uniform'") != std::string::npos);
+  const Run near = run("curve " + scene + " --at 2e-5,1e-4");  // a/h = 2: no reduced model within 1 %
+  REQUIRE(near.code == 0);
+  CHECK(near.err.find("auto chose model 'exact'") != std::string::npos);
+  const Run far = run("curve " + scene + " --at 1e-4,1e-3");
+  REQUIRE(far.code == 0);
+  CHECK(far.err.find("auto chose model 'uniform'") != std::string::npos);
 }
