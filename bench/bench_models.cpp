@@ -48,6 +48,8 @@ STATE_BENCH(TwoTerm_Callable, make_two_term(callable(), kFilm.K, kFilm.G));
 STATE_BENCH(FullFoundation_Paraboloid, make_full_foundation(make_paraboloid(1e-2), kFilm.K, kFilm.G));
 STATE_BENCH(Incompressible_Paraboloid, make_incompressible_layer(make_paraboloid(1e-2), {3e6, 0.5, 1e-4, Base::bonded}));
 STATE_BENCH(Incompressible_Sphere, make_incompressible_layer(make_sphere(1e-2), {3e6, 0.5, 1e-4, Base::bonded}));
+STATE_BENCH(Uniform_Paraboloid_nu049, make_uniform_layer(make_paraboloid(1e-2), {3e6, 0.49, 1e-4, Base::bonded}));
+STATE_BENCH(Uniform_Sphere_nu049, make_uniform_layer(make_sphere(1e-2), {3e6, 0.49, 1e-4, Base::bonded}));
 STATE_BENCH(HalfSpace_Paraboloid, make_half_space(make_paraboloid(1e-2), 3e6, 0.3));
 STATE_BENCH(HalfSpace_Sphere, make_half_space(make_sphere(1e-2), 3e6, 0.3));
 STATE_BENCH(HalfSpace_Table, make_half_space(table(), 3e6, 0.3));

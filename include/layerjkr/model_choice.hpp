@@ -37,13 +37,13 @@ struct ModelChoice {
 /// Cheapest model whose estimated error (ModelErrorEstimator::at, work of adhesion w [J/m^2])
 /// at every radius in `radii` [m] (non-empty, > 0) is within `tolerance` (in (0, 1)). With more
 /// than 24 radii the estimate comes from 24 anchors spanning them.
-ModelChoice choose_layer_model(ProfilePtr profile, const ElasticLayer& layer, double w, double tolerance,
+ModelChoice choose_layer_model(const ProfilePtr& profile, const ElasticLayer& layer, double w, double tolerance,
                                const std::vector<double>& radii);
 
 /// Cheapest model whose summary (pull-off force, zero-load radius; ModelErrorEstimator::summary)
 /// is within `tolerance` of the exact layer's. Costs one exact summary plus one summary per
 /// candidate tried.
-ModelChoice choose_layer_model_for_summary(ProfilePtr profile, const ElasticLayer& layer, double w,
+ModelChoice choose_layer_model_for_summary(const ProfilePtr& profile, const ElasticLayer& layer, double w,
                                            double tolerance);
 
 }  // namespace layerjkr

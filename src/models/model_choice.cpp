@@ -79,7 +79,7 @@ ModelSpec layer_model_spec(ModelKind kind, const ElasticLayer& layer) {
   return spec;
 }
 
-ModelChoice choose_layer_model(ProfilePtr profile, const ElasticLayer& layer, double w, double tolerance,
+ModelChoice choose_layer_model(const ProfilePtr& profile, const ElasticLayer& layer, double w, double tolerance,
                                const std::vector<double>& radii) {
   const char* fn = "choose_layer_model";
   require_tolerance(fn, tolerance);
@@ -94,7 +94,7 @@ ModelChoice choose_layer_model(ProfilePtr profile, const ElasticLayer& layer, do
   });
 }
 
-ModelChoice choose_layer_model_for_summary(ProfilePtr profile, const ElasticLayer& layer, double w,
+ModelChoice choose_layer_model_for_summary(const ProfilePtr& profile, const ElasticLayer& layer, double w,
                                            double tolerance) {
   const char* fn = "choose_layer_model_for_summary";
   require_tolerance(fn, tolerance);
