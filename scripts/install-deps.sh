@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages layerjkr builds, tests and plots with (clang, clang-tidy
 # and libclang-rt-14-dev for the fuzz and tidy presets).
+# libzip-dev's CMake package (libzip::zip) also imports the zipcmp, zipmerge and ziptool
+# programs and fails without them (Debian packages them separately).
 # Runs apt-get directly as root (CI, containers) and through sudo otherwise.
 set -euo pipefail
 packages=(cmake ninja-build g++ libeigen3-dev libgsl-dev libboost-dev libceres-dev libmetis-dev
           catch2 libcli11-dev nlohmann-json3-dev libbenchmark-dev gnuplot-nox
-          clang clang-tidy libclang-rt-14-dev)
+          clang clang-tidy libclang-rt-14-dev libzip-dev zipcmp zipmerge ziptool)
 as_root=()
 [ "$(id -u)" -eq 0 ] || as_root=(sudo)
 missing=()

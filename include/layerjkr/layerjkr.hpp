@@ -6,6 +6,7 @@
 #include "layerjkr/error.hpp"
 #include "layerjkr/exact_layer.hpp"
 #include "layerjkr/fit.hpp"
+#include "layerjkr/instrument.hpp"
 #include "layerjkr/jkr.hpp"
 #include "layerjkr/model.hpp"
 #include "layerjkr/model_choice.hpp"

@@ -1,0 +1,77 @@
+// layerjkr: force curves as they come off the instrument - JPK archives (.jpk-force,
+// .jpk-force-map, .jpk-qi-data) and Asylum Research / Igor binary waves (.ibw, version 5) -
+// read in C++ with their calibration, without any Python stack.
+//
+// JPK (zip archives of Java .properties headers and big-endian channel data): force is the
+// vDeflection channel in its `force` slot, the measured height is strainGaugeHeight,
+// capacitiveSensorHeight or measuredHeight (whichever the segment has) in its `nominal`
+// slot, the piezo height the `height` channel in its `calibrated` slot. Raw values are
+// scaled by their encoder, then by each conversion of the chain from the channel's base
+// slot to the target slot (v = multiplier * v + offset); the `distance` multiplier is the
+// sensitivity and the `force` multiplier the spring constant. Calibration stored once in
+// `shared-data/header.properties` (lcd-info and segment-info indirection) is resolved.
+// Igor: one 2-D float wave with columns Raw, Defl, ZSnsr (metres); force = Defl * k with k
+// = SpringConstant from the note, measured height = -ZSnsr, piezo height = -Raw, segments
+// split at the note's Indexes (Direction 1: extend, -1: retract).
+// Every value of ../shared/data/instrument/reference.json is reproduced by the tests
+// (tests/io/test_instrument.cpp): JPK bit for bit, Igor to 1e-7 (float32 data).
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "layerjkr/curve_data.hpp"
+
+namespace layerjkr {
+
+/// One segment of a curve (approach, retract, pause), samples in acquisition order.
+struct InstrumentSegment {
+  std::string style;                 ///< "extend", "retract", "pause" (as the file says)
+  std::vector<double> force;         ///< [N], positive = repulsive (cantilever deflected up)
+  std::vector<double> height;        ///< measured height [m] (the sensor; larger = farther away)
+  std::vector<double> piezo_height;  ///< commanded piezo height [m] (empty if absent)
+  double duration = 0.0;             ///< [s]
+};
+
+/// One force curve with its calibration and map position.
+struct InstrumentCurve {
+  int index = 0;            ///< the curve's number in the file (JPK: index/N directory)
+  int position_index = -1;  ///< grid position index written by the instrument (-1: none)
+  double x = std::numeric_limits<double>::quiet_NaN();  ///< map position [m]
+  double y = std::numeric_limits<double>::quiet_NaN();  ///< map position [m]
+  int grid_x = -1, grid_y = -1;  ///< pixel of the map grid (-1: not a map)
+  double spring_constant = 0.0;  ///< [N/m]
+  double sensitivity = 0.0;      ///< [m/V] (InvOLS)
+  std::vector<InstrumentSegment> segments;
+
+  /// Tip position of segment s [m]: measured height + force / k (on approach it falls).
+  std::vector<double> tip_position(std::size_t s) const;
+};
+
+/// A file's curves and what it says about itself.
+struct InstrumentFile {
+  std::string path;
+  std::string format;      ///< "jpk-force", "jpk-force-map", "jpk-qi-data" or "ibw"
+  std::string instrument;  ///< e.g. "JPK00758-CellHesion-200", "MFP3D"
+  std::string software;    ///< e.g. "4.3.11"
+  int grid_shape_x = 0, grid_shape_y = 0;  ///< map grid (0: not a map)
+  double grid_size_x = 0.0, grid_size_y = 0.0, grid_center_x = 0.0, grid_center_y = 0.0;  ///< [m]
+  std::vector<InstrumentCurve> curves;
+};
+
+/// True if the file name ends in an extension read_instrument_file knows.
+bool is_instrument_file(const std::string& path);
+
+/// Reads every curve of a JPK archive or an Igor wave. Throws InputError naming the file and
+/// what is wrong (not a zip, truncated or corrupt archive, missing header, channel or
+/// calibration, data of the wrong size, unknown encoder).
+InstrumentFile read_instrument_file(const std::string& path);
+
+/// One curve as the fit consumes it: delta = -tip_position, P = force, segment 0 for the
+/// extend segments (and pauses before the first retract), 1 for the rest. `source` names it
+/// in error messages.
+CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source);
+
+}  // namespace layerjkr

@@ -1,0 +1,15 @@
+// Internal: the per-format readers behind read_instrument_file (instrument.hpp).
+#pragma once
+
+#include <string>
+
+#include "layerjkr/instrument.hpp"
+
+namespace layerjkr::detail {
+
+/// JPK archive; `format` is "jpk-force", "jpk-force-map" or "jpk-qi-data".
+InstrumentFile read_jpk(const std::string& path, const std::string& format);
+/// Igor binary wave v5 (Asylum force curve).
+InstrumentFile read_ibw(const std::string& path);
+
+}  // namespace layerjkr::detail

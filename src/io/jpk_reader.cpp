@@ -1,0 +1,275 @@
+// JPK force archives (.jpk-force, .jpk-force-map, .jpk-qi-data): see instrument.hpp for the
+// conventions and ../shared/data/instrument/README.md for the format notes they follow.
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <set>
+
+#include "io/instrument_readers.hpp"
+#include "io/java_properties.hpp"
+#include "io/zip_archive.hpp"
+#include "layerjkr/error.hpp"
+
+namespace layerjkr::detail {
+namespace {
+
+class Reader {
+ public:
+  Reader(std::string path, const ZipArchive& zip) : path_(std::move(path)), zip_(zip) {}
+
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw InputError(path_ + ": " + where + ": " + what);
+  }
+
+  Properties properties(const std::string& name) const {
+    if (!zip_.contains(name)) fail(name, "missing from the archive");
+    return parse_properties(zip_.read(name));
+  }
+
+  const std::string& value(const Properties& p, const std::string& key, const std::string& where) const {
+    const auto it = p.find(key);
+    if (it == p.end()) fail(where, "no '" + key + "'");
+    return it->second;
+  }
+
+  double number(const Properties& p, const std::string& key, const std::string& where) const {
+    const std::string& text = value(p, key, where);
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc() || end != text.data() + text.size())
+      fail(where, "'" + key + "' = '" + text + "' is not a number");
+    return v;
+  }
+
+  std::string read(const std::string& name) const { return zip_.read(name); }
+
+ private:
+  std::string path_;
+  const ZipArchive& zip_;
+};
+
+bool starts_with(const std::string& s, const std::string& prefix) { return s.compare(0, prefix.size(), prefix) == 0; }
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The numbered sub-directories of `prefix` ("index/" -> 0, 1, 9, 10, ...), numerically sorted.
+std::vector<int> numbered_dirs(const std::vector<std::string>& names, const std::string& prefix) {
+  std::set<int> found;
+  for (const std::string& n : names) {
+    if (!starts_with(n, prefix)) continue;
+    const std::size_t slash = n.find('/', prefix.size());
+    if (slash == std::string::npos || slash == prefix.size()) continue;
+    int v = 0;
+    const char* b = n.data() + prefix.size();
+    const auto [end, ec] = std::from_chars(b, n.data() + slash, v);
+    if (ec == std::errc() && end == n.data() + slash) found.insert(v);
+  }
+  return {found.begin(), found.end()};
+}
+
+// Copies every shared `<block>.<number>.<rest>` to `<target><rest>` for the header's
+// `<target>...*=<number>` references (lcd-info per channel, segment-header-info), keeping
+// what the segment header says itself. The trailing dot keeps lcd-info.1. from matching 10.
+void resolve_shared(Properties& seg, const Properties& shared) {
+  std::vector<std::pair<std::string, std::string>> links;  // (target prefix, shared prefix)
+  for (const auto& [key, number] : seg) {
+    if (starts_with(key, "channel.") && ends_with(key, ".lcd-info.*"))
+      links.emplace_back(key.substr(0, key.size() - std::strlen("lcd-info.*")), "lcd-info." + number + ".");
+    if (key == "force-segment-header.force-segment-header-info.*")
+      links.emplace_back("force-segment-header.", "force-segment-header-info." + number + ".");
+  }
+  for (const auto& [target, prefix] : links)
+    for (auto it = shared.lower_bound(prefix); it != shared.end() && starts_with(it->first, prefix); ++it)
+      seg.emplace(target + it->first.substr(prefix.size()), it->second);
+}
+
+template <class T>
+T big_endian(const unsigned char* p) {
+  std::uint64_t v = 0;
+  for (std::size_t i = 0; i < sizeof(T); ++i) v = (v << 8) | p[i];
+  if constexpr (std::is_floating_point_v<T>) {
+    using U = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+    const U bits = static_cast<U>(v);
+    T out;
+    std::memcpy(&out, &bits, sizeof out);
+    return out;
+  } else {
+    using U = std::make_unsigned_t<T>;
+    return static_cast<T>(static_cast<U>(v));
+  }
+}
+
+template <class T>
+std::vector<double> decode(const std::string& bytes) {
+  std::vector<double> out(bytes.size() / sizeof(T));
+  const auto* p = reinterpret_cast<const unsigned char*>(bytes.data());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<double>(big_endian<T>(p + i * sizeof(T)));
+  return out;
+}
+
+struct ChannelReader {
+  const Reader& in;
+  const Properties& seg;
+  std::string dir;    // "…/segments/N/"
+  std::string where;  // names the segment in errors
+
+  bool has(const std::string& channel) const { return seg.count("channel." + channel + ".data.file.name") > 0; }
+
+  // Raw samples after the encoder (the base slot's values).
+  std::vector<double> base_values(const std::string& channel) const {
+    const std::string c = "channel." + channel + ".";
+    const std::string file = dir + in.value(seg, c + "data.file.name", where);
+    const std::string bytes = in.read(file);
+    const std::string enc = seg.count(c + "data.encoder.type") ? c + "data.encoder." : c + "encoder.";
+    std::string type;
+    if (seg.count(enc + "type")) type = seg.at(enc + "type");
+    else if (seg.count(c + "type")) type = seg.at(c + "type");
+    else type = in.value(seg, c + "data.type", where);
+    std::vector<double> v;
+    if (type == "signedshort") v = decode<std::int16_t>(bytes);
+    else if (type == "unsignedshort") v = decode<std::uint16_t>(bytes);
+    else if (type == "signedinteger") v = decode<std::int32_t>(bytes);
+    else if (type == "unsignedinteger") v = decode<std::uint32_t>(bytes);
+    else if (type == "signedlong") v = decode<std::int64_t>(bytes);
+    else if (type == "float-data" || type == "float") v = decode<float>(bytes);
+    else if (type == "double-data" || type == "double") v = decode<double>(bytes);
+    else in.fail(where, "channel " + channel + " has the unknown data type '" + type + "'");
+    const std::size_t width = bytes.size() / std::max<std::size_t>(v.size(), 1);
+    if (v.empty() || bytes.size() % width != 0)
+      in.fail(file, "holds " + std::to_string(bytes.size()) + " bytes, not a whole number of samples");
+    if (seg.count(enc + "scaling.multiplier")) {
+      const double m = in.number(seg, enc + "scaling.multiplier", where), o = in.number(seg, enc + "scaling.offset", where);
+      for (double& x : v) x = x * m + o;
+    }
+    return v;
+  }
+
+  // The chain from the base slot to `slot`, outermost last: (multiplier, offset) pairs.
+  void chain(const std::string& channel, const std::string& slot, std::vector<std::pair<double, double>>& steps,
+             int depth = 0) const {
+    const std::string set = "channel." + channel + ".conversion-set.";
+    if (slot == in.value(seg, set + "conversions.base", where)) return;
+    if (depth > 16) in.fail(where, "channel " + channel + ": the conversion chain does not end");
+    const std::string conv = set + "conversion." + slot + ".";
+    chain(channel, in.value(seg, conv + "base-calibration-slot", where), steps, depth + 1);
+    steps.emplace_back(in.number(seg, conv + "scaling.multiplier", where), in.number(seg, conv + "scaling.offset", where));
+  }
+
+  std::vector<double> values(const std::string& channel, const std::string& slot) const {
+    std::vector<double> v = base_values(channel);
+    std::vector<std::pair<double, double>> steps;
+    chain(channel, slot, steps);
+    for (const auto& [m, o] : steps)
+      for (double& x : v) x = m * x + o;
+    return v;
+  }
+
+  double multiplier(const std::string& channel, const std::string& slot) const {
+    return in.number(seg, "channel." + channel + ".conversion-set.conversion." + slot + ".scaling.multiplier", where);
+  }
+};
+
+// The first value whose key ends in `suffix` (headers prefix keys by the scan type).
+const std::string* find_suffix(const Properties& p, const std::string& suffix) {
+  for (const auto& [k, v] : p)
+    if (ends_with(k, suffix)) return &v;
+  return nullptr;
+}
+
+double suffix_number(const Properties& p, const std::string& suffix, double fallback) {
+  const std::string* v = find_suffix(p, suffix);
+  double out = fallback;
+  if (v) std::from_chars(v->data(), v->data() + v->size(), out);
+  return out;
+}
+
+InstrumentSegment read_segment(const Reader& in, const Properties& shared, const std::string& dir,
+                               InstrumentCurve& curve) {
+  const std::string where = dir + "segment-header.properties";
+  Properties seg = in.properties(where);
+  resolve_shared(seg, shared);
+  const ChannelReader ch{in, seg, dir, where};
+  InstrumentSegment s;
+  s.style = in.value(seg, "force-segment-header.settings.style", where);
+  s.duration = in.number(seg, "force-segment-header.duration", where);
+  if (!ch.has("vDeflection")) in.fail(where, "no vDeflection channel (force)");
+  s.force = ch.values("vDeflection", "force");
+  curve.spring_constant = ch.multiplier("vDeflection", "force");
+  curve.sensitivity = ch.multiplier("vDeflection", "distance");
+  bool found = false;
+  for (const char* name : {"strainGaugeHeight", "capacitiveSensorHeight", "measuredHeight"})
+    if (!found && ch.has(name)) {
+      s.height = ch.values(name, "nominal");
+      found = true;
+    }
+  if (!found) in.fail(where, "no measured height channel (strainGaugeHeight, capacitiveSensorHeight or measuredHeight)");
+  if (ch.has("height")) s.piezo_height = ch.values("height", "calibrated");
+  if (s.height.size() != s.force.size() || (!s.piezo_height.empty() && s.piezo_height.size() != s.force.size()))
+    in.fail(where, "channels of different lengths (" + std::to_string(s.force.size()) + " force samples, " +
+                       std::to_string(s.height.size()) + " heights)");
+  if (seg.count("force-segment-header.num-points") &&
+      in.number(seg, "force-segment-header.num-points", where) != static_cast<double>(s.force.size()))
+    in.fail(where, "the header announces " + seg.at("force-segment-header.num-points") + " points, the data hold " +
+                       std::to_string(s.force.size()));
+  return s;
+}
+
+}  // namespace
+
+InstrumentFile read_jpk(const std::string& path, const std::string& format) {
+  const ZipArchive zip(path);
+  const Reader in(path, zip);
+  InstrumentFile file;
+  file.path = path;
+  file.format = format;
+  const Properties top = in.properties("header.properties");
+  const Properties shared = zip.contains("shared-data/header.properties") ? in.properties("shared-data/header.properties")
+                                                                           : Properties{};
+  if (const std::string* v = find_suffix(top, ".description.instrument")) file.instrument = *v;
+  if (const std::string* v = find_suffix(top, ".description.source-software")) file.software = *v;
+  if (find_suffix(top, ".position-pattern.grid.ilength")) {
+    file.grid_shape_x = static_cast<int>(suffix_number(top, ".position-pattern.grid.ilength", 0));
+    file.grid_shape_y = static_cast<int>(suffix_number(top, ".position-pattern.grid.jlength", 0));
+    file.grid_size_x = suffix_number(top, ".position-pattern.grid.ulength", 0);
+    file.grid_size_y = suffix_number(top, ".position-pattern.grid.vlength", 0);
+    file.grid_center_x = suffix_number(top, ".position-pattern.grid.xcenter", 0);
+    file.grid_center_y = suffix_number(top, ".position-pattern.grid.ycenter", 0);
+  }
+  const std::vector<int> indices = numbered_dirs(zip.names(), "index/");
+  std::vector<std::string> prefixes;
+  if (indices.empty()) prefixes.emplace_back("");
+  for (int i : indices) prefixes.push_back("index/" + std::to_string(i) + "/");
+  for (std::size_t c = 0; c < prefixes.size(); ++c) {
+    const std::string& p = prefixes[c];
+    InstrumentCurve curve;
+    curve.index = indices.empty() ? 0 : indices[c];
+    const Properties header = p.empty() ? top : in.properties(p + "header.properties");
+    if (file.instrument.empty())
+      if (const std::string* v = find_suffix(header, ".description.instrument")) file.instrument = *v;
+    if (file.software.empty())
+      if (const std::string* v = find_suffix(header, ".description.source-software")) file.software = *v;
+    curve.position_index = static_cast<int>(suffix_number(header, ".header.position-index", -1));
+    curve.x = suffix_number(header, ".header.position.x", curve.x);
+    curve.y = suffix_number(header, ".header.position.y", curve.y);
+    if (file.grid_shape_x > 0 && std::isfinite(curve.x) && std::isfinite(curve.y)) {
+      auto pixel = [](double v, double center, double size, int shape) {
+        const int i = static_cast<int>(std::floor((v - (center - 0.5 * size)) / size * shape));
+        return std::clamp(i, 0, shape - 1);
+      };
+      curve.grid_x = pixel(curve.x, file.grid_center_x, file.grid_size_x, file.grid_shape_x);
+      curve.grid_y = pixel(curve.y, file.grid_center_y, file.grid_size_y, file.grid_shape_y);
+    }
+    const std::vector<int> segments = numbered_dirs(zip.names(), p + "segments/");
+    if (segments.empty()) in.fail(p.empty() ? "the archive" : p, "holds no segments");
+    for (int s : segments)
+      curve.segments.push_back(read_segment(in, shared, p + "segments/" + std::to_string(s) + "/", curve));
+    file.curves.push_back(std::move(curve));
+  }
+  return file;
+}
+
+}  // namespace layerjkr::detail
