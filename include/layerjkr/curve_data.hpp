@@ -12,6 +12,9 @@
 //                                         (the tip moves to more negative values on approach)
 //   z,deflection[,weight][,segment]       raw AFM: delta = z_sign*z - deflection_sign*d,
 //                                         P = k * deflection_sign*d  (needs spring_constant)
+//   curve,segment,force,height,tip_position  `layerjkr export` of an instrument file: height is
+//                                         informational; a file of several curves needs
+//                                         CsvOptions::curve
 // Aliases: P <-> force; a unit suffix _m / _N (delta_m, force_N, tip_position_m, ...) is
 // accepted and means SI, so it cannot be combined with non-SI CsvOptions units.
 #pragma once
@@ -58,6 +61,7 @@ struct CsvOptions {
   double spring_constant = 0.0;  ///< cantilever stiffness [N/m]; required for z,deflection
   double z_sign = 1.0;           ///< +1: z grows towards the sample; -1: it decreases
   double deflection_sign = 1.0;  ///< +1: deflection > 0 when pushed away by the sample
+  int curve = -1;  ///< with a curve column: read only this curve (-1: the file must hold one)
   /// Throws DomainError naming the first invalid field.
   void Validate() const;
 };

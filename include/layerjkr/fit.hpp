@@ -32,6 +32,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -136,6 +137,11 @@ struct BatchItem {
   bool ok = false;
   std::string error;   ///< the Error's message when !ok
   FitSummary summary;  ///< without the per-sample vectors (delta, P, P_fit), to bound memory
+  /// Instrument files: the curve's number in the file, map position [m] and grid pixel
+  /// (-1 / NaN where the file has none, and for CSV files).
+  int curve = -1;
+  double x = std::numeric_limits<double>::quiet_NaN(), y = std::numeric_limits<double>::quiet_NaN();
+  int grid_x = -1, grid_y = -1;
 };
 
 struct BatchOptions {
@@ -150,7 +156,10 @@ struct BatchOptions {
 std::vector<BatchItem> fit_batch(const std::vector<CurveData>& curves, const Scene& scene,
                                  const FitOptions& options, const BatchOptions& batch = {});
 
-/// The same for CSV files, each read with `csv` (a read error fails only that item).
+/// The same for files: CSV files, each read with `csv`, and instrument files
+/// (instrument.hpp), of which every curve is its own item, with its number, map position and
+/// pixel, its tip position from the file's spring constant (or csv.spring_constant when > 0).
+/// A file that cannot be read is one failed item; it never stops the batch.
 std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Scene& scene,
                                  const FitOptions& options, const CsvOptions& csv,
                                  const BatchOptions& batch = {});

@@ -71,7 +71,8 @@ InstrumentFile read_instrument_file(const std::string& path);
 
 /// One curve as the fit consumes it: delta = -tip_position, P = force, segment 0 for the
 /// extend segments (and pauses before the first retract), 1 for the rest. `source` names it
-/// in error messages.
-CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source);
+/// in error messages. spring_constant > 0 [N/m] replaces the file's: the deflection is kept,
+/// so force scales by k / k_file and the tip position is height + deflection.
+CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source, double spring_constant = 0.0);
 
 }  // namespace layerjkr

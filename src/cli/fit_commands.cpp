@@ -59,6 +59,7 @@ Prepared prepare(const FitArguments& a) {
   p.csv.spring_constant = a.spring_constant;
   p.csv.z_sign = a.z_sign;
   p.csv.deflection_sign = a.deflection_sign;
+  p.csv.curve = a.curve;
   try {
     p.options.Validate();
     p.csv.Validate();
@@ -161,9 +162,10 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
     if (fs::is_directory(in, ec)) {
       std::vector<std::string> found;
       for (const auto& e : fs::directory_iterator(in))
-        if (e.is_regular_file() && e.path().extension() == ".csv") found.push_back(e.path().string());
+        if (e.is_regular_file() && (e.path().extension() == ".csv" || is_instrument_file(e.path().string())))
+          found.push_back(e.path().string());
       std::sort(found.begin(), found.end());
-      if (found.empty()) throw InputError(in + ": the directory holds no .csv files");
+      if (found.empty()) throw InputError(in + ": the directory holds no .csv or instrument files");
       files.insert(files.end(), found.begin(), found.end());
     } else if (in.find_first_of("*?[") != std::string::npos) {
       glob_t g{};
@@ -194,12 +196,45 @@ void add_fit_options(CLI::App& c, FitArguments& a) {
   c.add_option("--deflection-sign", a.deflection_sign, "+1 if deflection > 0 means repulsion, else -1");
   c.add_option("--starts", a.extra_starts, "Extra starts around the data-driven guess (default 0)");
   c.add_option("--max-iterations", a.max_iterations, "Ceres iteration limit (default 200)");
+  c.add_option("--curve", a.curve, "Which curve of a file holding several (instrument map or export)");
+}
+
+namespace {
+
+// The curve `fit` reads: a CSV file, or one curve of an instrument file.
+CurveData read_fit_data(const std::string& path, const Prepared& p) {
+  if (!is_instrument_file(path)) return read_curve_csv(path, p.csv);
+  const InstrumentFile file = read_instrument_file(path);
+  if (p.csv.curve < 0 && file.curves.size() > 1)
+    throw InputError(path + ": holds " + std::to_string(file.curves.size()) +
+                     " curves; select one with --curve N, or fit them all with fit-map");
+  for (const InstrumentCurve& c : file.curves)
+    if (p.csv.curve < 0 || c.index == p.csv.curve) return to_curve_data(c, path, p.csv.spring_constant);
+  throw InputError(path + ": has no curve " + std::to_string(p.csv.curve));
+}
+
+}  // namespace
+
+int run_export(const std::string& path, const std::string& out) {
+  const InstrumentFile file = read_instrument_file(path);
+  std::string text = "curve,segment,force,height,tip_position\n";
+  for (const InstrumentCurve& c : file.curves) {
+    const CurveData d = to_curve_data(c, path);
+    std::size_t row = 0;
+    for (const InstrumentSegment& seg : c.segments)
+      for (std::size_t i = 0; i < seg.force.size(); ++i, ++row)
+        text += std::to_string(c.index) + "," + std::to_string(d.segment[row]) + "," + format_double(seg.force[i]) +
+                "," + format_double(seg.height[i]) + "," + format_double(-d.delta[row]) + "\n";
+  }
+  write_atomically(out, text);
+  std::cerr << "export: " << file.curves.size() << " curve(s) of " << path << " written to " << out << "\n";
+  return 0;
 }
 
 int run_fit(const FitArguments& args, const std::string& data, const std::string& report,
             const std::string& plot) {
   const Prepared p = prepare(args);
-  const CurveData curve = read_curve_csv(data, p.csv);
+  const CurveData curve = read_fit_data(data, p);
   const FitSummary s = fit(curve, p.scene, p.options);
   if (!plot.empty()) plot_fit(s, plot);
   if (!report.empty()) write_atomically(report, report_json(s, p.options.branch).dump(2) + "\n");
@@ -228,12 +263,14 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
   };
   const std::vector<BatchItem> items = fit_files(files, p.scene, p.options, p.csv, b);
   std::ostringstream csv;
-  csv << "file,status,error,model,converged,iterations,rms_residual,identifiable";
+  csv << "file,curve,x,y,grid_x,grid_y,status,error,model,converged,iterations,rms_residual,identifiable";
   for (FitParameter q : p.options.free) csv << "," << to_string(q) << "," << to_string(q) << "_stderr";
   csv << "\n";
   std::size_t failed = 0;
   for (const auto& it : items) {
-    csv << csv_cell(it.source) << "," << (it.ok ? "ok" : "error") << "," << csv_cell(it.error);
+    auto index = [](int v) { return v >= 0 ? std::to_string(v) : std::string(); };
+    csv << csv_cell(it.source) << "," << index(it.curve) << "," << num(it.x) << "," << num(it.y) << ","
+        << index(it.grid_x) << "," << index(it.grid_y) << "," << (it.ok ? "ok" : "error") << "," << csv_cell(it.error);
     if (it.ok) {
       const FitSummary& s = it.summary;
       csv << "," << s.model << "," << (s.converged ? 1 : 0) << "," << s.iterations << ","

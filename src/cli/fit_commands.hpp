@@ -15,6 +15,7 @@ struct FitArguments {
   std::string scene, free, loss = "none", branch = "approach", units = "m,N";
   double spring_constant = 0.0, z_sign = 1.0, deflection_sign = 1.0;
   int extra_starts = 0, max_iterations = 200;
+  int curve = -1;  ///< --curve: which curve of a file holding several (-1: it must hold one)
 };
 
 /// Registers the shared options on a subcommand.
@@ -23,6 +24,10 @@ void add_fit_options(CLI::App& command, FitArguments& args);
 /// `layerjkr fit DATA.csv ...`: summary on stdout, optional JSON report and plot.
 int run_fit(const FitArguments& args, const std::string& data, const std::string& report,
             const std::string& plot);
+
+/// `layerjkr export FILE --out OUT.csv`: every curve of an instrument file as one CSV
+/// (curve,segment,force,height,tip_position), which `fit` reads back.
+int run_export(const std::string& path, const std::string& out);
 
 /// `layerjkr fit-map INPUT... --out RESULTS.csv`: one row per curve, progress on stderr.
 int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,

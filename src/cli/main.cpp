@@ -3,6 +3,7 @@
 //   layerjkr summary SCENE.json
 //   layerjkr fit DATA.csv --scene S.json --free E,w,delta0 [--out R.json] [--plot F.png] ...
 //   layerjkr fit-map DIR_OR_GLOB... --scene S.json --free ... --jobs N --out RESULTS.csv
+//   layerjkr export FILE.jpk-force|.jpk-force-map|.jpk-qi-data|.ibw --out OUT.csv
 // Exit codes: 0 success, 2 invalid scene or arguments, 1 internal failure.
 #include <algorithm>
 #include <cerrno>
@@ -179,8 +180,9 @@ static int run_main(int argc, char** argv) {
   std::vector<std::string> map_inputs;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   CLI::App* fit = app.add_subcommand(
-      "fit", "Fit a measured curve (CSV) with a scene's model: estimates, errors, identifiability");
-  fit->add_option("data", data_path, "Curve CSV: delta,P[,a][,weight][,segment] | tip_position,force | z,deflection")
+      "fit", "Fit a measured curve (CSV or instrument file) with a scene's model: estimates, errors, identifiability");
+  fit->add_option("data", data_path, "Curve CSV (delta,P[,a][,weight][,segment] | tip_position,force | z,deflection | "
+                                     "an export) or a JPK / Igor file")
       ->required();
   layerjkr::cli::add_fit_options(*fit, fit_args);
   fit->add_option("--out", report_path, "Write the JSON report here");
@@ -193,11 +195,18 @@ static int run_main(int argc, char** argv) {
   fit_map->add_option("--jobs", jobs, "Worker threads (default: all cores)");
   fit_map->add_option("--out", map_out, "Results CSV")->required();
 
-  const std::vector<std::string> commands = {"curve", "summary", "fit", "fit-map"};
+  std::string export_path, export_out;
+  CLI::App* export_cmd = app.add_subcommand(
+      "export", "Write every curve of an instrument file (JPK, Igor) as CSV: curve,segment,force,height,tip_position");
+  export_cmd->add_option("file", export_path, "Instrument file (.jpk-force, .jpk-force-map, .jpk-qi-data, .ibw)")
+      ->required();
+  export_cmd->add_option("--out", export_out, "CSV file to write")->required();
+
+  const std::vector<std::string> commands = {"curve", "summary", "fit", "fit-map", "export"};
   if (argc > 1 && argv[1][0] != '-' &&
       std::find(commands.begin(), commands.end(), std::string(argv[1])) == commands.end()) {
     std::cerr << "layerjkr: unknown command '" << argv[1]
-              << "' (known: curve, summary, fit, fit-map)\nRun 'layerjkr --help' for usage.\n";
+              << "' (known: curve, summary, fit, fit-map, export)\nRun 'layerjkr --help' for usage.\n";
     return 2;
   }
   try {
@@ -217,6 +226,7 @@ static int run_main(int argc, char** argv) {
     if (*curve) return run_curve(scene_path, at, a_max, points);
     if (*fit) return layerjkr::cli::run_fit(fit_args, data_path, report_path, plot_path);
     if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out);
+    if (*export_cmd) return layerjkr::cli::run_export(export_path, export_out);
     return run_summary(scene_path);
   } catch (const layerjkr::NumericalError& e) {
     std::cerr << "layerjkr: numerical failure: " << e.what() << "\n";

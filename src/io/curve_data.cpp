@@ -14,7 +14,7 @@
 namespace layerjkr {
 namespace {
 
-enum class Column { delta, force, a, weight, segment, tip_position, z, deflection };
+enum class Column { delta, force, a, weight, segment, tip_position, z, deflection, curve, height };
 
 struct ColumnName {
   Column column;
@@ -33,7 +33,9 @@ const std::map<std::string, ColumnName>& known_columns() {
       {"tip_position_m", {Column::tip_position, true}},
       {"z", {Column::z, false}},             {"z_m", {Column::z, true}},
       {"deflection", {Column::deflection, false}},
-      {"deflection_m", {Column::deflection, true}}};
+      {"deflection_m", {Column::deflection, true}},
+      {"curve", {Column::curve, false}},     {"height", {Column::height, false}},
+      {"height_m", {Column::height, true}}};
   return names;
 }
 
@@ -123,6 +125,7 @@ void CsvOptions::Validate() const {
   if (z_sign != 1.0 && z_sign != -1.0) throw DomainError(fn, "z_sign", z_sign, "+1 or -1");
   if (deflection_sign != 1.0 && deflection_sign != -1.0)
     throw DomainError(fn, "deflection_sign", deflection_sign, "+1 or -1");
+  if (curve < -1) throw DomainError(fn, "curve", curve, ">= 0, or -1 for a file of one curve");
 }
 
 void parse_units(const std::string& text, CsvOptions& options) {
@@ -165,7 +168,7 @@ Layout read_layout(std::vector<std::string> header, const CsvOptions& options, c
     if (it == known_columns().end())
       fail("header column " + std::to_string(c + 1) + " '" + shorten(header[c]) +
            "' is unknown (known: delta, P, force, a, weight, segment, tip_position, z, "
-           "deflection; optional _m/_N suffix)");
+           "deflection, curve, height; optional _m/_N suffix)");
     if (l.has(it->second.column)) fail("header names the same quantity twice ('" + header[c] + "')");
     l.where[it->second.column] = c;
     si_labelled = si_labelled || it->second.si_labelled;
@@ -189,6 +192,10 @@ Layout read_layout(std::vector<std::string> header, const CsvOptions& options, c
     if (!l.has(Column::force)) fail("needs a force column (P or force)");
   }
   if (l.has(Column::a) && !l.has(Column::delta)) fail("column a is only accepted with the delta,P form");
+  if (l.has(Column::height) && !l.has(Column::tip_position))
+    fail("column height (layerjkr export) is only accepted with tip_position");
+  if (options.curve >= 0 && !l.has(Column::curve))
+    fail("a curve was selected (--curve " + std::to_string(options.curve) + ") but the file has no curve column");
   l.header = std::move(header);
   return l;
 }
@@ -212,10 +219,16 @@ std::vector<double> read_numbers(const std::vector<std::string>& cells, const La
   return v;
 }
 
-// One row into the curve, converted to SI delta and P by the layout's convention.
+// One row into the curve, converted to SI delta and P by the layout's convention; rows of
+// other curves than the selected one are skipped (the export's curve column).
 void append_row(const std::vector<double>& v, const Layout& l, const CsvOptions& options,
-                std::size_t line_no, const Fail& fail, CurveData& d) {
+                std::size_t line_no, const Fail& fail, CurveData& d, std::vector<double>& curves) {
   auto col = [&](Column c) { return v[l.where.at(c)]; };
+  if (l.has(Column::curve)) {
+    const double c = col(Column::curve);
+    if (std::find(curves.begin(), curves.end(), c) == curves.end()) curves.push_back(c);
+    if (options.curve >= 0 && c != options.curve) return;
+  }
   const double L = options.length_unit, F = options.force_unit;
   if (l.raw) {
     const double dfl = options.deflection_sign * col(Column::deflection) * L;
@@ -271,7 +284,13 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
   const Layout layout = read_layout(cells, options, fail);
   CurveData d;
   d.source = source;
-  while (next_row(&cells)) append_row(read_numbers(cells, layout, line_no, fail), layout, options, line_no, fail, d);
+  std::vector<double> curves;
+  while (next_row(&cells))
+    append_row(read_numbers(cells, layout, line_no, fail), layout, options, line_no, fail, d, curves);
+  if (options.curve < 0 && curves.size() > 1)
+    fail("holds " + std::to_string(curves.size()) + " curves (column curve); select one (--curve N)");
+  if (options.curve >= 0 && d.delta.empty())
+    fail("has no rows of curve " + std::to_string(options.curve));
   if (d.delta.empty()) fail("has a header but no data rows");
   d.Validate();
   require_acquisition_order(d, fail);

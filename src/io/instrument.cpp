@@ -41,17 +41,19 @@ std::vector<double> InstrumentCurve::tip_position(std::size_t s) const {
   return out;
 }
 
-CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source) {
+CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source, double spring_constant) {
+  detail::require_non_negative("to_curve_data", "spring_constant", spring_constant);
+  const double k = spring_constant > 0.0 ? spring_constant : curve.spring_constant;
+  const double scale = k / curve.spring_constant;
   CurveData d;
   d.source = source;
   bool retracting = false;
-  for (std::size_t s = 0; s < curve.segments.size(); ++s) {
-    const InstrumentSegment& seg = curve.segments[s];
+  for (const InstrumentSegment& seg : curve.segments) {
     retracting = retracting || seg.style == "retract";
-    const std::vector<double> tip = curve.tip_position(s);
-    for (std::size_t i = 0; i < tip.size(); ++i) {
-      d.delta.push_back(-tip[i]);
-      d.P.push_back(seg.force[i]);
+    for (std::size_t i = 0; i < seg.force.size(); ++i) {
+      const double force = seg.force[i] * scale;
+      d.delta.push_back(-(seg.height[i] + force / k));
+      d.P.push_back(force);
       d.segment.push_back(retracting ? 1 : 0);
     }
   }

@@ -1,0 +1,90 @@
+// The CLI on instrument files: fit straight from a JPK archive (JPK's own E), export and
+// read back, fit-map over a force map and a QI map with positions, a corrupt archive
+// failing only its own row. Skipped, not failed, when ../shared is absent.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "support/cli_support.hpp"
+#include "support/test_support.hpp"
+
+using namespace test::cli;
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kDir = std::string(LAYERJKR_SOURCE_DIR) + "/../shared/data/instrument/";
+const std::string kSpot3 = kDir + "fmt-jpk-fd_spot3-0192.jpk-force";
+bool have_data() { return fs::exists(kSpot3); }
+// nanite's test_app_ret: R = 40 nm, nu = 0.5, Hertz paraboloid.
+std::string hertz_scene() {
+  return write_file("hertz.json", R"({"indenter": {"shape": "paraboloid", "R": 4e-8},
+      "medium": {"type": "half_space", "E": 3e5, "nu": 0.5}})");
+}
+double value_after(const std::string& text, const std::string& key) {
+  const std::size_t at = text.find(key);
+  REQUIRE(at != std::string::npos);
+  return std::stod(text.substr(at + key.size()));
+}
+}  // namespace
+
+TEST_CASE("fit reads a JPK archive directly and reproduces JPK's E = 233.1 kPa within 0.2 %", "[cli][instrument]") {
+  if (!have_data()) {
+    test::report_skip(kDir + " is absent (the shared data beside the repository)");
+    return;
+  }
+  const Run r = run("fit " + kSpot3 + " --scene " + hertz_scene() + " --free E,delta0,P0");
+  INFO(r.err << r.out);
+  REQUIRE(r.code == 0);
+  const double E = value_after(r.out, "E = ");
+  CHECK(test::rel_err(E, 233.1e3) < 2e-3);
+  // Exported and read back, the same curve gives the same fit.
+  const std::string csv = unique("spot3.csv");
+  REQUIRE(run("export " + kSpot3 + " --out " + csv).code == 0);
+  CHECK(lines(slurp(csv))[0] == "curve,segment,force,height,tip_position");
+  CHECK(lines(slurp(csv)).size() == 4001);
+  const Run back = run("fit " + csv + " --scene " + hertz_scene() + " --free E,delta0,P0");
+  REQUIRE(back.code == 0);
+  CHECK(value_after(back.out, "E = ") == E);
+}
+
+TEST_CASE("a map: fit needs --curve, fit-map gives every curve its row with index and position", "[cli][instrument]") {
+  if (!have_data()) {
+    test::report_skip(kDir + " is absent (the shared data beside the repository)");
+    return;
+  }
+  const std::string map = kDir + "fmt-jpk-fd_map2x2_extracted.jpk-force-map";
+  const std::string qi = kDir + "fmt-jpk-fd_2020.02.07-16.29.05.036.jpk-qi-data";
+  const Run need = run("fit " + map + " --scene " + hertz_scene() + " --free E,delta0,P0");
+  CHECK(need.code == 2);
+  CHECK(need.err.find("holds 4 curves; select one with --curve N") != std::string::npos);
+  const std::string exported = unique("map.csv");
+  REQUIRE(run("export " + map + " --out " + exported).code == 0);
+  CHECK(run("fit " + exported + " --scene " + hertz_scene() + " --free E,delta0,P0").err.find("--curve") !=
+        std::string::npos);
+  const Run one = run("fit " + exported + " --curve 2 --scene " + hertz_scene() + " --free E,delta0,P0");
+  INFO(one.err);
+  CHECK(one.code == 0);
+  // A broken archive among the inputs fails only its own row.
+  const std::string broken = write_file("broken.jpk-force", "not a zip");
+  const std::string out = unique("results.csv");
+  const Run r = run("fit-map " + map + " " + qi + " " + broken + " --scene " + hertz_scene() +
+                    " --free E,delta0,P0 --jobs 2 --out " + out);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto rows = lines(slurp(out));
+  REQUIRE(rows.size() == 10);  // header, 4 + 4 curves, 1 broken file
+  CHECK(rows[1].rfind(map + "#0,0,", 0) == 0);
+  CHECK(rows[3].find("#2,2,0.00057183593750000008,-0.00021373046875000003,9,9,") != std::string::npos);
+  CHECK(rows[6].find("#1,1,") != std::string::npos);
+  CHECK(rows[6].find(",1,0,") != std::string::npos);  // QI pixel (1, 0)
+  CHECK(rows[9].find("broken.jpk-force,,,,,,error,") != std::string::npos);
+  CHECK(rows[9].find("zip") != std::string::npos);
+}
+
+TEST_CASE("export rejects files that are not instrument files, with exit 2", "[cli][instrument][errors]") {
+  const Run r = run("export " + write_file("x.csv", "delta,P\n1,2\n") + " --out " + unique("o.csv"));
+  CHECK(r.code == 2);
+  CHECK(r.err.find("not an instrument file") != std::string::npos);
+  CHECK(r.out.empty());
+}
