@@ -39,6 +39,8 @@ struct CurveData {
   std::vector<double> weight;  ///< relative weights > 0 (empty = all 1)
   std::vector<int> segment;    ///< 0 approach, 1 retract (empty = split at the largest delta)
   std::string source = "curve";  ///< names the curve in error messages
+  /// Stiffness [N/m] of the cantilever that measured it, when known (instrument files); 0 if not.
+  double spring_constant = 0.0;
 
   std::size_t size() const { return delta.size(); }
 

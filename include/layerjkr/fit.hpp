@@ -58,6 +58,16 @@ struct FitOptions {
   /// (delta0 = 0 and P0 = 0 unless freed).
   std::vector<FitParameter> free;
   Branch branch = Branch::approach;
+  /// Stiffness [N/m] of the cantilever that controls the retract: the tip follows the
+  /// adhesive branch beyond the load-controlled pull-off until dP/d delta = -k, then jumps
+  /// free. 0 (default): load control, the jump at the pull-off; infinity: fixed grips; NaN:
+  /// the curve's own CurveData::spring_constant (an instrument file's), load control if 0.
+  double cantilever_stiffness = 0.0;
+  /// Retract samples after the model's jump that have not yet returned to the baseline
+  /// (|P - P0| > exclusion_sigmas x the noise of the shallowest quarter of the samples) are
+  /// not JKR: they are excluded from the fit, counted and reported (FitSummary::excluded).
+  /// 0 keeps every sample.
+  double exclusion_sigmas = 3.0;
   /// Robust loss on force residuals; loss_scale [N] > 0 is where it departs from
   /// least squares (required for huber and cauchy).
   LossType loss = LossType::none;
@@ -113,6 +123,9 @@ struct FitSummary {
   std::vector<std::string> warnings;
   /// The data used and the fitted model at the same samples (for plots and residuals).
   std::vector<double> delta, P, P_fit;
+  /// Per sample (aligned with delta, P): excluded by the rule of FitOptions::exclusion_sigmas.
+  std::vector<bool> excluded;
+  std::size_t excluded_count = 0;
   double solve_seconds = 0.0;
 
   /// The estimate for p; throws Error if p was not free.

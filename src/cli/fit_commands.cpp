@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -45,6 +46,7 @@ struct Prepared {
   Scene scene;
   FitOptions options;
   CsvOptions csv;
+  bool cantilever_required = false;
 };
 
 Prepared prepare(const FitArguments& a) {
@@ -60,6 +62,13 @@ Prepared prepare(const FitArguments& a) {
   p.csv.z_sign = a.z_sign;
   p.csv.deflection_sign = a.deflection_sign;
   p.csv.curve = a.curve;
+  // The retract's control: a known spring constant (instrument file, --spring-constant) means
+  // a cantilever let go; without one, load control.
+  if (a.control == "auto" || a.control == "cantilever") p.options.cantilever_stiffness = std::nan("");
+  else if (a.control == "load") p.options.cantilever_stiffness = 0.0;
+  else if (a.control == "grips") p.options.cantilever_stiffness = std::numeric_limits<double>::infinity();
+  else throw InputError("--control = \"" + a.control + "\" is invalid; use auto, load, cantilever or grips");
+  p.cantilever_required = a.control == "cantilever";
   try {
     p.options.Validate();
     p.csv.Validate();
@@ -94,6 +103,7 @@ json report_json(const FitSummary& s, Branch branch) {
   }
   j["correlation"] = corr;
   j["rms_residual"] = s.rms_residual;
+  j["excluded"] = s.excluded_count;
   j["points"] = s.points;
   j["points_in_contact"] = s.points_in_contact;
   j["identifiable"] = s.identifiable;
@@ -120,7 +130,8 @@ void plot_fit(const FitSummary& s, const std::string& path) {
     std::ofstream f(dat);
     f.precision(17);
     for (std::size_t i = 0; i < s.delta.size(); ++i)
-      f << s.delta[i] << " " << s.P[i] << " " << s.P_fit[i] << " " << s.P[i] - s.P_fit[i] << "\n";
+      f << s.delta[i] << " " << s.P[i] << " " << s.P_fit[i] << " " << s.P[i] - s.P_fit[i] << " "
+        << (!s.excluded.empty() && s.excluded[i] ? 1 : 0) << "\n";
     if (!f) throw InputError(path + ": cannot write the plot data");
   }
   std::ostringstream g;
@@ -129,7 +140,8 @@ void plot_fit(const FitSummary& s, const std::string& path) {
     << "set multiplot layout 2,1 title 'layerjkr fit: " << s.model << " (rms " << s.rms_residual << " N)'\n"
     << "set format x '%.3s%c'\nset format y '%.1s%c'\nset grid\n"
     << "set ylabel 'force P [N]'\nset key top left\n"
-    << "plot '" << dat << "' using 1:2 with points pt 7 ps 0.4 lc rgb '#777777' title 'data', "
+    << "plot '" << dat << "' using 1:($5 == 0 ? $2 : 1/0) with points pt 7 ps 0.4 lc rgb '#777777' title 'data', "
+    << "'' using 1:($5 == 1 ? $2 : 1/0) with points pt 7 ps 0.4 lc rgb '#e67e22' title 'excluded (not JKR)', "
     << "'' using 1:3 with points pt 7 ps 0.3 lc rgb '#c0392b' title 'fit'\n"
     << "set xlabel 'delta [m]'\nset ylabel 'residual [N]'\nunset key\n"
     << "plot '" << dat << "' using 1:4 with points pt 7 ps 0.3 lc rgb '#2c3e50', 0 lc rgb '#c0392b'\n"
@@ -197,6 +209,9 @@ void add_fit_options(CLI::App& c, FitArguments& a) {
   c.add_option("--starts", a.extra_starts, "Extra starts around the data-driven guess (default 0)");
   c.add_option("--max-iterations", a.max_iterations, "Ceres iteration limit (default 200)");
   c.add_option("--curve", a.curve, "Which curve of a file holding several (instrument map or export)");
+  c.add_option("--control", a.control,
+               "Retract control: auto (cantilever when the spring constant is known, else load) | load | "
+               "cantilever | grips");
 }
 
 namespace {
@@ -235,6 +250,8 @@ int run_fit(const FitArguments& args, const std::string& data, const std::string
             const std::string& plot) {
   const Prepared p = prepare(args);
   const CurveData curve = read_fit_data(data, p);
+  if (p.cantilever_required && !(curve.spring_constant > 0.0))
+    throw InputError("--control cantilever needs the spring constant: an instrument file, or --spring-constant k [N/m]");
   const FitSummary s = fit(curve, p.scene, p.options);
   if (!plot.empty()) plot_fit(s, plot);
   if (!report.empty()) write_atomically(report, report_json(s, p.options.branch).dump(2) + "\n");

@@ -16,6 +16,7 @@ struct FitArguments {
   double spring_constant = 0.0, z_sign = 1.0, deflection_sign = 1.0;
   int extra_starts = 0, max_iterations = 200;
   int curve = -1;  ///< --curve: which curve of a file holding several (-1: it must hold one)
+  std::string control = "auto";  ///< --control: auto | load | cantilever | grips
 };
 
 /// Registers the shared options on a subcommand.

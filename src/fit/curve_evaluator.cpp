@@ -87,8 +87,9 @@ std::size_t FitData::residuals() const {
   return m;
 }
 
-CurveEvaluator::CurveEvaluator(const CurveModel& model, const ParameterMap& map, const FitData& data)
-    : model_(model), map_(map), data_(data), n_free_(map.free.size()) {
+CurveEvaluator::CurveEvaluator(const CurveModel& model, const ParameterMap& map, const FitData& data,
+                               double cantilever_k)
+    : model_(model), map_(map), data_(data), n_free_(map.free.size()), cantilever_k_(cantilever_k) {
   const std::size_t n = data.delta.size();
   row_.assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i)
@@ -184,6 +185,7 @@ bool CurveEvaluator::branch_start(const CurveParameters<double>& p, StartKind ki
   auto g = [&](double a) {
     double d, P, dd, dP;
     curve(p, a, &d, &P, &dd, &dP);
+    if (kind == StartKind::cantilever) return dP + cantilever_k_ * dd;  // dP/d delta + k, times d delta/da
     return kind == StartKind::zero_load ? P : kind == StartKind::pull_off ? dP : dd;
   };
   double x = start_cache_[static_cast<int>(kind)];
@@ -249,6 +251,7 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
   }
   const std::size_t m = row_.back();
   r_.assign(m, 0.0);
+  detached_.assign(data_.delta.size(), 0);
   if (jacobian) J_.assign(m * n_free_, 0.0);
   contact_count_ = 0;
   const double F = map_.F, A = data_.a_scale;
@@ -260,7 +263,11 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
     if (!any) continue;
     bool forced = false;
     for (std::size_t i : order_) forced = forced || (data_.retract[i] == retract && !data_.contact.empty() && data_.contact[i] >= 0);
-    const StartKind kind = forced ? StartKind::fixed_grips : retract ? StartKind::pull_off : StartKind::zero_load;
+    const StartKind kind = !retract                       ? (forced ? StartKind::fixed_grips : StartKind::zero_load)
+                           : std::isinf(cantilever_k_)     ? StartKind::fixed_grips
+                           : cantilever_k_ > 0.0           ? StartKind::cantilever
+                           : forced                        ? StartKind::fixed_grips
+                                                           : StartKind::pull_off;
     BranchStart start;
     if (!branch_start(p, kind, &start)) return false;
     start_cache_[static_cast<int>(kind)] = start.a;
@@ -275,6 +282,7 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
       // A sample held in contact below the curve's end sits at the end (a smooth penalty).
       const bool clamped = flag == 1 && t < start.delta;
       if (flag == 0 || (flag < 0 && t < start.delta)) {  // not in contact: the baseline only
+        detached_[i] = retract ? 1 : 0;
         P_fit_[i] = P0;
         r_[r0] = sw * (P0 - data_.P[i]) / F;
         if (jacobian)

@@ -43,12 +43,15 @@ struct FitData {
   double a_scale = 1.0;                          ///< divides contact-radius residuals [m]
   /// Median force and MAD noise of the shallowest quarter of the samples [N].
   double baseline = 0.0, noise = 0.0;
+  /// The retract is controlled by a cantilever (FitOptions::cantilever_stiffness > 0).
+  bool cantilever = false;
   std::size_t residuals() const;
 };
 
-/// Where a branch starts: zero load (approach), pull-off (retract under load control), or
-/// the fixed-grips point min delta(a) (the end of every curve that still exists).
-enum class StartKind { zero_load = 0, pull_off = 1, fixed_grips = 2 };
+/// Where a branch starts: zero load (approach), pull-off (retract under load control),
+/// the fixed-grips point min delta(a) (the end of every curve that still exists), or where a
+/// cantilever of stiffness k lets go, dP/d delta = -k (between pull-off and fixed grips).
+enum class StartKind { zero_load = 0, pull_off = 1, fixed_grips = 2, cantilever = 3 };
 
 struct BranchStart {
   double a = 0.0, delta = 0.0;
@@ -56,7 +59,9 @@ struct BranchStart {
 
 class CurveEvaluator {
  public:
-  CurveEvaluator(const CurveModel& model, const ParameterMap& map, const FitData& data);
+  /// cantilever_k [N/m]: 0 for a load-controlled retract, > 0 for one a cantilever of that
+  /// stiffness controls (infinity: fixed grips).
+  CurveEvaluator(const CurveModel& model, const ParameterMap& map, const FitData& data, double cantilever_k = 0.0);
 
   /// Residuals (and the row-major Jacobian, residuals x free) at x. False if the
   /// model cannot be evaluated there (a radius outside the model's domain).
@@ -66,6 +71,10 @@ class CurveEvaluator {
   /// Model force at each sample (P0 included) and contact flags of the last evaluation.
   const std::vector<double>& predicted() const { return P_fit_; }
   std::size_t in_contact() const { return contact_count_; }
+  /// Per sample of the last evaluation: a retract sample the model has already let go of.
+  const std::vector<char>& detached() const { return detached_; }
+  /// Forget cached residuals (after the data's weights changed).
+  void invalidate() { have_cache_ = false; }
   /// Number of samples (residual groups).
   std::size_t points() const { return row_.size() - 1; }
   /// Row where sample i's residuals start, and how many rows it has.
@@ -95,7 +104,9 @@ class CurveEvaluator {
   std::vector<std::size_t> order_;  ///< samples sorted by delta
   std::vector<double> a_cache_;
   double a_typ_ = 0.0;
-  std::array<double, 3> start_cache_{0.0, 0.0, 0.0};
+  std::array<double, 4> start_cache_{0.0, 0.0, 0.0, 0.0};
+  double cantilever_k_ = 0.0;
+  std::vector<char> detached_;
   std::vector<double> x_cache_;
   bool have_cache_ = false, have_jac_ = false, cache_ok_ = false, reuse_radii_ = false;
   std::vector<double> r_, J_, P_fit_;

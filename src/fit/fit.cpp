@@ -151,6 +151,7 @@ void try_extra_starts(CurveEvaluator& ev, const ParameterMap& map, const FitOpti
   const auto at = [&](std::vector<double>& v, FitParameter q) -> double& {
     return v[static_cast<std::size_t>(map.index(q))];
   };
+  bool moved = false;
   for (int k = 1; k <= options.extra_starts; ++k) {
     std::vector<double> xs(x.size(), 0.0);
     if (map.is_free(FitParameter::w)) at(xs, FitParameter::w) = at(x, FitParameter::w) > 0 ? 1.0 : 0.0;
@@ -161,13 +162,57 @@ void try_extra_starts(CurveEvaluator& ev, const ParameterMap& map, const FitOpti
       if (map.is_free(q)) at(xs, q) = sign * std::log(kExtraStartStiffnessFactor) * ring;
     if (!ev.evaluate(xs.data(), false)) continue;
     ceres::Solver::Summary s2;
-    auto p2 = solve(ev, map, options, xs, &s2);
+    solve(ev, map, options, xs, &s2);
     if (s2.IsSolutionUsable() && s2.final_cost < summary.final_cost) {
       summary = s2;
       x = xs;
-      problem = std::move(p2);
+      moved = true;
     }
   }
+  // The covariance needs a problem built on x itself, not on a start's copy: solve once
+  // more from the winner (it stops at once).
+  if (moved) problem = solve(ev, map, options, x, &summary);
+}
+
+// The stated rule (FitOptions::exclusion_sigmas): in acquisition order, the retract samples
+// from the first one the model has let go of up to the first that is back within
+// exclusion_sigmas x noise of the baseline P0 are not JKR. Refits without them until the set
+// is stable (at most 4 passes); the baseline then comes from the detached samples beyond.
+std::vector<bool> exclude_non_jkr(CurveEvaluator& ev, const ParameterMap& map, const FitOptions& options,
+                                  FitData& data, std::vector<double>& x, ceres::Solver::Summary& summary,
+                                  std::unique_ptr<ceres::Problem>& problem) {
+  const std::size_t n = data.P.size();
+  std::vector<bool> excluded(n, false);
+  if (options.exclusion_sigmas == 0.0 || std::find(data.retract.begin(), data.retract.end(), true) == data.retract.end())
+    return excluded;
+  const std::vector<double> weights = data.sqrt_weight;
+  // Noiseless (synthetic) data have no noise to scale by: a floor of 1e-6 of the force scale.
+  const double band = std::max(options.exclusion_sigmas * data.noise, 1e-6 * map.F);
+  for (int pass = 0; pass < 4; ++pass) {
+    if (!ev.evaluate(x.data(), false)) break;
+    const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;
+    std::vector<bool> next(n, false);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!data.retract[i] || !ev.detached()[i]) continue;
+      if (std::abs(data.P[i] - P0) <= band) break;  // back at the baseline: the rest is baseline
+      next[i] = true;
+    }
+    if (next == excluded) break;
+    excluded = next;
+    for (std::size_t i = 0; i < n; ++i) data.sqrt_weight[i] = excluded[i] ? 0.0 : weights[i];
+    ev.invalidate();
+    // Solved in place: the problem keeps pointing at x, which the covariance needs.
+    ceres::Solver::Summary s2;
+    const std::vector<double> before = x;
+    auto p2 = solve(ev, map, options, x, &s2);
+    if (!s2.IsSolutionUsable()) {
+      x = before;
+      break;
+    }
+    summary = s2;
+    problem = std::move(p2);
+  }
+  return excluded;
 }
 
 // The solution, the fitted curve and its rms into the summary.
@@ -186,8 +231,13 @@ void record_solution(CurveEvaluator& ev, const ParameterMap& map, const FitData&
   out->P = data.P;
   out->P_fit = ev.predicted();
   double ss = 0.0;
-  for (std::size_t i = 0; i < data.P.size(); ++i) ss += (out->P_fit[i] - data.P[i]) * (out->P_fit[i] - data.P[i]);
-  out->rms_residual = std::sqrt(ss / static_cast<double>(data.P.size()));
+  std::size_t kept = 0;  // excluded samples (weight 0) are not part of the fit
+  for (std::size_t i = 0; i < data.P.size(); ++i)
+    if (data.sqrt_weight[i] > 0.0) {
+      ss += (out->P_fit[i] - data.P[i]) * (out->P_fit[i] - data.P[i]);
+      ++kept;
+    }
+  out->rms_residual = std::sqrt(ss / static_cast<double>(std::max<std::size_t>(kept, 1)));
   for (std::size_t j = 0; j < x.size(); ++j) {
     out->parameters[j].value = map.value(map.free[j], x.data());
     out->parameters[j].stderr_ = kNaN;
@@ -225,7 +275,9 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   for (const auto& note : model->notes()) out.warnings.push_back(note);
 
   std::vector<double> x(options.free.size(), 0.0);
-  CurveEvaluator ev(*model, map, data);
+  const double k = std::isnan(options.cantilever_stiffness) ? curve.spring_constant : options.cantilever_stiffness;
+  data.cantilever = k > 0.0;
+  CurveEvaluator ev(*model, map, data, k);
   detail::find_start(data, map, ev, x, curve.source);
   for (FitParameter q : options.free) {
     ParameterEstimate e;
@@ -241,7 +293,10 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   ceres::Solver::Summary summary;
   std::unique_ptr<ceres::Problem> problem = solve(ev, map, options, x, &summary);
   try_extra_starts(ev, map, options, x, summary, problem);
+  const std::vector<bool> excluded = exclude_non_jkr(ev, map, options, data, x, summary, problem);
   record_solution(ev, map, data, x, summary, &out);
+  out.excluded = excluded;
+  out.excluded_count = static_cast<std::size_t>(std::count(excluded.begin(), excluded.end(), true));
   detail::assess_uncertainty(ev, problem.get(), summary.final_cost, map, x, options, data.residuals(), &out);
   if (options.branch == Branch::approach && has(options, FitParameter::w))
     out.warnings.push_back("on approach the model snaps in at zero load, so w is identified only "

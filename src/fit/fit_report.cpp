@@ -61,6 +61,11 @@ void FitOptions::Validate() const {
   detail::require_in_open_interval(fn, "correlation_limit", correlation_limit, 0.0, 1.0);
   if (table_points_per_decade < 8 || table_points_per_decade > 1000)
     throw DomainError(fn, "table_points_per_decade", table_points_per_decade, "8 .. 1000");
+  if (cantilever_stiffness < 0.0)
+    throw DomainError(fn, "cantilever_stiffness [N/m]", cantilever_stiffness,
+                      ">= 0 (0: load control, inf: fixed grips, NaN: the curve's own)");
+  if (!(exclusion_sigmas >= 0.0) || !std::isfinite(exclusion_sigmas))
+    throw DomainError(fn, "exclusion_sigmas", exclusion_sigmas, "finite and >= 0 (0: keep every sample)");
 }
 
 std::string FitSummary::BriefReport() const {
@@ -70,6 +75,9 @@ std::string FitSummary::BriefReport() const {
     << " iterations (" << termination << ")\n";
   o << "  model " << model << " (" << family << "), " << points << " samples, " << points_in_contact
     << " in contact, rms residual " << rms_residual << " N\n";
+  if (excluded_count > 0)
+    o << "  excluded " << excluded_count << " retract samples after the model's jump that had not "
+      << "returned to the baseline (not JKR: peeling, necking, viscoelastic tail)\n";
   for (std::size_t j = 0; j < parameters.size(); ++j) {
     const ParameterEstimate& e = parameters[j];
     o << "  " << to_string(e.parameter) << " = " << e.value;

@@ -152,8 +152,10 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
     std::size_t jump = deepest;
     while (jump < data.P.size() && (!data.retract[jump] || data.P[jump] < P0_start + 0.5 * dip)) ++jump;
     data.contact.assign(data.P.size(), -1);
+    // Under a cantilever the tip stays on the branch past the deepest force, to where the
+    // model lets go: those samples are the model's to place (-1).
     for (std::size_t i = 0; i < data.P.size(); ++i)
-      if (data.retract[i]) data.contact[i] = i < jump ? 1 : 0;
+      if (data.retract[i]) data.contact[i] = i <= deepest ? 1 : data.cantilever ? -1 : i < jump ? 1 : 0;
   }
   const int stiffness_index = static_cast<int>(map.is_free(FitParameter::K) ? FitParameter::K : FitParameter::E);
   for (int pass = 0; pass < 8; ++pass) {

@@ -83,6 +83,8 @@ void CurveData::Validate() const {
   const std::size_t n = delta.size();
   auto fail = [&](const std::string& what) { throw InputError(source + ": " + what); };
   if (P.size() != n) fail("columns delta and P differ in length");
+  if (!(spring_constant >= 0.0) || !std::isfinite(spring_constant))
+    fail("spring constant " + format_double(spring_constant) + " N/m is invalid; valid range: finite and >= 0 (0: unknown)");
   if (!a.empty() && a.size() != n) fail("column a has " + std::to_string(a.size()) + " rows, not " + std::to_string(n));
   if (!weight.empty() && weight.size() != n) fail("column weight has the wrong length");
   if (!segment.empty() && segment.size() != n) fail("column segment has the wrong length");
@@ -284,6 +286,7 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
   const Layout layout = read_layout(cells, options, fail);
   CurveData d;
   d.source = source;
+  d.spring_constant = options.spring_constant;
   std::vector<double> curves;
   while (next_row(&cells))
     append_row(read_numbers(cells, layout, line_no, fail), layout, options, line_no, fail, d, curves);

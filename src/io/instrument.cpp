@@ -47,6 +47,7 @@ CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source,
   const double scale = k / curve.spring_constant;
   CurveData d;
   d.source = source;
+  d.spring_constant = k;
   bool retracting = false;
   for (const InstrumentSegment& seg : curve.segments) {
     retracting = retracting || seg.style == "retract";

@@ -1,0 +1,131 @@
+// The retract as a cantilever makes it: the tip follows the adhesive branch past the
+// load-controlled pull-off until dP/d delta = -k, then jumps free. Synthetic retracts made
+// with a known k - with and without a non-JKR tail after the jump - must give back E, w,
+// delta0 and P0 within their error bars, with the tail excluded and counted.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+#include <boost/math/tools/roots.hpp>
+
+#include "layerjkr/contact.hpp"
+#include "layerjkr/fit.hpp"
+#include "layerjkr/scene.hpp"
+#include "support/test_support.hpp"
+
+using namespace layerjkr;
+using test::rel_err;
+
+namespace {
+
+constexpr double kE = 1e5, kNu = 0.5, kW = 0.01, kR = 2e-6, kDelta0 = 1e-6, kP0 = 2e-9, kK = 0.05;
+
+// The radius where a cantilever of stiffness k lets go: dP/da + k d delta/da = 0 between the
+// fixed-grips point and the pull-off (central differences of the closed-form Hertz JKR).
+double jump_radius(const JkrSolution& jkr, double k) {
+  const double a_po = jkr.pull_off()->a, a_fg = jkr.fixed_grips_critical()->a;
+  auto g = [&](double a) {
+    const double h = 1e-6 * a;
+    const AdhesiveState lo = jkr.at(a - h), hi = jkr.at(a + h);
+    return (hi.P - lo.P) + k * (hi.delta - lo.delta);
+  };
+  std::uintmax_t iters = 200;
+  const auto r = boost::math::tools::toms748_solve(g, a_fg * 1.0001, a_po, boost::math::tools::eps_tolerance<double>(40), iters);
+  return 0.5 * (r.first + r.second);
+}
+
+// Retract samples: on the branch from a_max down to the jump, then detached over as long
+// again; a tail decays from the jump force to the baseline over `tail_length` (0: none).
+CurveData synthetic_retract(double tail_length, double noise, unsigned seed) {
+  const JkrSolution jkr(make_half_space(make_paraboloid(kR), kE, kNu), kW);
+  const double a_jump = jump_radius(jkr, kK), a_max = 4.0 * jkr.pull_off()->a;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> gauss(0.0, noise);
+  CurveData c;
+  const int n_contact = 300, n_free = 300;
+  for (int i = 0; i < n_contact; ++i) {
+    const AdhesiveState s = jkr.at(a_max - (a_max - a_jump) * i / (n_contact - 1));
+    c.delta.push_back(s.delta + kDelta0);
+    c.P.push_back(s.P + kP0 + gauss(rng));
+  }
+  const AdhesiveState jump = jkr.at(a_jump);
+  const double span = jkr.at(a_max).delta - jump.delta;
+  for (int i = 1; i <= n_free; ++i) {
+    const double back = span * i / n_free;
+    const double tail = tail_length > 0.0 ? jump.P * std::exp(-back / tail_length) : 0.0;
+    c.delta.push_back(jump.delta - back + kDelta0);
+    c.P.push_back(kP0 + tail + gauss(rng));
+  }
+  c.segment.assign(c.delta.size(), 1);
+  c.source = "synthetic retract";
+  return c;
+}
+
+FitSummary fit_retract(const CurveData& c, double k, double exclusion_sigmas = 3.0) {
+  const Scene scene = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 2e-6},
+      "medium": {"type": "half_space", "E": 3e4, "nu": 0.5}})");
+  FitOptions o;
+  o.free = {FitParameter::E, FitParameter::w, FitParameter::delta0, FitParameter::P0};
+  o.branch = Branch::retract;
+  o.cantilever_stiffness = k;
+  o.exclusion_sigmas = exclusion_sigmas;
+  return fit(c, scene, o);
+}
+
+void check_recovered(const FitSummary& s, double sigmas) {
+  INFO(s.BriefReport());
+  REQUIRE(s.converged);
+  CHECK(std::abs(s[FitParameter::E].value - kE) < sigmas * s[FitParameter::E].stderr_);
+  CHECK(std::abs(s[FitParameter::w].value - kW) < sigmas * s[FitParameter::w].stderr_);
+  CHECK(std::abs(s[FitParameter::delta0].value - kDelta0) < sigmas * s[FitParameter::delta0].stderr_);
+  CHECK(std::abs(s[FitParameter::P0].value - kP0) < sigmas * s[FitParameter::P0].stderr_);
+}
+
+}  // namespace
+
+TEST_CASE("cantilever retract, noiseless: exact recovery, nothing excluded", "[fit][cantilever]") {
+  const FitSummary s = fit_retract(synthetic_retract(0.0, 0.0, 1), kK);
+  INFO(s.BriefReport());
+  CHECK(s.converged);
+  CHECK(rel_err(s[FitParameter::E].value, kE) < 1e-7);
+  CHECK(rel_err(s[FitParameter::w].value, kW) < 1e-7);
+  CHECK(s.excluded_count == 0);
+}
+
+TEST_CASE("cantilever retract with noise: parameters and baseline within their error bars", "[fit][cantilever]") {
+  const double noise = 2e-3 * 1.5 * M_PI * kW * kR;
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const FitSummary s = fit_retract(synthetic_retract(0.0, noise, seed), kK);
+    check_recovered(s, 4.0);
+    CHECK(s.excluded_count <= 3);  // a 3-sigma rule excludes ~0.3 % of pure noise at most
+  }
+}
+
+TEST_CASE("a non-JKR tail after the jump is excluded, counted, and does not bias the baseline", "[fit][cantilever]") {
+  const double noise = 2e-3 * 1.5 * M_PI * kW * kR;
+  const CurveData c = synthetic_retract(0.1e-6, noise, 7);  // decays over 100 nm
+  const FitSummary s = fit_retract(c, kK);
+  check_recovered(s, 4.0);
+  CHECK(s.excluded_count > 10);
+  REQUIRE(s.excluded.size() == c.size());
+  CHECK_FALSE(s.excluded[0]);        // in contact
+  CHECK_FALSE(s.excluded.back());    // back at the baseline
+  CHECK(s.BriefReport().find("excluded") != std::string::npos);
+  // Without the rule the tail drags the baseline below its true value.
+  const FitSummary kept = fit_retract(c, kK, 0.0);
+  CHECK(kept.excluded_count == 0);
+  CHECK(kept[FitParameter::P0].value < kP0 - 4.0 * s[FitParameter::P0].stderr_);
+}
+
+TEST_CASE("the model lets go where the cantilever did; bad options name themselves", "[fit][cantilever]") {
+  const FitSummary s = fit_retract(synthetic_retract(0.0, 0.0, 1), kK);
+  CHECK(s.points_in_contact == 300);  // every sample up to the jump, none after it
+  FitOptions bad;
+  bad.free = {FitParameter::E};
+  bad.cantilever_stiffness = -1.0;
+  CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("cantilever_stiffness") && Catch::Contains("-1"));
+  bad.cantilever_stiffness = 0.0;
+  bad.exclusion_sigmas = -2.0;
+  CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("exclusion_sigmas"));
+}
