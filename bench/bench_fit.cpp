@@ -5,6 +5,7 @@
 // The real-curve benchmark is registered only when ../shared/data/real is present.
 #include <benchmark/benchmark.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "layerjkr/layerjkr.hpp"
@@ -46,6 +47,26 @@ void BM_FitRealSpot3(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(fit(data, scene, o));
 }
 
+// fit_files over a directory of 200 copies of the spot3 curve on one thread: reading,
+// parsing and fitting, per curve (the issue's target: at most 2x the fit alone).
+void BM_FitFilesSpot3(benchmark::State& state) {
+  const auto dir = std::filesystem::temp_directory_path() / "layerjkr_bench_fit_files";
+  std::filesystem::create_directories(dir);
+  std::vector<std::string> paths;
+  for (int i = 0; i < 200; ++i) {
+    paths.push_back((dir / ("c" + std::to_string(i) + ".csv")).string());
+    std::filesystem::copy_file(kReal, paths.back(), std::filesystem::copy_options::overwrite_existing);
+  }
+  const Scene scene = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 4e-8},
+      "medium": {"type": "half_space", "E": 3e5, "nu": 0.5}})");
+  FitOptions o;
+  o.free = {FitParameter::E, FitParameter::delta0};
+  o.branch = Branch::all;
+  for (auto _ : state) benchmark::DoNotOptimize(fit_files(paths, scene, o, CsvOptions{}));
+  state.SetItemsProcessed(state.iterations() * 200);  // curves/s; 1e6 / rate = us per curve
+  std::filesystem::remove_all(dir);
+}
+
 // Exact-layer fit of 200 and 500 samples: the kernel and the paraboloid's table are shared
 // across fits (built once per process); each fit splines the model over its radius range.
 void BM_FitExactLayer(benchmark::State& state) {
@@ -67,6 +88,8 @@ BENCHMARK(BM_FitExactLayer)->Arg(200)->Arg(500)->Unit(benchmark::kMillisecond);
 int main(int argc, char** argv) {
   if (std::ifstream(kReal).good())
     benchmark::RegisterBenchmark("BM_FitRealSpot3", BM_FitRealSpot3)->Unit(benchmark::kMicrosecond);
+  if (std::ifstream(kReal).good())
+    benchmark::RegisterBenchmark("BM_FitFilesSpot3_200", BM_FitFilesSpot3)->Unit(benchmark::kMillisecond);
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   return 0;

@@ -32,8 +32,8 @@ std::string logical_line(const std::string& text, std::size_t& pos) {
   std::string line;
   bool first = true;
   while (pos < text.size()) {
-    std::size_t end = text.find_first_of("\r\n", pos);
-    if (end == std::string::npos) end = text.size();
+    std::size_t end = pos;  // a plain loop: find_first_of calls memchr per position
+    while (end < text.size() && text[end] != '\n' && text[end] != '\r') ++end;
     std::size_t start = pos;
     if (!first)
       while (start < end && (text[start] == ' ' || text[start] == '\t' || text[start] == '\f')) ++start;
@@ -52,6 +52,9 @@ std::string logical_line(const std::string& text, std::size_t& pos) {
 
 // Unescapes s[from, to).
 std::string unescape(const std::string& s, std::size_t from, std::size_t to) {
+  bool plain = true;  // the common case: ASCII without escapes, copied as is
+  for (std::size_t i = from; i < to && plain; ++i) plain = s[i] != '\\' && static_cast<unsigned char>(s[i]) < 0x80;
+  if (plain) return s.substr(from, to - from);
   std::string out;
   for (std::size_t i = from; i < to; ++i) {
     const auto byte = static_cast<unsigned char>(s[i]);
