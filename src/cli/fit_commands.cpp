@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <sstream>
@@ -195,6 +196,77 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
   return files;
 }
 
+// One PNG per field over the map grid (pixels from the files' positions); a pixel with no
+// curve or a failed fit is left blank, and status shows which ones failed.
+void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitParameter>& free,
+                     const std::string& dir) {
+  int nx = 0, ny = 0;
+  for (const auto& it : items) {
+    nx = std::max(nx, it.grid_x + 1);
+    ny = std::max(ny, it.grid_y + 1);
+  }
+  if (nx == 0 || ny == 0)
+    throw InputError("--plot-dir: no input carries map positions (instrument force maps and QI files do)");
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError("--plot-dir " + dir + ": cannot create the directory (" + ec.message() + ")");
+  struct Field {
+    std::string name, label;
+    std::function<double(const BatchItem&)> value;
+  };
+  std::vector<Field> fields;
+  for (FitParameter q : free) {
+    const std::string n = to_string(q);
+    const std::string label = q == FitParameter::delta0 ? "contact point delta0 [m]"
+                              : q == FitParameter::E    ? "E [Pa]"
+                              : q == FitParameter::K    ? "K [N/m^3]"
+                              : q == FitParameter::w    ? "w [J/m^2]"
+                              : q == FitParameter::P0   ? "baseline P0 [N]"
+                                                        : n;
+    fields.push_back({n, label, [q](const BatchItem& it) {
+                        for (const auto& e : it.summary.parameters)
+                          if (e.parameter == q) return e.value;
+                        return std::nan("");
+                      }});
+  }
+  fields.push_back({"rms_residual", "rms residual [N]", [](const BatchItem& it) { return it.summary.rms_residual; }});
+  fields.push_back({"status", "status (1 fitted, 0 failed)", [](const BatchItem& it) { return it.ok ? 1.0 : 0.0; }});
+  for (const Field& f : fields) {
+    const std::string dat = (fs::path(dir) / (f.name + ".dat.tmp")).string();
+    const std::string png = (fs::path(dir) / (f.name + ".png")).string();
+    {
+      std::ofstream d(dat);
+      d.precision(17);
+      // gnuplot's image needs every pixel of the grid: NaN where there is no value.
+      std::vector<double> grid(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), std::nan(""));
+      for (const auto& it : items)
+        if (it.grid_x >= 0 && it.grid_y >= 0)
+          grid[static_cast<std::size_t>(it.grid_y) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(it.grid_x)] =
+              f.name == "status" || it.ok ? f.value(it) : std::nan("");
+      for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x) {
+          const double v = grid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(x)];
+          d << x << " " << y << " " << (std::isfinite(v) ? num(v) : std::string("NaN")) << "\n";
+        }
+      if (!d) throw InputError("--plot-dir: cannot write " + dat);
+    }
+    std::ostringstream g;
+    g << "set terminal pngcairo size 640,560 font ',10' noenhanced\nset output '" << png << "'\n"
+      << "set title 'fit-map: " << f.label << "'\nset xlabel 'grid x'\nset ylabel 'grid y'\n"
+      << "set xrange [-0.5:" << nx - 0.5 << "]\nset yrange [-0.5:" << ny - 0.5 << "]\n"
+      << "set size ratio -1\nset palette rgb 33,13,10\nset colorbox\n"
+      << (f.name == "status" ? "set cbrange [0:1]\n" : "")
+      << "plot '" << dat << "' using 1:2:3 with image notitle\n";
+    FILE* pipe = popen("gnuplot 2>&1", "w");
+    if (!pipe) throw Error("--plot-dir: cannot start gnuplot");
+    std::fputs(g.str().c_str(), pipe);
+    const int status = pclose(pipe);
+    std::remove(dat.c_str());
+    if (status != 0 || !fs::exists(png))
+      throw Error("--plot-dir: gnuplot failed (is it installed? apt-get install gnuplot-nox)");
+  }
+}
+
 }  // namespace
 
 void add_fit_options(CLI::App& c, FitArguments& a) {
@@ -260,7 +332,7 @@ int run_fit(const FitArguments& args, const std::string& data, const std::string
 }
 
 int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
-                const std::string& out) {
+                const std::string& out, const std::string& plot_dir) {
   const Prepared p = prepare(args);
   if (jobs < 1) throw InputError("--jobs = " + std::to_string(jobs) + " must be >= 1");
   const std::vector<std::string> files = expand_inputs(inputs);
@@ -301,6 +373,7 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
     csv << "\n";
   }
   write_atomically(out, csv.str());
+  if (!plot_dir.empty()) plot_map_fields(items, p.options.free, plot_dir);
   std::cerr << "fit-map: " << items.size() - failed << " of " << items.size() << " curves fitted";
   if (failed) std::cerr << "; " << failed << " failed (see the error column of " << out << ")";
   std::cerr << "\n";

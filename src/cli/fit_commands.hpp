@@ -30,8 +30,9 @@ int run_fit(const FitArguments& args, const std::string& data, const std::string
 /// (curve,segment,force,height,tip_position), which `fit` reads back.
 int run_export(const std::string& path, const std::string& out);
 
-/// `layerjkr fit-map INPUT... --out RESULTS.csv`: one row per curve, progress on stderr.
+/// `layerjkr fit-map INPUT... --out RESULTS.csv [--plot-dir DIR]`: one row per curve, progress
+/// on stderr; with a plot directory, one heat map per fitted field over the map grid.
 int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
-                const std::string& out);
+                const std::string& out, const std::string& plot_dir = "");
 
 }  // namespace layerjkr::cli

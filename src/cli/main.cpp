@@ -176,7 +176,7 @@ static int run_main(int argc, char** argv) {
   summary->add_option("scene", scene_path, "Scene JSON file")->required();
 
   layerjkr::cli::FitArguments fit_args;
-  std::string data_path, report_path, plot_path, map_out;
+  std::string data_path, report_path, plot_path, map_out, map_plot_dir;
   std::vector<std::string> map_inputs;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   CLI::App* fit = app.add_subcommand(
@@ -190,10 +190,14 @@ static int run_main(int argc, char** argv) {
 
   CLI::App* fit_map = app.add_subcommand(
       "fit-map", "Fit many curves in parallel; one CSV row per curve (failures included)");
-  fit_map->add_option("inputs", map_inputs, "Directories (all *.csv), glob patterns or files")->required();
+  fit_map->add_option("inputs", map_inputs,
+                      "Directories (all *.csv and instrument files), glob patterns or files; maps give a row per curve")
+      ->required();
   layerjkr::cli::add_fit_options(*fit_map, fit_args);
   fit_map->add_option("--jobs", jobs, "Worker threads (default: all cores)");
   fit_map->add_option("--out", map_out, "Results CSV")->required();
+  fit_map->add_option("--plot-dir", map_plot_dir,
+                      "Draw each fitted field (parameters, rms, status) as a heat-map PNG over the map grid (gnuplot)");
 
   std::string export_path, export_out;
   CLI::App* export_cmd = app.add_subcommand(
@@ -225,7 +229,7 @@ static int run_main(int argc, char** argv) {
   try {
     if (*curve) return run_curve(scene_path, at, a_max, points);
     if (*fit) return layerjkr::cli::run_fit(fit_args, data_path, report_path, plot_path);
-    if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out);
+    if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out, map_plot_dir);
     if (*export_cmd) return layerjkr::cli::run_export(export_path, export_out);
     return run_summary(scene_path);
   } catch (const layerjkr::NumericalError& e) {

@@ -16,6 +16,7 @@ namespace {
 const std::string kDir = std::string(LAYERJKR_SOURCE_DIR) + "/../shared/data/instrument/";
 const std::string kSpot3 = kDir + "fmt-jpk-fd_spot3-0192.jpk-force";
 bool have_data() { return fs::exists(kSpot3); }
+std::string kSource() { return std::string(LAYERJKR_SOURCE_DIR) + "/../shared/data/real/jpk_spot3_0192_approach.csv"; }
 // nanite's test_app_ret: R = 40 nm, nu = 0.5, Hertz paraboloid.
 std::string hertz_scene() {
   return write_file("hertz.json", R"({"indenter": {"shape": "paraboloid", "R": 4e-8},
@@ -87,4 +88,30 @@ TEST_CASE("export rejects files that are not instrument files, with exit 2", "[c
   CHECK(r.code == 2);
   CHECK(r.err.find("not an instrument file") != std::string::npos);
   CHECK(r.out.empty());
+}
+
+TEST_CASE("fit-map --plot-dir draws every fitted field over the map grid", "[cli][instrument][plot]") {
+  if (!have_data() || std::system("gnuplot --version >/dev/null 2>&1") != 0) {
+    test::report_skip("needs ../shared/data/instrument and gnuplot");
+    return;
+  }
+  const std::string dir = unique("maps");
+  const Run r = run("fit-map " + kDir + "fmt-jpk-fd_map2x2_extracted.jpk-force-map --scene " + hertz_scene() +
+                    " --free E,delta0,P0 --out " + unique("m.csv") + " --plot-dir " + dir);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  for (const char* field : {"E", "delta0", "P0", "rms_residual", "status"}) {
+    const fs::path png = fs::path(dir) / (std::string(field) + ".png");
+    INFO(png);
+    CHECK(fs::file_size(png) > 1000);
+    std::ifstream in(png, std::ios::binary);
+    char magic[4] = {};
+    in.read(magic, 4);
+    CHECK(std::string(magic + 1, 3) == "PNG");
+  }
+  for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().extension() == ".png");  // no leftovers
+  const Run csv_only = run("fit-map " + kSource() + " --scene " + hertz_scene() + " --free E,delta0 --out " +
+                           unique("c.csv") + " --plot-dir " + unique("none"));
+  CHECK(csv_only.code == 2);
+  CHECK(csv_only.err.find("no input carries map positions") != std::string::npos);
 }
