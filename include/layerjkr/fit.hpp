@@ -68,6 +68,17 @@ struct FitOptions {
   /// not JKR: they are excluded from the fit, counted and reported (FitSummary::excluded).
   /// 0 keeps every sample.
   double exclusion_sigmas = 3.0;
+  /// Also fit a linear tilt of the baseline, P0 + slope * delta, with the slope taken by least
+  /// squares from the samples the fitted model puts off contact (never from excluded ones);
+  /// the data are detilted and refitted once (FitSummary::baseline_slope).
+  bool baseline_tilt = false;
+  /// Which unloading samples a retract fit uses: every one (all); from the largest force
+  /// down to the observed pull-off, the force minimum (to_pull_off); or from the largest force
+  /// down to P_max - window_fraction (P_max - P_min) (force_fraction), as linearised-JKR and
+  /// two-point analyses use. Approach samples are not affected.
+  enum class RetractWindow { all, to_pull_off, force_fraction };
+  RetractWindow retract_window = RetractWindow::all;
+  double window_fraction = 0.5;  ///< in (0, 1], for force_fraction
   /// Robust loss on force residuals; loss_scale [N] > 0 is where it departs from
   /// least squares (required for huber and cauchy).
   LossType loss = LossType::none;
@@ -126,6 +137,8 @@ struct FitSummary {
   /// Per sample (aligned with delta, P): excluded by the rule of FitOptions::exclusion_sigmas.
   std::vector<bool> excluded;
   std::size_t excluded_count = 0;
+  /// FitOptions::baseline_tilt: the baseline's slope [N/m] and its standard error (0 without).
+  double baseline_slope = 0.0, baseline_slope_stderr = 0.0;
   double solve_seconds = 0.0;
 
   /// The estimate for p; throws Error if p was not free.

@@ -70,6 +70,24 @@ Prepared prepare(const FitArguments& a) {
   else if (a.control == "grips") p.options.cantilever_stiffness = std::numeric_limits<double>::infinity();
   else throw InputError("--control = \"" + a.control + "\" is invalid; use auto, load, cantilever or grips");
   p.cantilever_required = a.control == "cantilever";
+  if (a.baseline != "constant" && a.baseline != "tilt")
+    throw InputError("--baseline = \"" + a.baseline + "\" is invalid; use constant or tilt");
+  p.options.baseline_tilt = a.baseline == "tilt";
+  if (a.window == "all") {
+    p.options.retract_window = FitOptions::RetractWindow::all;
+  } else if (a.window == "pull-off") {
+    p.options.retract_window = FitOptions::RetractWindow::to_pull_off;
+  } else if (a.window.rfind("fraction:", 0) == 0) {
+    const std::string f = a.window.substr(9);
+    char* end = nullptr;
+    const double v = std::strtod(f.c_str(), &end);
+    if (f.empty() || *end != '\0' || !(v > 0.0 && v <= 1.0))
+      throw InputError("--window fraction:" + f + " is invalid; the fraction must be in (0, 1]");
+    p.options.retract_window = FitOptions::RetractWindow::force_fraction;
+    p.options.window_fraction = v;
+  } else {
+    throw InputError("--window = \"" + a.window + "\" is invalid; use all, pull-off or fraction:F");
+  }
   try {
     p.options.Validate();
     p.csv.Validate();
@@ -105,6 +123,8 @@ json report_json(const FitSummary& s, Branch branch) {
   j["correlation"] = corr;
   j["rms_residual"] = s.rms_residual;
   j["excluded"] = s.excluded_count;
+  j["baseline_slope"] = s.baseline_slope;
+  j["baseline_slope_stderr"] = s.baseline_slope_stderr;
   j["points"] = s.points;
   j["points_in_contact"] = s.points_in_contact;
   j["identifiable"] = s.identifiable;
@@ -281,6 +301,10 @@ void add_fit_options(CLI::App& c, FitArguments& a) {
   c.add_option("--starts", a.extra_starts, "Extra starts around the data-driven guess (default 0)");
   c.add_option("--max-iterations", a.max_iterations, "Ceres iteration limit (default 200)");
   c.add_option("--curve", a.curve, "Which curve of a file holding several (instrument map or export)");
+  c.add_option("--baseline", a.baseline, "constant | tilt (a linear baseline from the samples off contact)");
+  c.add_option("--window", a.window,
+               "Retract samples used: all | pull-off (largest force to the force minimum) | fraction:F (the top F "
+               "of the unloading force range)");
   c.add_option("--control", a.control,
                "Retract control: auto (cantilever when the spring constant is known, else load) | load | "
                "cantilever | grips");

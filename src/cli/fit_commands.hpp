@@ -17,6 +17,8 @@ struct FitArguments {
   int extra_starts = 0, max_iterations = 200;
   int curve = -1;  ///< --curve: which curve of a file holding several (-1: it must hold one)
   std::string control = "auto";  ///< --control: auto | load | cantilever | grips
+  std::string baseline = "constant";  ///< --baseline: constant | tilt
+  std::string window = "all";    ///< --window: all | pull-off | fraction:F
 };
 
 /// Registers the shared options on a subcommand.

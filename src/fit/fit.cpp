@@ -215,6 +215,47 @@ std::vector<bool> exclude_non_jkr(CurveEvaluator& ev, const ParameterMap& map, c
   return excluded;
 }
 
+// FitOptions::baseline_tilt: the slope of P against delta over the samples the model puts
+// off contact (excluded ones have weight 0 and do not count), removed from the data, then one
+// more solve. The slope's error is that of the straight-line fit.
+void detilt_baseline(CurveEvaluator& ev, const ParameterMap& map, const FitOptions& options, FitData& data,
+                     std::vector<double>& x, ceres::Solver::Summary& summary,
+                     std::unique_ptr<ceres::Problem>& problem, FitSummary* out) {
+  if (!ev.evaluate(x.data(), false)) return;
+  const std::vector<double>& fit = ev.predicted();
+  const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;
+  std::vector<std::size_t> off;
+  for (std::size_t i = 0; i < data.P.size(); ++i)
+    if (data.sqrt_weight[i] > 0.0 && fit[i] == P0) off.push_back(i);
+  if (off.size() < 3) {
+    out->warnings.push_back("baseline tilt: fewer than 3 samples off contact; no tilt fitted");
+    return;
+  }
+  double md = 0.0, mp = 0.0;
+  for (std::size_t i : off) md += data.delta[i], mp += data.P[i];
+  md /= static_cast<double>(off.size());
+  mp /= static_cast<double>(off.size());
+  double sdd = 0.0, sdp = 0.0;
+  for (std::size_t i : off) sdd += (data.delta[i] - md) * (data.delta[i] - md), sdp += (data.delta[i] - md) * (data.P[i] - mp);
+  if (!(sdd > 0.0)) return;
+  const double slope = sdp / sdd;
+  double ss = 0.0;
+  for (std::size_t i : off) ss += std::pow(data.P[i] - mp - slope * (data.delta[i] - md), 2);
+  out->baseline_slope = slope;
+  out->baseline_slope_stderr = std::sqrt(ss / static_cast<double>(off.size() - 2) / sdd);
+  for (std::size_t i = 0; i < data.P.size(); ++i) data.P[i] -= slope * (data.delta[i] - md);
+  ev.invalidate();
+  ceres::Solver::Summary s2;
+  const std::vector<double> before = x;
+  auto p2 = solve(ev, map, options, x, &s2);
+  if (!s2.IsSolutionUsable()) {
+    x = before;
+    return;
+  }
+  summary = s2;
+  problem = std::move(p2);
+}
+
 // The solution, the fitted curve and its rms into the summary.
 void record_solution(CurveEvaluator& ev, const ParameterMap& map, const FitData& data,
                      const std::vector<double>& x, const ceres::Solver::Summary& summary,
@@ -293,7 +334,14 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   ceres::Solver::Summary summary;
   std::unique_ptr<ceres::Problem> problem = solve(ev, map, options, x, &summary);
   try_extra_starts(ev, map, options, x, summary, problem);
-  const std::vector<bool> excluded = exclude_non_jkr(ev, map, options, data, x, summary, problem);
+  const std::vector<double> weights = data.sqrt_weight;
+  std::vector<bool> excluded = exclude_non_jkr(ev, map, options, data, x, summary, problem);
+  if (options.baseline_tilt) {
+    detilt_baseline(ev, map, options, data, x, summary, problem, &out);
+    data.sqrt_weight = weights;  // the exclusion is decided again on the detilted data
+    ev.invalidate();
+    excluded = exclude_non_jkr(ev, map, options, data, x, summary, problem);
+  }
   record_solution(ev, map, data, x, summary, &out);
   out.excluded = excluded;
   out.excluded_count = static_cast<std::size_t>(std::count(excluded.begin(), excluded.end(), true));

@@ -19,8 +19,30 @@ double median(std::vector<double> v) {
 FitData select_fit_data(const CurveData& curve, const FitOptions& options, double* span,
                         double* force_span) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  const std::vector<std::size_t> idx = curve.select(options.branch);
+  std::vector<std::size_t> idx = curve.select(options.branch);
   const std::vector<bool> retract = curve.retract_mask();
+  if (options.retract_window != FitOptions::RetractWindow::all) {
+    // In acquisition order: the retract samples from the largest force down to the window's end.
+    std::vector<std::size_t> unloading;
+    for (std::size_t i : idx)
+      if (retract[i]) unloading.push_back(i);
+    if (!unloading.empty()) {
+      const auto top = std::max_element(unloading.begin(), unloading.end(),
+                                         [&](auto i, auto j) { return curve.P[i] < curve.P[j]; });
+      const auto bottom = std::min_element(top, unloading.end(), [&](auto i, auto j) { return curve.P[i] < curve.P[j]; });
+      auto end = bottom + 1;  // to_pull_off: down to the force minimum, inclusive
+      if (options.retract_window == FitOptions::RetractWindow::force_fraction) {
+        const double floor = curve.P[*top] - options.window_fraction * (curve.P[*top] - curve.P[*bottom]);
+        end = std::find_if(top, bottom + 1, [&](std::size_t i) { return curve.P[i] < floor; });
+      }
+      std::vector<std::size_t> kept;
+      for (std::size_t i : idx)
+        if (!retract[i]) kept.push_back(i);
+      kept.insert(kept.end(), top, end);
+      std::sort(kept.begin(), kept.end());
+      idx = kept;
+    }
+  }
   FitData data;
   for (auto* v : {&data.delta, &data.P, &data.a, &data.sqrt_weight}) v->reserve(idx.size());
   data.retract.reserve(idx.size());

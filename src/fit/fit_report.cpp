@@ -64,6 +64,8 @@ void FitOptions::Validate() const {
   if (cantilever_stiffness < 0.0)
     throw DomainError(fn, "cantilever_stiffness [N/m]", cantilever_stiffness,
                       ">= 0 (0: load control, inf: fixed grips, NaN: the curve's own)");
+  if (!(window_fraction > 0.0 && window_fraction <= 1.0))
+    throw DomainError(fn, "window_fraction", window_fraction, "(0, 1]");
   if (!(exclusion_sigmas >= 0.0) || !std::isfinite(exclusion_sigmas))
     throw DomainError(fn, "exclusion_sigmas", exclusion_sigmas, "finite and >= 0 (0: keep every sample)");
 }
@@ -75,6 +77,9 @@ std::string FitSummary::BriefReport() const {
     << " iterations (" << termination << ")\n";
   o << "  model " << model << " (" << family << "), " << points << " samples, " << points_in_contact
     << " in contact, rms residual " << rms_residual << " N\n";
+  if (baseline_slope != 0.0)
+    o << "  baseline tilt " << baseline_slope << " +- " << baseline_slope_stderr
+      << " N/m (from the samples off contact; the data were detilted)\n";
   if (excluded_count > 0)
     o << "  excluded " << excluded_count << " retract samples after the model's jump that had not "
       << "returned to the baseline (not JKR: peeling, necking, viscoelastic tail)\n";

@@ -4,6 +4,7 @@
 // delta0 and P0 within their error bars, with the tail excluded and counted.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -62,7 +63,8 @@ CurveData synthetic_retract(double tail_length, double noise, unsigned seed) {
   return c;
 }
 
-FitSummary fit_retract(const CurveData& c, double k, double exclusion_sigmas = 3.0) {
+FitSummary fit_retract(const CurveData& c, double k, double exclusion_sigmas = 3.0,
+                       void (*adjust)(FitOptions&) = nullptr) {
   const Scene scene = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 2e-6},
       "medium": {"type": "half_space", "E": 3e4, "nu": 0.5}})");
   FitOptions o;
@@ -70,6 +72,7 @@ FitSummary fit_retract(const CurveData& c, double k, double exclusion_sigmas = 3
   o.branch = Branch::retract;
   o.cantilever_stiffness = k;
   o.exclusion_sigmas = exclusion_sigmas;
+  if (adjust) adjust(o);
   return fit(c, scene, o);
 }
 
@@ -128,4 +131,46 @@ TEST_CASE("the model lets go where the cantilever did; bad options name themselv
   bad.cantilever_stiffness = 0.0;
   bad.exclusion_sigmas = -2.0;
   CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("exclusion_sigmas"));
+}
+
+TEST_CASE("a tilted baseline is measured off contact and removed", "[fit][cantilever]") {
+  const double noise = 2e-3 * 1.5 * M_PI * kW * kR, slope = 2e-4;  // N/m: 0.4 nN over 2 um
+  CurveData c = synthetic_retract(0.1e-6, noise, 11);
+  for (std::size_t i = 0; i < c.size(); ++i) c.P[i] += slope * (c.delta[i] - kDelta0);
+  const FitSummary s = fit_retract(c, kK, 3.0, [](FitOptions& o) { o.baseline_tilt = true; });
+  INFO(s.BriefReport());
+  CHECK(std::abs(s.baseline_slope - slope) < 4.0 * s.baseline_slope_stderr);
+  CHECK(std::abs(s[FitParameter::E].value - kE) < 4.0 * s[FitParameter::E].stderr_);
+  CHECK(std::abs(s[FitParameter::w].value - kW) < 4.0 * s[FitParameter::w].stderr_);
+  CHECK(s.excluded_count > 10);
+  CHECK(s.BriefReport().find("baseline tilt") != std::string::npos);
+}
+
+TEST_CASE("retract windows: down to the pull-off, and the top fraction of the force range", "[fit][cantilever]") {
+  // A window has no detached samples, so the baseline must be known: it is removed first
+  // (as the linearised-JKR analysis does) and P0 stays fixed at 0.
+  CurveData c = synthetic_retract(0.0, 0.0, 1);
+  for (double& p : c.P) p -= kP0;
+  const FitSummary pull = fit_retract(c, kK, 3.0, [](FitOptions& o) {
+    o.retract_window = FitOptions::RetractWindow::to_pull_off;
+    o.free = {FitParameter::E, FitParameter::w, FitParameter::delta0};
+  });
+  INFO(pull.BriefReport());
+  const auto deepest = std::min_element(c.P.begin(), c.P.end()) - c.P.begin();
+  CHECK(pull.points == static_cast<std::size_t>(deepest) + 1);
+  CHECK(rel_err(pull[FitParameter::E].value, kE) < 1e-6);
+  CHECK(rel_err(pull[FitParameter::w].value, kW) < 1e-6);
+  const FitSummary top = fit_retract(c, kK, 3.0, [](FitOptions& o) {
+    o.retract_window = FitOptions::RetractWindow::force_fraction;
+    o.window_fraction = 0.5;
+    o.free = {FitParameter::E, FitParameter::w, FitParameter::delta0};
+  });
+  INFO(top.BriefReport());
+  CHECK(top.points < pull.points);
+  for (double p : top.P) CHECK(p >= c.P[0] - 0.5 * (c.P[0] - c.P[static_cast<std::size_t>(deepest)]) - 1e-18);
+  CHECK(rel_err(top[FitParameter::E].value, kE) < 1e-4);
+  FitOptions bad;
+  bad.free = {FitParameter::E};
+  bad.window_fraction = 0.0;
+  CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("window_fraction = 0"));
 }
