@@ -139,6 +139,9 @@ struct FitSummary {
   std::size_t excluded_count = 0;
   /// FitOptions::baseline_tilt: the baseline's slope [N/m] and its standard error (0 without).
   double baseline_slope = 0.0, baseline_slope_stderr = 0.0;
+  /// The measured pull-off force [N]: the lowest retract force minus the fitted baseline P0
+  /// (NaN without retract samples).
+  double pull_off_force = std::numeric_limits<double>::quiet_NaN();
   double solve_seconds = 0.0;
 
   /// The estimate for p; throws Error if p was not free.

@@ -123,6 +123,7 @@ json report_json(const FitSummary& s, Branch branch) {
   j["correlation"] = corr;
   j["rms_residual"] = s.rms_residual;
   j["excluded"] = s.excluded_count;
+  j["pull_off_force"] = number_or_null(s.pull_off_force);
   j["baseline_slope"] = s.baseline_slope;
   j["baseline_slope_stderr"] = s.baseline_slope_stderr;
   j["points"] = s.points;
@@ -249,6 +250,7 @@ void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitP
                         return std::nan("");
                       }});
   }
+  fields.push_back({"pull_off", "measured pull-off force [N]", [](const BatchItem& it) { return it.summary.pull_off_force; }});
   fields.push_back({"rms_residual", "rms residual [N]", [](const BatchItem& it) { return it.summary.rms_residual; }});
   fields.push_back({"status", "status (1 fitted, 0 failed)", [](const BatchItem& it) { return it.ok ? 1.0 : 0.0; }});
   for (const Field& f : fields) {

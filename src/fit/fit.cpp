@@ -344,6 +344,9 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   }
   record_solution(ev, map, data, x, summary, &out);
   out.excluded = excluded;
+  const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;
+  for (std::size_t i = 0; i < data.P.size(); ++i)
+    if (data.retract[i] && !(data.P[i] - P0 >= out.pull_off_force)) out.pull_off_force = data.P[i] - P0;  // NaN at first
   out.excluded_count = static_cast<std::size_t>(std::count(excluded.begin(), excluded.end(), true));
   detail::assess_uncertainty(ev, problem.get(), summary.final_cost, map, x, options, data.residuals(), &out);
   if (options.branch == Branch::approach && has(options, FitParameter::w))

@@ -100,7 +100,7 @@ TEST_CASE("fit-map --plot-dir draws every fitted field over the map grid", "[cli
                     " --free E,delta0,P0 --out " + unique("m.csv") + " --plot-dir " + dir);
   INFO(r.err);
   REQUIRE(r.code == 0);
-  for (const char* field : {"E", "delta0", "P0", "rms_residual", "status"}) {
+  for (const char* field : {"E", "delta0", "P0", "pull_off", "rms_residual", "status"}) {
     const fs::path png = fs::path(dir) / (std::string(field) + ".png");
     INFO(png);
     CHECK(fs::file_size(png) > 1000);

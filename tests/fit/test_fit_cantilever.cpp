@@ -94,6 +94,8 @@ TEST_CASE("cantilever retract, noiseless: exact recovery, nothing excluded", "[f
   CHECK(rel_err(s[FitParameter::E].value, kE) < 1e-7);
   CHECK(rel_err(s[FitParameter::w].value, kW) < 1e-7);
   CHECK(s.excluded_count == 0);
+  // The measured pull-off is the branch's minimum: -3/2 pi w R for a paraboloid on a half-space.
+  CHECK(rel_err(s.pull_off_force, -1.5 * M_PI * kW * kR) < 1e-3);
 }
 
 TEST_CASE("cantilever retract with noise: parameters and baseline within their error bars", "[fit][cantilever]") {
