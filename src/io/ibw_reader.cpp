@@ -39,6 +39,15 @@ class Bytes {
     std::memcpy(&v, b, sizeof(T));
     return v;
   }
+  // A size field: non-negative and no larger than the file, so sums of a few never overflow.
+  std::size_t size_at(std::size_t offset, const char* what) const {
+    const auto v = at<std::int32_t>(offset);
+    if (v < 0 || static_cast<std::size_t>(v) > data_.size())
+      fail(std::string("has an impossible ") + what + " (" + std::to_string(v) + " for a file of " +
+           std::to_string(data_.size()) + " bytes)");
+    return static_cast<std::size_t>(v);
+  }
+  std::size_t size() const { return data_.size(); }
   std::string text(std::size_t offset, std::size_t size) const {
     if (offset + size > data_.size()) fail("is truncated (its note or labels end past the file)");
     return data_.substr(offset, size);
@@ -91,25 +100,30 @@ InstrumentFile read_ibw(const std::string& path) {
   if (!stream) throw InputError(path + ": cannot open the file");
   std::ostringstream content;
   content << stream.rdbuf();
-  const Bytes b(content.str(), path);
+  return read_ibw_bytes(content.str(), path);
+}
 
-  const auto wfm_size = static_cast<std::size_t>(b.at<std::int32_t>(4));
-  const auto formula_size = static_cast<std::size_t>(b.at<std::int32_t>(8));
-  const auto note_size = static_cast<std::size_t>(b.at<std::int32_t>(12));
-  const auto data_units_size = static_cast<std::size_t>(b.at<std::int32_t>(16));
+InstrumentFile read_ibw_bytes(std::string bytes, const std::string& path) {
+  const Bytes b(std::move(bytes), path);
+
+  const std::size_t wfm_size = b.size_at(4, "wave size");
+  const std::size_t formula_size = b.size_at(8, "formula size");
+  const std::size_t note_size = b.size_at(12, "note size");
+  const std::size_t data_units_size = b.size_at(16, "units size");
   std::size_t dim_units = 0, labels_before = 0;
-  for (int d = 0; d < 4; ++d) dim_units += static_cast<std::size_t>(b.at<std::int32_t>(20 + 4 * static_cast<std::size_t>(d)));
-  const auto labels0 = static_cast<std::size_t>(b.at<std::int32_t>(36));
-  const auto labels1 = static_cast<std::size_t>(b.at<std::int32_t>(40));
+  for (std::size_t d = 0; d < 4; ++d) dim_units += b.size_at(20 + 4 * d, "dimension units size");
+  const std::size_t labels0 = b.size_at(36, "label size");
+  const std::size_t labels1 = b.size_at(40, "label size");
   labels_before = labels0;
   const std::size_t wave = kBinHeader;
   const auto type = b.at<std::int16_t>(wave + 16);
-  const auto rows = static_cast<std::size_t>(b.at<std::int32_t>(wave + 68));
-  const auto cols = static_cast<std::size_t>(std::max(1, b.at<std::int32_t>(wave + 72)));
+  const std::size_t rows = b.size_at(wave + 68, "row count");
+  const std::size_t cols = std::max<std::size_t>(1, b.size_at(wave + 72, "column count"));
   const double row_step = b.at<double>(wave + 84);
   const std::size_t width = type == 2 ? 4 : type == 4 ? 8 : 0;
   if (width == 0) b.fail("holds data of Igor type " + std::to_string(type) + "; force curves are float32 or float64");
-  if (wfm_size < kWaveHeader || rows * cols * width > wfm_size - kWaveHeader)
+  if (rows == 0) b.fail("holds an empty wave");
+  if (wfm_size < kWaveHeader || rows * cols > (wfm_size - kWaveHeader) / width)
     b.fail("announces " + std::to_string(rows) + " x " + std::to_string(cols) + " values that do not fit its wave record");
   const std::size_t data = wave + kWaveHeader;
   const std::size_t note_at = kBinHeader + wfm_size + formula_size;
@@ -142,10 +156,13 @@ InstrumentFile read_ibw(const std::string& path) {
   std::vector<double> dir = note.count("Direction") ? numbers(note.at("Direction")) : std::vector<double>{};
   if (idx.size() < 2) idx = {0.0, static_cast<double>(rows - 1)};
   for (std::size_t k = 1; k < idx.size(); ++k) {
+    const auto fits = [&](double v) { return v >= 0.0 && v < static_cast<double>(rows) && v == std::floor(v); };
+    if (!fits(idx[k]) || (k > 1 && !fits(idx[k - 1])))
+      b.fail("the note's Indexes (" + note.at("Indexes") + ") do not fit its " + std::to_string(rows) + " rows");
     const auto first = k == 1 ? std::size_t{0} : static_cast<std::size_t>(idx[k - 1]) + 1;
     const auto last = static_cast<std::size_t>(idx[k]);
-    if (!(idx[k] >= 0.0) || last >= rows || first > last)
-      b.fail("the note's Indexes (" + note.at("Indexes") + ") do not fit its " + std::to_string(rows) + " rows");
+    if (first > last)
+      b.fail("the note's Indexes (" + note.at("Indexes") + ") are not increasing");
     InstrumentSegment s;
     const double d = k < dir.size() ? dir[k] : NAN;
     s.style = d > 0 ? "extend" : d < 0 ? "retract" : "pause";

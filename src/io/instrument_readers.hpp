@@ -11,5 +11,7 @@ namespace layerjkr::detail {
 InstrumentFile read_jpk(const std::string& path, const std::string& format);
 /// Igor binary wave v5 (Asylum force curve).
 InstrumentFile read_ibw(const std::string& path);
+/// The same from the file's bytes; `path` names it in errors.
+InstrumentFile read_ibw_bytes(std::string bytes, const std::string& path);
 
 }  // namespace layerjkr::detail

@@ -187,6 +187,12 @@ double suffix_number(const Properties& p, const std::string& suffix, double fall
   return out;
 }
 
+// A header's count or index as an int; `fallback` unless it is a whole number in [-1, 1e9]
+// (a float-to-int conversion out of range would be undefined).
+int to_int(double v, int fallback) {
+  return v >= -1.0 && v <= 1e9 && v == std::floor(v) ? static_cast<int>(v) : fallback;
+}
+
 InstrumentSegment read_segment(const Reader& in, const Properties& shared, const std::string& dir,
                                InstrumentCurve& curve) {
   const std::string where = dir + "segment-header.properties";
@@ -232,8 +238,8 @@ InstrumentFile read_jpk(const std::string& path, const std::string& format) {
   if (const std::string* v = find_suffix(top, ".description.instrument")) file.instrument = *v;
   if (const std::string* v = find_suffix(top, ".description.source-software")) file.software = *v;
   if (find_suffix(top, ".position-pattern.grid.ilength")) {
-    file.grid_shape_x = static_cast<int>(suffix_number(top, ".position-pattern.grid.ilength", 0));
-    file.grid_shape_y = static_cast<int>(suffix_number(top, ".position-pattern.grid.jlength", 0));
+    file.grid_shape_x = std::max(0, to_int(suffix_number(top, ".position-pattern.grid.ilength", 0), 0));
+    file.grid_shape_y = std::max(0, to_int(suffix_number(top, ".position-pattern.grid.jlength", 0), 0));
     file.grid_size_x = suffix_number(top, ".position-pattern.grid.ulength", 0);
     file.grid_size_y = suffix_number(top, ".position-pattern.grid.vlength", 0);
     file.grid_center_x = suffix_number(top, ".position-pattern.grid.xcenter", 0);
@@ -252,13 +258,14 @@ InstrumentFile read_jpk(const std::string& path, const std::string& format) {
       if (const std::string* v = find_suffix(header, ".description.instrument")) file.instrument = *v;
     if (file.software.empty())
       if (const std::string* v = find_suffix(header, ".description.source-software")) file.software = *v;
-    curve.position_index = static_cast<int>(suffix_number(header, ".header.position-index", -1));
+    curve.position_index = to_int(suffix_number(header, ".header.position-index", -1), -1);
     curve.x = suffix_number(header, ".header.position.x", curve.x);
     curve.y = suffix_number(header, ".header.position.y", curve.y);
-    if (file.grid_shape_x > 0 && std::isfinite(curve.x) && std::isfinite(curve.y)) {
+    if (file.grid_shape_x > 0 && file.grid_shape_y > 0 && file.grid_size_x > 0.0 && file.grid_size_y > 0.0 &&
+        std::isfinite(curve.x) && std::isfinite(curve.y)) {
       auto pixel = [](double v, double center, double size, int shape) {
-        const int i = static_cast<int>(std::floor((v - (center - 0.5 * size)) / size * shape));
-        return std::clamp(i, 0, shape - 1);
+        const double i = std::floor((v - (center - 0.5 * size)) / size * shape);
+        return static_cast<int>(std::clamp(i, 0.0, static_cast<double>(shape - 1)));
       };
       curve.grid_x = pixel(curve.x, file.grid_center_x, file.grid_size_x, file.grid_shape_x);
       curve.grid_y = pixel(curve.y, file.grid_center_y, file.grid_size_y, file.grid_shape_y);
