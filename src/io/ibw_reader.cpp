@@ -43,8 +43,8 @@ class Bytes {
   std::size_t size_at(std::size_t offset, const char* what) const {
     const auto v = at<std::int32_t>(offset);
     if (v < 0 || static_cast<std::size_t>(v) > data_.size())
-      fail(std::string("has an impossible ") + what + " (" + std::to_string(v) + " for a file of " +
-           std::to_string(data_.size()) + " bytes)");
+      fail(std::string("is truncated or corrupt: its ") + what + " is " + std::to_string(v) + " in a file of " +
+           std::to_string(data_.size()) + " bytes");
     return static_cast<std::size_t>(v);
   }
   std::size_t size() const { return data_.size(); }
