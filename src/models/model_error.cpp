@@ -48,9 +48,16 @@ ModelErrorEstimator ModelErrorEstimator::for_model(ContactModelPtr model) const 
 
 const ModelErrorEstimator::ReferencePoints& ModelErrorEstimator::reference_points() const {
   std::call_once(points_->once, [&] {
-    const JkrSolution reference(reference_, w_);
-    points_->pull_off = reference.pull_off();
-    points_->zero_load_radius = reference.zero_load_radius();
+    // A reference that cannot find its points (a search leaving its range) has none: the
+    // summary then falls back to the state estimate at the model's own points.
+    try {
+      const JkrSolution reference(reference_, w_);
+      points_->pull_off = reference.pull_off();
+      points_->zero_load_radius = reference.zero_load_radius();
+    } catch (const Error&) {
+      points_->pull_off.reset();
+      points_->zero_load_radius.reset();
+    }
   });
   return *points_;
 }
