@@ -182,3 +182,33 @@ TEST_CASE("instrument files: truncated, corrupt and wrong-format input fails wit
   const std::string ibw = bytes(kDir + "fmt-igor-fd_SiN_FD_plot.ibw");
   CHECK_THROWS_WITH(read_instrument_file(write(dir, "cut.ibw", ibw.substr(0, 20000))), Catch::Contains("truncated"));
 }
+
+TEST_CASE("the archives agree row by row with the nanite CSV exports of the same curves", "[io][instrument]") {
+  // ../real holds afmformats/nanite exports: force minus a baseline constant, tip position
+  // (height + F/k) plus a constant (README there). An independent oracle for every sample.
+  const std::string real = std::string(LAYERJKR_SOURCE_DIR) + "/../shared/data/real/";
+  if (!have_data() || !std::ifstream(real + "jpk_spot3_0192_full.csv").good()) {
+    test::report_skip("../shared/data is absent (the shared data beside the repository)");
+    return;
+  }
+  struct Pair {
+    const char* archive;
+    const char* csv;
+  };
+  for (const Pair& p : {Pair{"fmt-jpk-fd_spot3-0192.jpk-force", "jpk_spot3_0192_full.csv"},
+                        Pair{"fmt-jpk-fd_flipsign_2015.05.22-15.31.49.352.jpk-force", "jpk_flipsign_2015_full.csv"}}) {
+    INFO(p.archive);
+    const CurveData mine = to_curve_data(read_instrument_file(kDir + p.archive).curves[0], p.archive);
+    const CurveData theirs = read_curve_csv(real + p.csv);
+    REQUIRE(mine.size() == theirs.size());
+    // Their tip_position column is read as delta = -tip: compare offsets against the first row.
+    const double dF = mine.P[0] - theirs.P[0], dTip = mine.delta[0] - theirs.delta[0];
+    double worst_force = 0.0, worst_tip = 0.0;
+    for (std::size_t i = 0; i < mine.size(); ++i) {
+      worst_force = std::max(worst_force, std::abs(mine.P[i] - theirs.P[i] - dF));
+      worst_tip = std::max(worst_tip, std::abs(mine.delta[i] - theirs.delta[i] - dTip));
+    }
+    CHECK(worst_force < 1e-22);  // forces ~1e-9 N: equal to the last bits
+    CHECK(worst_tip < 1e-17);    // positions ~1e-5 m
+  }
+}
