@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "io/csv_rows.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr {
@@ -39,26 +40,6 @@ const std::map<std::string, ColumnName>& known_columns() {
       {"curve", {Column::curve, false}},     {"height", {Column::height, false}},
       {"height_m", {Column::height, true}}};
   return names;
-}
-
-// Cells are views into the file's text: no copies and no streams per row (a batch of small
-// curves spent more time splitting rows than fitting them).
-std::string_view trim(std::string_view s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string_view::npos) return {};
-  const auto e = s.find_last_not_of(" \t\r");
-  return s.substr(b, e - b + 1);
-}
-
-void split(std::string_view line, std::vector<std::string_view>& cells) {
-  cells.clear();
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = line.find(',', start);
-    cells.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
-  }
 }
 
 std::string shorten(std::string_view s) {
@@ -142,8 +123,8 @@ void parse_units(const std::string& text, CsvOptions& options) {
   static const std::map<std::string, double> forces = {
       {"N", 1.0}, {"mN", 1e-3}, {"uN", 1e-6}, {"nN", 1e-9}, {"pN", 1e-12}};
   const auto comma = text.find(',');
-  const std::string len(trim(std::string_view(text).substr(0, comma)));
-  const std::string force = comma == std::string::npos ? "" : std::string(trim(std::string_view(text).substr(comma + 1)));
+  const std::string len(detail::trim(std::string_view(text).substr(0, comma)));
+  const std::string force = comma == std::string::npos ? "" : std::string(detail::trim(std::string_view(text).substr(comma + 1)));
   if (comma == std::string::npos || !lengths.count(len) || !forces.count(force))
     throw InputError("--units = \"" + shorten(text) +
                      "\" is invalid; give LENGTH,FORCE with LENGTH in m, mm, um, nm, pm and "
@@ -216,10 +197,7 @@ void read_numbers(const std::vector<std::string_view>& cells, const Layout& l, s
          " cells, the header has " + std::to_string(l.header.size()));
   v.resize(cells.size());
   for (std::size_t c = 0; c < cells.size(); ++c) {
-    std::string_view cell = cells[c];
-    if (cell.size() > 1 && cell[0] == '+' && cell[1] != '-') cell.remove_prefix(1);  // from_chars takes no '+'
-    const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v[c]);
-    if (cell.empty() || ec != std::errc() || end != cell.data() + cell.size() || !std::isfinite(v[c]))
+    if (!detail::parse_finite(cells[c], v[c]))
       fail("line " + std::to_string(line_no) + ", column '" + l.header[c] + "': '" + shorten(cells[c]) +
            "' is not a finite number");
   }
@@ -272,20 +250,12 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
   options.Validate();
   const Fail fail{source};
   if (text.find('\0') != std::string::npos) fail("is not a text file (it contains NUL bytes)");
-  const std::string_view all(text);
-  std::size_t pos = 0, line_no = 0;
-  auto next_row = [&](std::vector<std::string_view>* cells) {  // skips blank and # comment lines
-    while (pos < all.size()) {
-      std::size_t end = all.find('\n', pos);
-      if (end == std::string_view::npos) end = all.size();
-      const std::string_view t = trim(all.substr(pos, end - pos));
-      pos = end + 1;
-      ++line_no;
-      if (t.empty() || t[0] == '#') continue;
-      split(t, *cells);
-      return true;
-    }
-    return false;
+  detail::CsvRows rows(text);
+  std::size_t line_no = 0;
+  auto next_row = [&](std::vector<std::string_view>* cells) {
+    const bool more = rows.next(*cells);
+    line_no = rows.line();
+    return more;
   };
   std::vector<std::string_view> cells;
   if (!next_row(&cells)) fail("is empty (expected a header row such as delta,P)");
@@ -293,7 +263,7 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
   CurveData d;
   d.source = source;
   d.spring_constant = options.spring_constant;
-  const std::size_t estimate = all.size() / 32;  // rows are ~30-60 characters
+  const std::size_t estimate = text.size() / 32;  // rows are ~30-60 characters
   d.delta.reserve(estimate);
   d.P.reserve(estimate);
   std::vector<double> curves, values;

@@ -1,0 +1,62 @@
+// Internal: the CSV row tokenizer the readers share - rows as views of the file's text, cells
+// trimmed, numbers by std::from_chars (no stream or string per row).
+#pragma once
+
+#include <charconv>
+#include <cmath>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+namespace layerjkr::detail {
+
+inline std::string_view trim(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string_view::npos) return {};
+  const auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+inline void split(std::string_view line, std::vector<std::string_view>& cells) {
+  cells.clear();
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = line.find(',', start);
+    cells.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+}
+
+/// The data rows of a CSV text: skips blank and '#' comment lines, counts lines from 1.
+class CsvRows {
+ public:
+  explicit CsvRows(std::string_view text) : text_(text) {}
+  bool next(std::vector<std::string_view>& cells) {
+    while (pos_ < text_.size()) {
+      std::size_t end = text_.find('\n', pos_);
+      if (end == std::string_view::npos) end = text_.size();
+      const std::string_view t = trim(text_.substr(pos_, end - pos_));
+      pos_ = end + 1;
+      ++line_;
+      if (t.empty() || t[0] == '#') continue;
+      split(t, cells);
+      return true;
+    }
+    return false;
+  }
+  std::size_t line() const { return line_; }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0, line_ = 0;
+};
+
+/// A finite number from a cell ('+' allowed); false for anything else.
+inline bool parse_finite(std::string_view cell, double& v) {
+  if (cell.size() > 1 && cell[0] == '+' && cell[1] != '-') cell.remove_prefix(1);  // from_chars takes no '+'
+  const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
+  return !cell.empty() && ec == std::errc() && end == cell.data() + cell.size() && std::isfinite(v);
+}
+
+}  // namespace layerjkr::detail
