@@ -4,12 +4,16 @@
 // Model A, the flat punch: load steps (delta, P) at several fixed radii a_k give the
 // stiffness S_k = dP/d delta at each radius (Condition 2 of the paper: P is linear in delta
 // for a flat punch), hence S(a) and, by one differentiation, S'(a). Model B, the convex
-// indenter, gives P(delta). This file holds stage A; the mapping to the non-adhesive curve
-// and the transform (19) follow (issue #14, work in progress on this branch).
+// indenter, gives P(delta); each S maps to the delta where dP/d delta = S, and the transform
+// (19) then needs S' only (issue #14, work in progress on this branch: the smoothing is not yet
+// chosen by a measured study, the single-model comparison and the CLI are missing).
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
+
+#include "layerjkr/model.hpp"
 
 namespace layerjkr {
 
@@ -38,5 +42,45 @@ struct FlatPunchStiffness {
 /// 2 load steps at a radius, a non-positive slope, steps whose nonlinearity exceeds
 /// `linearity_tolerance` (Condition 2 fails) or S_k that does not grow with a.
 FlatPunchStiffness fit_flat_punch(const FlatPunchData& data, double linearity_tolerance = 0.01);
+
+/// The convex indenter's non-adhesive curve P(delta), delta from first contact [m], P [N].
+struct ConvexData {
+  std::vector<double> delta, P;
+  std::string source = "convex-indenter data";
+};
+/// Reads a CSV with the header delta,P (SI).
+ConvexData read_convex_csv(const std::string& path);
+ConvexData parse_convex_csv(const std::string& text, const std::string& source);
+
+/// y(x) = exp(polynomial in ln x) through positive samples by least squares, its degree
+/// (1 .. max_degree, and below the sample count) chosen by leave-one-out cross-validation:
+/// power laws (Winkler, Hertz) are exact at degree 1, and the smooth departures of a layer
+/// cost a degree or two.
+class LogPolynomialFit {
+ public:
+  LogPolynomialFit(const std::vector<double>& x, const std::vector<double>& y, int max_degree, const std::string& what);
+  double value(double x) const;
+  /// d ln y / d ln x.
+  double log_slope(double x) const;
+  int degree() const { return static_cast<int>(c_.size()) - 1; }
+  double cv_rms() const { return cv_; }  ///< leave-one-out rms of ln y at the chosen degree
+
+ private:
+  double u(double x) const { return (std::log(x) - center_) / scale_; }
+  std::vector<double> c_;  // coefficients in u, lowest first
+  double center_ = 0.0, scale_ = 1.0, cv_ = 0.0;
+};
+
+struct DiscreteOptions {
+  double linearity_tolerance = 0.01;  ///< flat-punch Condition 2 (fit_flat_punch)
+  int max_degree = 3;                  ///< of both log-log fits, 1 .. 6
+};
+
+/// The two-model non-adhesive curve (paper, section 5): S(a) through the flat-punch S_k and
+/// S'(a) = S d ln S / d ln a / a (one differentiation), P(delta) through the convex data, and
+/// delta_H(a) where dP/d delta = S(a), P_H = P(delta_H). The radii are those of the flat-punch
+/// data whose stiffness the convex data reach; outside them state() throws DomainError.
+ContactModelPtr make_discrete_model(const FlatPunchData& flat, const ConvexData& convex,
+                                    const DiscreteOptions& options = {});
 
 }  // namespace layerjkr

@@ -37,6 +37,10 @@ struct HertzState {
 class ContactModel {
  public:
   explicit ContactModel(ProfilePtr profile);
+  /// A model built from data (discrete.hpp) has no indenter profile; it must override
+  /// max_radius() and typical_radius(), and profile() throws.
+  struct FromData {};
+  explicit ContactModel(FromData);
   virtual ~ContactModel() = default;
 
   /// Non-adhesive state at contact radius a (0 < a, a admissible for the profile).
@@ -68,7 +72,9 @@ class ContactModel {
   /// 3/4 of the nodes and returns the difference (and at least its tables' 1e-9).
   virtual double numerical_error(double a) const;
 
-  const Profile& profile() const { return *profile_; }
+  /// The indenter profile; throws Error for a model built from data.
+  const Profile& profile() const;
+  bool has_profile() const { return profile_ != nullptr; }
   const ProfilePtr& profile_ptr() const { return profile_; }
 
  private:

@@ -44,10 +44,10 @@ std::vector<AdhesiveState> JkrSolution::curve(const std::vector<double>& radii) 
 }
 
 double JkrSolution::upper_radius() const {
-  const Profile& p = model_->profile();
   const double m = model_->max_radius();
   if (!std::isfinite(m)) return kInf;
-  return p.contains(m) ? m : m * (1.0 - 1e-9);  // open bound (sphere: a < R)
+  if (!model_->has_profile()) return m;  // data: the largest radius measured
+  return model_->profile().contains(m) ? m : m * (1.0 - 1e-9);  // open bound (sphere: a < R)
 }
 
 double JkrSolution::seed_radius() const {
@@ -206,8 +206,9 @@ double JkrSolution::contact_radius_at_force(double P) const {
   const std::optional<double> a = first_root(true, P, a_lo);
   if (!a)
     throw DomainError("JkrSolution::contact_radius_at_force", "P", P,
-                      "forces reachable by " + model_->name() + " with " +
-                          model_->profile().describe() + " (a <= " +
+                      "forces reachable by " + model_->name() +
+                          (model_->has_profile() ? " with " + model_->profile().describe() : std::string(" (data)")) +
+                          " (a <= " +
                           format_double(model_->max_radius()) + " m)");
   return *a;
 }

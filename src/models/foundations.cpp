@@ -53,9 +53,16 @@ ContactModel::ContactModel(ProfilePtr profile) : profile_(std::move(profile)) {
   if (!profile_) throw Error("layerjkr::ContactModel: the profile is null");
 }
 
-double ContactModel::max_radius() const { return profile_->max_radius(); }
+ContactModel::ContactModel(FromData) {}
 
-double ContactModel::typical_radius() const { return profile_->length_scale(); }
+const Profile& ContactModel::profile() const {
+  if (!profile_) throw Error("layerjkr::ContactModel: a model built from data has no indenter profile");
+  return *profile_;
+}
+
+double ContactModel::max_radius() const { return profile().max_radius(); }
+
+double ContactModel::typical_radius() const { return profile().length_scale(); }
 
 double ContactModel::numerical_error(double /*a*/) const { return 1e-12; }
 
