@@ -46,9 +46,10 @@ FlatPunchStiffness fit_flat_punch(const FlatPunchData& data, double linearity_to
 /// The convex indenter's non-adhesive curve P(delta), delta from first contact [m], P [N].
 struct ConvexData {
   std::vector<double> delta, P;
+  std::vector<double> a;  ///< contact radius [m] when the model reports it (empty if not)
   std::string source = "convex-indenter data";
 };
-/// Reads a CSV with the header delta,P (SI).
+/// Reads a CSV with the header delta,P or delta,P,a (SI, any order).
 ConvexData read_convex_csv(const std::string& path);
 ConvexData parse_convex_csv(const std::string& text, const std::string& source);
 
@@ -62,6 +63,8 @@ class LogPolynomialFit {
   double value(double x) const;
   /// d ln y / d ln x.
   double log_slope(double x) const;
+  /// d^2 ln y / d (ln x)^2.
+  double log_curvature(double x) const;
   int degree() const { return static_cast<int>(c_.size()) - 1; }
   double cv_rms() const { return cv_; }  ///< leave-one-out rms of ln y at the chosen degree
 
@@ -82,5 +85,10 @@ struct DiscreteOptions {
 /// data whose stiffness the convex data reach; outside them state() throws DomainError.
 ContactModelPtr make_discrete_model(const FlatPunchData& flat, const ConvexData& convex,
                                     const DiscreteOptions& options = {});
+
+/// The single-model alternative the paper argues against: P, delta and a all from the convex
+/// data (which must carry a), S = dP/d delta and S' = dS/da by differentiating the data twice.
+/// For comparison with make_discrete_model.
+ContactModelPtr make_single_model(const ConvexData& convex, const DiscreteOptions& options = {});
 
 }  // namespace layerjkr

@@ -19,20 +19,24 @@ ConvexData parse_convex_csv(const std::string& text, const std::string& source) 
   auto fail = [&](const std::string& what) { throw InputError(source + ": " + what); };
   detail::CsvRows rows(text);
   std::vector<std::string_view> cells;
-  if (!rows.next(cells)) fail("is empty (expected the header delta,P)");
-  if (cells.size() != 2 || !((cells[0] == "delta" && cells[1] == "P") || (cells[0] == "P" && cells[1] == "delta")))
-    fail("the header must name exactly the columns delta and P (SI units)");
-  const bool delta_first = cells[0] == "delta";
+  if (!rows.next(cells)) fail("is empty (expected the header delta,P[,a])");
+  std::map<std::string, std::size_t> column;
+  for (std::size_t c = 0; c < cells.size(); ++c) column[std::string(cells[c])] = c;
+  const bool has_a = column.count("a") > 0;
+  if (cells.size() != (has_a ? 3u : 2u) || !column.count("delta") || !column.count("P"))
+    fail("the header must name the columns delta and P, and optionally a (SI units)");
   ConvexData d;
   d.source = source;
-  double v[2];
+  std::vector<double> v(cells.size());
   while (rows.next(cells)) {
-    if (cells.size() != 2) fail("line " + std::to_string(rows.line()) + " has " + std::to_string(cells.size()) + " cells, not 2");
-    for (std::size_t c = 0; c < 2; ++c)
+    if (cells.size() != v.size())
+      fail("line " + std::to_string(rows.line()) + " has " + std::to_string(cells.size()) + " cells, not " + std::to_string(v.size()));
+    for (std::size_t c = 0; c < v.size(); ++c)
       if (!detail::parse_finite(cells[c], v[c]))
         fail("line " + std::to_string(rows.line()) + ": '" + std::string(cells[c]) + "' is not a finite number");
-    d.delta.push_back(delta_first ? v[0] : v[1]);
-    d.P.push_back(delta_first ? v[1] : v[0]);
+    d.delta.push_back(v[column["delta"]]);
+    d.P.push_back(v[column["P"]]);
+    if (has_a) d.a.push_back(v[column["a"]]);
   }
   if (d.delta.empty()) fail("has a header but no data rows");
   return d;
@@ -98,6 +102,13 @@ double LogPolynomialFit::value(double x) const {
   return std::exp(s);
 }
 
+double LogPolynomialFit::log_curvature(double x) const {
+  const double t = u(x);
+  double s = 0.0;
+  for (auto k = c_.size(); k-- > 2;) s = s * t + static_cast<double>(k * (k - 1)) * c_[k];
+  return s / (scale_ * scale_);
+}
+
 double LogPolynomialFit::log_slope(double x) const {
   const double t = u(x);
   double s = 0.0;
@@ -135,7 +146,54 @@ class DiscreteModel final : public ContactModel {
   double a_lo_, a_hi_, d_lo_, d_hi_;
 };
 
+// Everything from the convex data: delta(a) inverted from the fitted a(delta), S = P'(delta),
+// S' = P''(delta) / a'(delta) - the second derivative the two-model approach avoids.
+class SingleModel final : public ContactModel {
+ public:
+  SingleModel(LogPolynomialFit A, LogPolynomialFit P, double a_lo, double a_hi, double d_lo, double d_hi)
+      : ContactModel(FromData{}), A_(std::move(A)), P_(std::move(P)), a_lo_(a_lo), a_hi_(a_hi), d_lo_(d_lo), d_hi_(d_hi) {}
+
+  HertzState state(double a) const override {
+    if (!(a >= a_lo_ && a <= a_hi_))
+      throw DomainError("single model", "contact radius a", a,
+                        "[" + format_double(a_lo_) + ", " + format_double(a_hi_) + "] m (the convex data's radii)");
+    std::uintmax_t iters = 200;
+    const auto r = boost::math::tools::toms748_solve([&](double d) { return A_.value(d) - a; }, d_lo_, d_hi_,
+                                                     boost::math::tools::eps_tolerance<double>(50), iters);
+    const double d = 0.5 * (r.first + r.second);
+    const double P = P_.value(d), m = P_.log_slope(d), mc = P_.log_curvature(d);
+    const double S = P * m / d;
+    const double dS_ddelta = P / (d * d) * (m * m - m + mc);
+    const double da_ddelta = a * A_.log_slope(d) / d;
+    return {a, P, d, S, dS_ddelta / da_ddelta};
+  }
+  std::string name() const override { return "single"; }
+  double min_radius() const override { return a_lo_ * (1.0 - 1e-12); }
+  double max_radius() const override { return a_hi_; }
+  double typical_radius() const override { return std::sqrt(a_lo_ * a_hi_); }
+
+ private:
+  LogPolynomialFit A_, P_;
+  double a_lo_, a_hi_, d_lo_, d_hi_;
+};
+
 }  // namespace
+
+ContactModelPtr make_single_model(const ConvexData& convex, const DiscreteOptions& options) {
+  if (options.max_degree < 1 || options.max_degree > 6)
+    throw DomainError("make_single_model", "max_degree", options.max_degree, "1 .. 6");
+  if (convex.a.size() != convex.delta.size())
+    throw InputError(convex.source + ": the single-model approach needs the contact radius a of every sample");
+  LogPolynomialFit A(convex.delta, convex.a, options.max_degree, convex.source + " (a)");
+  LogPolynomialFit P(convex.delta, convex.P, options.max_degree, convex.source);
+  double d_lo = std::numeric_limits<double>::infinity(), d_hi = 0.0;
+  for (std::size_t i = 0; i < convex.delta.size(); ++i)
+    if (convex.delta[i] > 0.0 && convex.P[i] > 0.0 && convex.a[i] > 0.0)
+      d_lo = std::min(d_lo, convex.delta[i]), d_hi = std::max(d_hi, convex.delta[i]);
+  const double a_lo = A.value(d_lo), a_hi = A.value(d_hi);
+  if (!(a_hi > a_lo)) throw InputError(convex.source + ": the contact radius does not grow with delta");
+  return std::make_shared<SingleModel>(std::move(A), std::move(P), a_lo, a_hi, d_lo, d_hi);
+}
 
 ContactModelPtr make_discrete_model(const FlatPunchData& flat, const ConvexData& convex, const DiscreteOptions& options) {
   if (options.max_degree < 1 || options.max_degree > 6)
