@@ -20,7 +20,9 @@
 #include <glog/logging.h>
 #include <nlohmann/json.hpp>
 
+#include "discrete_command.hpp"
 #include "fit_commands.hpp"
+#include "summary_json.hpp"
 #include "layerjkr/layerjkr.hpp"
 
 namespace {
@@ -106,21 +108,7 @@ int run_summary(const std::string& path) {
   const layerjkr::JkrSolution solution(built.model, scene.w);
   const layerjkr::ContactSummary s = layerjkr::summarize(solution);
   const layerjkr::SummaryError error = layerjkr::error_estimator(scene, built).summary(s);
-  nlohmann::ordered_json j;
-  j["model"] = s.model;
-  j["profile"] = scene.profile->describe();
-  j["w"] = s.w;
-  auto opt = [](const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nullptr; };
-  j["pull_off_force"] = s.pull_off ? nlohmann::ordered_json(s.pull_off->P) : nullptr;
-  j["pull_off_radius"] = s.pull_off ? nlohmann::ordered_json(s.pull_off->a) : nullptr;
-  j["pull_off_delta"] = s.pull_off ? nlohmann::ordered_json(s.pull_off->delta) : nullptr;
-  j["zero_load_radius"] = opt(s.zero_load_radius);
-  if (s.fixed_grips)
-    j["fixed_grips_critical"] = {{"force", s.fixed_grips->P},
-                                 {"radius", s.fixed_grips->a},
-                                 {"delta", s.fixed_grips->delta}};
-  else
-    j["fixed_grips_critical"] = nullptr;
+  nlohmann::ordered_json j = layerjkr::cli::summary_json(s, scene.profile->describe());
   // JSON has no infinity: a point the model misses is null, and the warning says why.
   auto finite_or_null = [](double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nullptr; };
   j["model_error_estimate"] = {{"pull_off_force", finite_or_null(error.pull_off_force)},
@@ -206,11 +194,16 @@ static int run_main(int argc, char** argv) {
       ->required();
   export_cmd->add_option("--out", export_out, "CSV file to write")->required();
 
-  const std::vector<std::string> commands = {"curve", "summary", "fit", "fit-map", "export"};
+  layerjkr::cli::DiscreteArguments discrete_args;
+  CLI::App* discrete = app.add_subcommand(
+      "discrete", "JKR from discrete data (paper s.5): flat-punch steps + convex-indenter curve -> curve CSV or summary");
+  layerjkr::cli::add_discrete_options(*discrete, discrete_args);
+
+  const std::vector<std::string> commands = {"curve", "summary", "fit", "fit-map", "export", "discrete"};
   if (argc > 1 && argv[1][0] != '-' &&
       std::find(commands.begin(), commands.end(), std::string(argv[1])) == commands.end()) {
     std::cerr << "layerjkr: unknown command '" << argv[1]
-              << "' (known: curve, summary, fit, fit-map, export)\nRun 'layerjkr --help' for usage.\n";
+              << "' (known: curve, summary, fit, fit-map, export, discrete)\nRun 'layerjkr --help' for usage.\n";
     return 2;
   }
   try {
@@ -231,6 +224,7 @@ static int run_main(int argc, char** argv) {
     if (*fit) return layerjkr::cli::run_fit(fit_args, data_path, report_path, plot_path);
     if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out, map_plot_dir);
     if (*export_cmd) return layerjkr::cli::run_export(export_path, export_out);
+    if (*discrete) return layerjkr::cli::run_discrete(discrete_args);
     return run_summary(scene_path);
   } catch (const layerjkr::NumericalError& e) {
     std::cerr << "layerjkr: numerical failure: " << e.what() << "\n";
