@@ -174,6 +174,24 @@ void try_extra_starts(CurveEvaluator& ev, const ParameterMap& map, const FitOpti
   if (moved) problem = solve(ev, map, options, x, &summary);
 }
 
+// Solves again from x after the data (weights, detilted forces) changed. In place: the new
+// problem points at x, which the covariance needs. Keeps x and the old solve if the new one
+// is not usable (false).
+bool resolve_in_place(CurveEvaluator& ev, const ParameterMap& map, const FitOptions& options, std::vector<double>& x,
+                      ceres::Solver::Summary& summary, std::unique_ptr<ceres::Problem>& problem) {
+  ev.invalidate();
+  ceres::Solver::Summary s2;
+  const std::vector<double> before = x;
+  auto p2 = solve(ev, map, options, x, &s2);
+  if (!s2.IsSolutionUsable()) {
+    x = before;
+    return false;
+  }
+  summary = s2;
+  problem = std::move(p2);
+  return true;
+}
+
 // The stated rule (FitOptions::exclusion_sigmas): in acquisition order, the retract samples
 // from the first one the model has let go of up to the first that is back within
 // exclusion_sigmas x noise of the baseline P0 are not JKR. Refits without them until the set
@@ -200,17 +218,7 @@ std::vector<bool> exclude_non_jkr(CurveEvaluator& ev, const ParameterMap& map, c
     if (next == excluded) break;
     excluded = next;
     for (std::size_t i = 0; i < n; ++i) data.sqrt_weight[i] = excluded[i] ? 0.0 : weights[i];
-    ev.invalidate();
-    // Solved in place: the problem keeps pointing at x, which the covariance needs.
-    ceres::Solver::Summary s2;
-    const std::vector<double> before = x;
-    auto p2 = solve(ev, map, options, x, &s2);
-    if (!s2.IsSolutionUsable()) {
-      x = before;
-      break;
-    }
-    summary = s2;
-    problem = std::move(p2);
+    if (!resolve_in_place(ev, map, options, x, summary, problem)) break;
   }
   return excluded;
 }
@@ -244,16 +252,7 @@ void detilt_baseline(CurveEvaluator& ev, const ParameterMap& map, const FitOptio
   out->baseline_slope = slope;
   out->baseline_slope_stderr = std::sqrt(ss / static_cast<double>(off.size() - 2) / sdd);
   for (std::size_t i = 0; i < data.P.size(); ++i) data.P[i] -= slope * (data.delta[i] - md);
-  ev.invalidate();
-  ceres::Solver::Summary s2;
-  const std::vector<double> before = x;
-  auto p2 = solve(ev, map, options, x, &s2);
-  if (!s2.IsSolutionUsable()) {
-    x = before;
-    return;
-  }
-  summary = s2;
-  problem = std::move(p2);
+  resolve_in_place(ev, map, options, x, summary, problem);
 }
 
 // The solution, the fitted curve and its rms into the summary.
