@@ -1,15 +1,14 @@
 // Stage B and the mapping of the two-model approach (discrete.hpp).
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <map>
-#include <sstream>
 
 #include <Eigen/Dense>
 #include <boost/math/tools/roots.hpp>
 
 #include "io/csv_rows.hpp"
+#include "io/read_file.hpp"
 #include "layerjkr/discrete.hpp"
 #include "layerjkr/error.hpp"
 
@@ -43,11 +42,7 @@ ConvexData parse_convex_csv(const std::string& text, const std::string& source) 
 }
 
 ConvexData read_convex_csv(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path + ": cannot open the convex-indenter data");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse_convex_csv(text.str(), path);
+  return parse_convex_csv(detail::read_file(path, "the convex-indenter data"), path);
 }
 
 LogPolynomialFit::LogPolynomialFit(const std::vector<double>& x, const std::vector<double>& y, int max_degree,

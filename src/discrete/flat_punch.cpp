@@ -1,11 +1,10 @@
 // Stage A of the two-model approach (discrete.hpp): flat-punch load steps to S_k.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "io/csv_rows.hpp"
+#include "io/read_file.hpp"
 #include "layerjkr/discrete.hpp"
 #include "layerjkr/error.hpp"
 
@@ -39,11 +38,7 @@ FlatPunchData parse_flat_punch_csv(const std::string& text, const std::string& s
 }
 
 FlatPunchData read_flat_punch_csv(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path + ": cannot open the flat-punch data");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse_flat_punch_csv(text.str(), path);
+  return parse_flat_punch_csv(detail::read_file(path, "the flat-punch data"), path);
 }
 
 FlatPunchStiffness fit_flat_punch(const FlatPunchData& data, double linearity_tolerance) {

@@ -6,12 +6,11 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string_view>
 
 #include "io/csv_rows.hpp"
+#include "io/read_file.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr {
@@ -282,12 +281,7 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
 }
 
 CurveData read_curve_csv(const std::string& path, const CsvOptions& options) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path + ": cannot open the data file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw InputError(path + ": cannot read the data file");
-  return parse_curve_csv(text.str(), path, options);
+  return parse_curve_csv(detail::read_file(path, "the data file"), path, options);
 }
 
 }  // namespace layerjkr

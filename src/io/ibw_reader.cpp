@@ -7,11 +7,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <sstream>
 
 #include "io/instrument_readers.hpp"
+#include "io/read_file.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {
@@ -96,11 +96,7 @@ double note_number(const Bytes& b, const std::map<std::string, std::string>& not
 }  // namespace
 
 InstrumentFile read_ibw(const std::string& path) {
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw InputError(path + ": cannot open the file");
-  std::ostringstream content;
-  content << stream.rdbuf();
-  return read_ibw_bytes(content.str(), path);
+  return read_ibw_bytes(read_file(path, "the file"), path);
 }
 
 InstrumentFile read_ibw_bytes(std::string bytes, const std::string& path) {

@@ -2,15 +2,14 @@
 #include "layerjkr/scene.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include <boost/math/constants/constants.hpp>
 #include <nlohmann/json.hpp>
 
+#include "io/read_file.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/contact.hpp"
 #include "layerjkr/exact_layer.hpp"
@@ -335,12 +334,7 @@ ResolvedModel resolve_model(const Scene& s) {
 }
 
 Scene load_scene(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path + ": cannot open the scene file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw InputError(path + ": cannot read the scene file");
-  return parse_scene(text.str(), path);
+  return parse_scene(detail::read_file(path, "the scene file"), path);
 }
 
 namespace {
