@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 
+#include "core/line_fit.hpp"
 #include "io/csv_rows.hpp"
 #include "io/read_file.hpp"
 #include "layerjkr/discrete.hpp"
@@ -54,27 +55,20 @@ FlatPunchStiffness fit_flat_punch(const FlatPunchData& data, double linearity_to
   for (const auto& [a, idx] : steps) {
     const std::string at = "radius a = " + format_double(a) + " m";
     if (idx.size() < 2) fail(at + " has one load step; a slope needs two or more");
-    double md = 0.0, mp = 0.0;
-    for (std::size_t i : idx) md += data.delta[i], mp += data.P[i];
-    md /= static_cast<double>(idx.size());
-    mp /= static_cast<double>(idx.size());
-    double sdd = 0.0, sdp = 0.0;
-    for (std::size_t i : idx) sdd += (data.delta[i] - md) * (data.delta[i] - md), sdp += (data.delta[i] - md) * (data.P[i] - mp);
-    if (!(sdd > 0.0)) fail(at + ": every load step has the same delta");
-    const double S = sdp / sdd;
+    const detail::LineFit line = detail::fit_line(data.delta, data.P, idx);
+    if (!(line.sxx > 0.0)) fail(at + ": every load step has the same delta");
+    const double S = line.slope;
     if (!(S > 0.0)) fail(at + ": the force does not grow with delta (slope " + format_double(S) + " N/m)");
-    double ss = 0.0;
-    for (std::size_t i : idx) ss += std::pow(data.P[i] - mp - S * (data.delta[i] - md), 2);
     const auto [lo, hi] = std::minmax_element(idx.begin(), idx.end(), [&](auto i, auto j) { return data.delta[i] < data.delta[j]; });
     const double span = data.delta[*hi] - data.delta[*lo];
-    const double nonlinearity = std::sqrt(ss / static_cast<double>(idx.size())) / (S * span);
+    const double nonlinearity = std::sqrt(line.rss / static_cast<double>(idx.size())) / (S * span);
     if (nonlinearity > linearity_tolerance)
       fail(at + ": P(delta) is not linear (rms deviation " + format_double(nonlinearity) +
            " of the force range, tolerance " + format_double(linearity_tolerance) +
            "): the flat-punch stiffness is not defined there (Condition 2 of the paper)");
     out.a.push_back(a);
     out.S.push_back(S);
-    out.S_stderr.push_back(idx.size() > 2 ? std::sqrt(ss / static_cast<double>(idx.size() - 2) / sdd) : 0.0);
+    out.S_stderr.push_back(line.slope_stderr);
     out.nonlinearity.push_back(nonlinearity);
   }
   for (std::size_t k = 1; k < out.S.size(); ++k)

@@ -10,6 +10,7 @@
 
 #include <ceres/ceres.h>
 
+#include "core/line_fit.hpp"
 #include "fit_steps.hpp"
 #include "layerjkr/error.hpp"
 
@@ -239,19 +240,11 @@ void detilt_baseline(CurveEvaluator& ev, const ParameterMap& map, const FitOptio
     out->warnings.push_back("baseline tilt: fewer than 3 samples off contact; no tilt fitted");
     return;
   }
-  double md = 0.0, mp = 0.0;
-  for (std::size_t i : off) md += data.delta[i], mp += data.P[i];
-  md /= static_cast<double>(off.size());
-  mp /= static_cast<double>(off.size());
-  double sdd = 0.0, sdp = 0.0;
-  for (std::size_t i : off) sdd += (data.delta[i] - md) * (data.delta[i] - md), sdp += (data.delta[i] - md) * (data.P[i] - mp);
-  if (!(sdd > 0.0)) return;
-  const double slope = sdp / sdd;
-  double ss = 0.0;
-  for (std::size_t i : off) ss += std::pow(data.P[i] - mp - slope * (data.delta[i] - md), 2);
-  out->baseline_slope = slope;
-  out->baseline_slope_stderr = std::sqrt(ss / static_cast<double>(off.size() - 2) / sdd);
-  for (std::size_t i = 0; i < data.P.size(); ++i) data.P[i] -= slope * (data.delta[i] - md);
+  const detail::LineFit line = detail::fit_line(data.delta, data.P, off);
+  if (!(line.sxx > 0.0)) return;
+  out->baseline_slope = line.slope;
+  out->baseline_slope_stderr = line.slope_stderr;
+  for (std::size_t i = 0; i < data.P.size(); ++i) data.P[i] -= line.slope * (data.delta[i] - line.mean_x);
   resolve_in_place(ev, map, options, x, summary, problem);
 }
 
