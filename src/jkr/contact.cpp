@@ -46,7 +46,8 @@ std::vector<AdhesiveState> JkrSolution::curve(const std::vector<double>& radii) 
 double JkrSolution::upper_radius() const {
   const double m = model_->max_radius();
   if (!std::isfinite(m)) return kInf;
-  if (!model_->has_profile()) return m;  // data: the largest radius measured
+  // Data: the largest radius measured, less the ulp by which exp(log(m)) in the scans may pass it.
+  if (!model_->has_profile()) return m * (1.0 - 1e-12);
   return model_->profile().contains(m) ? m : m * (1.0 - 1e-9);  // open bound (sphere: a < R)
 }
 
