@@ -3,6 +3,7 @@
 
 #include "layerjkr/contact.hpp"
 #include "layerjkr/curve_data.hpp"
+#include "layerjkr/discrete.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/exact_layer.hpp"
 #include "layerjkr/fit.hpp"
