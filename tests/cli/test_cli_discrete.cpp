@@ -44,7 +44,18 @@ TEST_CASE("discrete --summary: Winkler data give the pull-off -2 pi w R", "[cli]
   const Run curve = run("discrete --flat " + flat + " --convex " + convex + " --w 0.05 --points 5");
   REQUIRE(curve.code == 0);
   CHECK(lines(curve.out).size() == 6);
-  CHECK(lines(curve.out)[0] == "a,P,delta,P_H,delta_H,S");
+  CHECK(lines(curve.out)[0] == "a,P,delta,P_H,delta_H,S,P_err,delta_err");
+  // Noiseless power laws: the bootstrap has nothing to resample.
+  const std::string row = lines(curve.out)[3];
+  const std::string P_err = row.substr(0, row.rfind(',')).substr(row.substr(0, row.rfind(',')).rfind(',') + 1);
+  CHECK(std::abs(std::stod(P_err)) < 1e-12);
+  const Run single = run("discrete --single-model --convex " + convex + " --w 0.05 --summary --smoothing spline");
+  INFO(single.err);
+  REQUIRE(single.code == 0);
+  const auto js = nlohmann::json::parse(single.out);
+  CHECK(js["model"] == "single");
+  CHECK(std::abs(js["pull_off_force"].get<double>() / (-2 * kPi * 0.05 * kR) - 1) < 1e-6);
+  CHECK(js["bootstrap"]["replicates"] == 200);
 }
 
 TEST_CASE("discrete: bad data and options exit 2 with one message", "[cli][discrete][errors]") {
@@ -57,6 +68,10 @@ TEST_CASE("discrete: bad data and options exit 2 with one message", "[cli][discr
       {"discrete --flat " + good + " --convex " + convex + " --w -1 --summary", "--w = -1"},
       {"discrete --flat " + good + " --convex " + convex + " --w 0.05 --at 9e-4", "contact radius a"},
       {"discrete --flat /nonexistent.csv --convex " + convex + " --w 0.05 --summary", "cannot open"},
+      {"discrete --convex " + convex + " --w 0.05 --summary", "needs --flat"},
+      {"discrete --single-model --flat " + good + " --convex " + convex + " --w 0.05 --summary", "drop --flat"},
+      {"discrete --flat " + good + " --convex " + convex + " --w 0.05 --summary --smoothing cubic", "--smoothing = 'cubic'"},
+      {"discrete --flat " + good + " --convex " + convex + " --w 0.05 --summary --bootstrap 5", "replicates = 5 is invalid"},
   };
   for (const auto& c : cases) {
     const Run r = run(c.args);
