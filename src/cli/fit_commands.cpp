@@ -43,16 +43,10 @@ void parse_loss(const std::string& text, FitOptions& o) {
   o.loss_scale = s;
 }
 
-struct Prepared {
-  Scene scene;
-  FitOptions options;
-  CsvOptions csv;
-  bool cantilever_required = false;
-};
+}  // namespace
 
-Prepared prepare(const FitArguments& a) {
+Prepared prepare_options(const FitArguments& a) {
   Prepared p;
-  p.scene = load_scene(a.scene);
   p.options.free = parse_fit_parameters(a.free, "--free");
   p.options.branch = parse_branch(a.branch, "--branch");
   parse_loss(a.loss, p.options);
@@ -97,7 +91,13 @@ Prepared prepare(const FitArguments& a) {
   return p;
 }
 
-json report_json(const FitSummary& s, Branch branch) {
+Prepared prepare(const FitArguments& a) {
+  Prepared p = prepare_options(a);
+  p.scene = load_scene(a.scene);
+  return p;
+}
+
+nlohmann::ordered_json report_json(const FitSummary& s, Branch branch) {
   json j;
   j["converged"] = s.converged;
   j["termination"] = s.termination;
@@ -133,6 +133,8 @@ json report_json(const FitSummary& s, Branch branch) {
   j["warnings"] = s.warnings;
   return j;
 }
+
+namespace {
 
 // Writes via a temporary name so a failure never leaves a partial file.
 void write_atomically(const std::string& path, const std::string& text) {

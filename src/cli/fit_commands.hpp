@@ -4,6 +4,12 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "layerjkr/curve_data.hpp"
+#include "layerjkr/fit.hpp"
+#include "layerjkr/scene.hpp"
+
 namespace CLI {
 class App;
 }
@@ -20,6 +26,21 @@ struct FitArguments {
   std::string baseline = "constant";  ///< --baseline: constant | tilt
   std::string window = "all";    ///< --window: all | pull-off | fraction:F
 };
+
+/// The arguments as library options (the CLI and the Python module share this mapping).
+struct Prepared {
+  Scene scene;
+  FitOptions options;
+  CsvOptions csv;
+  bool cantilever_required = false;  ///< --control cantilever: the curve must carry k
+};
+/// Everything but the scene; throws InputError naming the flag.
+Prepared prepare_options(const FitArguments& args);
+/// prepare_options and the scene loaded from args.scene.
+Prepared prepare(const FitArguments& args);
+
+/// The fit report's JSON keys (fit --out, and the Python module's FitResult).
+nlohmann::ordered_json report_json(const FitSummary& summary, Branch branch);
 
 /// Registers the shared options on a subcommand.
 void add_fit_options(CLI::App& command, FitArguments& args);

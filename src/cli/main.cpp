@@ -22,7 +22,7 @@
 
 #include "discrete_command.hpp"
 #include "fit_commands.hpp"
-#include "summary_json.hpp"
+#include "reports.hpp"
 #include "layerjkr/layerjkr.hpp"
 
 namespace {
@@ -52,19 +52,8 @@ void print_warnings(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) std::cerr << "layerjkr: warning: " << w << "\n";
 }
 
-void print_choice(const layerjkr::BuiltScene& built, const std::string& judged_at) {
-  if (built.automatic)
-    std::cerr << "layerjkr: auto chose model '" << built.chosen_model << "' (estimated error "
-              << format_double(built.estimated_error) << " " << judged_at << ")\n";
-}
-
-// Answers whose estimated model error exceeds this get a warning (stderr and "warnings").
-constexpr double kWarnError = 0.05;
-
-std::string percent(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g %%", 100.0 * x);
-  return buf;
+void print_choice(const std::string& note) {
+  if (!note.empty()) std::cerr << "layerjkr: " << note << "\n";
 }
 
 int run_curve(const std::string& path, const std::string& at, double a_max, int points) {
@@ -78,62 +67,26 @@ int run_curve(const std::string& path, const std::string& at, double a_max, int 
     if (points < 1) throw layerjkr::InputError("--points = " + std::to_string(points) + " must be >= 1");
     for (int i = 1; i <= points; ++i) radii.push_back(a_max * i / points);
   }
-  layerjkr::BuiltScene built = layerjkr::build_scene_for_radii(scene, radii);
-  const layerjkr::JkrSolution solution(built.model, scene.w);
-  const std::vector<double> errors = layerjkr::error_estimator(scene, built).along(radii);
   // Compute everything before printing so a failure never leaves partial output.
+  const layerjkr::cli::CurveTable t = layerjkr::cli::curve_table(scene, radii);
   std::string out = "a,P,delta,P_H,delta_H,S,error_est\n";
-  const std::vector<layerjkr::AdhesiveState> states = solution.curve(radii);
-  double worst = 0.0, worst_a = 0.0;
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    const auto& s = states[i];
+  for (std::size_t i = 0; i < t.states.size(); ++i) {
+    const auto& s = t.states[i];
     out += format_double(s.a) + "," + format_double(s.P) + "," + format_double(s.delta) + "," +
            format_double(s.hertz.P_H) + "," + format_double(s.hertz.delta_H) + "," +
-           format_double(s.hertz.S) + "," + format_double(errors[i]) + "\n";
-    if (errors[i] > worst) worst = errors[i], worst_a = s.a;
+           format_double(s.hertz.S) + "," + format_double(t.error_est[i]) + "\n";
   }
-  if (worst > kWarnError)
-    built.warnings.push_back("model '" + built.model->name() + "' is estimated " + percent(worst) +
-                             " off its reference model '" + layerjkr::error_estimator(scene, built).reference_name() +
-                             "' at a = " + format_double(worst_a) + " m (column error_est)");
-  print_warnings(built.warnings);
-  print_choice(built, "over the curve's radii");
+  print_warnings(t.warnings);
+  print_choice(t.choice_note);
   std::cout << out;
   return 0;
 }
 
 int run_summary(const std::string& path) {
-  const layerjkr::Scene scene = layerjkr::load_scene(path);
-  layerjkr::BuiltScene built = layerjkr::build_scene_for_summary(scene);
-  const layerjkr::JkrSolution solution(built.model, scene.w);
-  const layerjkr::ContactSummary s = layerjkr::summarize(solution);
-  const layerjkr::SummaryError error = layerjkr::error_estimator(scene, built).summary(s);
-  nlohmann::ordered_json j = layerjkr::cli::summary_json(s, scene.profile->describe());
-  // JSON has no infinity: a point the model misses is null, and the warning says why.
-  auto finite_or_null = [](double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nullptr; };
-  j["model_error_estimate"] = {{"pull_off_force", finite_or_null(error.pull_off_force)},
-                               {"zero_load_radius", finite_or_null(error.zero_load_radius)},
-                               {"reference", error.reference}};
-  if (built.has_foundation_constants) {
-    j["K"] = built.K;
-    j[scene.medium.type == layerjkr::MediumType::filonenko_borodich ? "T" : "G"] = built.G;
-  }
-  if (built.has_effective_modulus) j["E_star"] = built.E_star;
-  if (built.automatic)
-    j["model_choice"] = {{"model", built.chosen_model},
-                         {"estimated_error", built.estimated_error},
-                         {"tolerance", scene.tolerance}};
-  if (!std::isfinite(error.worst()))
-    built.warnings.push_back("model '" + s.model + "' misses a critical point its reference model '" +
-                             error.reference + "' has (estimated error unbounded)");
-  else if (error.worst() > kWarnError)
-    built.warnings.push_back("model '" + s.model + "' is estimated " + percent(error.pull_off_force) +
-                             " off its reference model '" + error.reference + "' in the pull-off force and " +
-                             percent(error.zero_load_radius) + " in the zero-load radius");
-  j["warnings"] = built.warnings;
-  print_warnings(built.warnings);
-  print_choice(built, "at the pull-off and zero-load point");
-  std::cout << j.dump(2) << "\n";
+  const layerjkr::cli::SummaryReport r = layerjkr::cli::summary_report(layerjkr::load_scene(path));
+  print_warnings(r.warnings);
+  print_choice(r.choice_note);
+  std::cout << r.json.dump(2) << "\n";
   return 0;
 }
 
