@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cmath>
+#include <memory>
 #include <limits>
 
 #include <ceres/ceres.h>
@@ -107,10 +108,13 @@ ParameterMap make_parameter_map(const FitOptions& options, const Scene& scene,
 std::unique_ptr<ceres::Problem> solve(CurveEvaluator& ev, const ParameterMap& map,
                                       const FitOptions& options, std::vector<double>& xs,
                                       ceres::Solver::Summary* summary) {
-  // One Ceres context per thread: creating it per fit costs more than a small fit.
-  thread_local ceres::Context context;
+  // One Ceres context per thread: creating it per fit costs more than a small fit. It must come
+  // from Context::Create(): a default-constructed ceres::Context is only the opaque base, and
+  // Ceres casts it to its implementation (whose thread pool mutex then lay in zeroed TLS in the
+  // CLI by luck, and in garbage inside a Python module, where every fit failed with EINVAL).
+  thread_local const std::unique_ptr<ceres::Context> context(ceres::Context::Create());
   ceres::Problem::Options po;
-  po.context = &context;
+  po.context = context.get();
   po.disable_all_safety_checks = true;  // the blocks are built here, sized consistently
   po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
   po.loss_function_ownership = ceres::TAKE_OWNERSHIP;
