@@ -36,6 +36,18 @@ void BM_FitTwoTerm1000(benchmark::State& state) {
 }
 BENCHMARK(BM_FitTwoTerm1000)->Unit(benchmark::kMicrosecond);
 
+// The README's main job (and examples/python/fit_and_plot.py): the bundled two-term sample,
+// E, w, delta0, P0 on both branches; python/bench/bench_python.py times the same fit from Python.
+void BM_FitBundledSample(benchmark::State& state) {
+  const CurveData data = read_curve_csv(LAYERJKR_SOURCE_DIR "/data/curves/hydrogel_film_two_term.csv");
+  const Scene scene = load_scene(LAYERJKR_SOURCE_DIR "/data/scenes/hydrogel_film_two_term.json");
+  FitOptions o;
+  o.free = {FitParameter::E, FitParameter::w, FitParameter::delta0, FitParameter::P0};
+  o.branch = Branch::all;
+  for (auto _ : state) benchmark::DoNotOptimize(fit(data, scene, o));
+}
+BENCHMARK(BM_FitBundledSample)->Unit(benchmark::kMillisecond);
+
 // The nanite reference fit: Hertz paraboloid, R = 40 nm, nu = 0.5, E and contact point.
 void BM_FitRealSpot3(benchmark::State& state) {
   const CurveData data = read_curve_csv(kReal);

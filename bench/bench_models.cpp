@@ -8,6 +8,7 @@
 
 #include "layerjkr/callable_profile.hpp"
 #include "layerjkr/layerjkr.hpp"
+#include "reports.hpp"
 
 namespace {
 
@@ -143,5 +144,16 @@ BENCHMARK_CAPTURE(BM_Summary, HalfSpace_Paraboloid, make_half_space(make_parabol
 BENCHMARK_CAPTURE(BM_Summary, FullFoundation_Sphere, make_full_foundation(make_sphere(1e-2), kFilm.K, kFilm.G));
 
 }  // namespace
+
+// The front-end curve (layerjkr curve, layerjkr.curve in Python): 200 radii of the bundled
+// hydrogel scene with the model error column; python/bench/bench_python.py subtracts this
+// from the Python call to get the binding's overhead.
+void BM_CurveTable200_Hydrogel(benchmark::State& st) {
+  const Scene scene = load_scene(LAYERJKR_SOURCE_DIR "/data/scenes/hydrogel_film_two_term.json");
+  std::vector<double> radii;
+  for (int i = 0; i < 200; ++i) radii.push_back(1e-7 + (2e-6 - 1e-7) * i / 199);
+  for (auto _ : st) benchmark::DoNotOptimize(cli::curve_table(scene, radii));
+}
+BENCHMARK(BM_CurveTable200_Hydrogel)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();

@@ -26,15 +26,42 @@ __all__ = ["Error", "DomainError", "InputError", "NumericalError", "Scene", "Fit
            "summary", "fit", "fit_batch", "fit_files", "read_instrument"]
 
 
-def scene(spec):
-    """A scene from a dict (the CLI's JSON schema), a JSON file path or a Scene."""
+def scene(spec, profile=None, r_max=None, samples=501):
+    """A scene from a dict (the CLI's JSON schema), a JSON file path or a Scene.
+
+    ``profile``: a Python callable f(r) -> height [m] (vectorised over a numpy array or not)
+    that replaces the scene's indenter. It is sampled at ``samples`` radii on [0, r_max] and
+    interpolated as a measured tip table (a C2 cubic spline, mirrored at r = 0): contact radii
+    up to r_max are admissible. Accuracy: that of the spline, about (r_max / samples)^2 relative
+    in f''; test your r_max and samples against a known profile (docs/python.md).
+    """
     if isinstance(spec, Scene):
-        return spec
-    if isinstance(spec, dict):
-        return _core.parse_scene(json.dumps(spec), "scene dict")
-    if isinstance(spec, (str, os.PathLike)):
-        return _core.load_scene(os.fspath(spec))
-    raise InputError("scene: expected a dict, a JSON file path or a layerjkr.Scene, got %s" % type(spec).__name__)
+        s = spec
+    elif isinstance(spec, dict):
+        s = _core.parse_scene(json.dumps(spec), "scene dict")
+    elif isinstance(spec, (str, os.PathLike)):
+        s = _core.load_scene(os.fspath(spec))
+    else:
+        raise InputError("scene: expected a dict, a JSON file path or a layerjkr.Scene, got %s" % type(spec).__name__)
+    if profile is None:
+        return s
+    if not callable(profile):
+        raise InputError("scene: profile must be a callable f(r) -> height [m]")
+    if r_max is None or not float(r_max) > 0 or not np.isfinite(r_max):
+        raise InputError("scene: a callable profile needs r_max > 0 [m], the largest contact radius; got %r" % (r_max,))
+    if int(samples) < 3:
+        raise InputError("scene: samples = %r must be >= 3" % (samples,))
+    r = np.linspace(0.0, float(r_max), int(samples))
+    try:
+        with np.errstate(all="ignore"):  # a non-finite height is reported below, by radius
+            z = np.asarray(profile(r), dtype=np.float64)
+        if z.shape != r.shape:
+            raise ValueError
+    except Exception:  # not vectorised: one radius at a time
+        z = np.array([float(profile(x)) for x in r])
+    if not np.all(np.isfinite(z)):
+        raise InputError("scene: the profile callable returned a non-finite height at r = %r m" % r[~np.isfinite(z)][0])
+    return _core.with_table_profile(s, r.tolist(), z.tolist())
 
 
 def curve(scene_spec, a):
