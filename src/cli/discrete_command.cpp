@@ -2,13 +2,13 @@
 
 #include <cmath>
 #include <iostream>
-#include <sstream>
 
 #include <CLI/CLI.hpp>
 
 #include "layerjkr/contact.hpp"
 #include "layerjkr/discrete.hpp"
 #include "layerjkr/error.hpp"
+#include "reports.hpp"
 #include "summary_json.hpp"
 
 namespace layerjkr::cli {
@@ -28,18 +28,6 @@ void add_discrete_options(CLI::App& c, DiscreteArguments& a) {
 }
 
 namespace {
-
-std::vector<double> parse_radii(const std::string& list) {
-  std::vector<double> radii;
-  std::stringstream in(list);
-  for (std::string item; std::getline(in, item, ',');) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end != '\0' || !std::isfinite(v)) throw InputError("--at: '" + item + "' is not a finite number");
-    radii.push_back(v);
-  }
-  return radii;
-}
 
 void warn_failed(const DiscreteUncertainty& u) {
   if (u.failed > 0)
@@ -73,12 +61,14 @@ int run_discrete(const DiscreteArguments& a) {
   const ContactModelPtr model = a.single ? make_single_model(convex, o) : make_discrete_model(flat, convex, o);
   const DiscreteApproach approach = a.single ? DiscreteApproach::single_model : DiscreteApproach::two_models;
   const JkrSolution jkr(model, a.w);
+  // The data's radii (min_radius() carries a rounding margin below the smallest).
+  const double a_lo = model->min_radius() / (1.0 - 1e-12), a_hi = model->max_radius();
   if (a.summary) {
     const DiscreteUncertainty u = bootstrap_discrete(flat, convex, a.w, {}, approach, o, b);
     warn_failed(u);
     const ContactSummary summary = summarize(jkr);
     auto j = summary_json(summary, "(data)");
-    const std::string range = "[" + format_double(model->min_radius() / (1.0 - 1e-12)) + ", " + format_double(model->max_radius()) + "] m";
+    const std::string range = "[" + format_double(a_lo) + ", " + format_double(a_hi) + "] m";
     std::vector<std::string> warnings;
     if (!summary.pull_off) warnings.push_back("no pull-off force within the data's radii " + range + "; it needs data that reach it");
     if (!summary.zero_load_radius) warnings.push_back("no zero-load radius within the data's radii " + range);
@@ -97,8 +87,7 @@ int run_discrete(const DiscreteArguments& a) {
   if (!a.at.empty()) {
     radii = parse_radii(a.at);
   } else {
-    const double lo = model->min_radius() / (1.0 - 1e-12), hi = model->max_radius();
-    for (int i = 0; i < a.points; ++i) radii.push_back(a.points == 1 ? lo : lo + (hi - lo) * i / (a.points - 1));
+    for (int i = 0; i < a.points; ++i) radii.push_back(a.points == 1 ? a_lo : a_lo + (a_hi - a_lo) * i / (a.points - 1));
   }
   const std::vector<AdhesiveState> states = jkr.curve(radii);
   const DiscreteUncertainty u = bootstrap_discrete(flat, convex, a.w, radii, approach, o, b);

@@ -6,12 +6,10 @@
 //   layerjkr export FILE.jpk-force|.jpk-force-map|.jpk-qi-data|.ibw --out OUT.csv
 // Exit codes: 0 success, 2 invalid scene or arguments, 1 internal failure.
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -29,25 +27,6 @@ namespace {
 
 using layerjkr::format_double;
 
-std::vector<double> parse_radii(const std::string& text) {
-  std::vector<double> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    const char* begin = item.c_str();
-    char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(begin, &end);
-    if (item.empty() || end == begin || *end != '\0' || errno == ERANGE || !std::isfinite(v))
-      throw layerjkr::InputError("--at: '" + item + "' is not a finite number");
-    if (!(v > 0.0))
-      throw layerjkr::InputError("--at: contact radius " + item + " must be > 0");
-    out.push_back(v);
-  }
-  if (out.empty()) throw layerjkr::InputError("--at: give at least one contact radius");
-  return out;
-}
-
 void print_warnings(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) std::cerr << "layerjkr: warning: " << w << "\n";
 }
@@ -60,7 +39,7 @@ int run_curve(const std::string& path, const std::string& at, double a_max, int 
   const layerjkr::Scene scene = layerjkr::load_scene(path);
   std::vector<double> radii;
   if (!at.empty()) {
-    radii = parse_radii(at);
+    radii = layerjkr::cli::parse_radii(at);
   } else {
     if (!(a_max > 0.0) || !std::isfinite(a_max))
       throw layerjkr::InputError("--a-max = " + format_double(a_max) + " must be finite and > 0");

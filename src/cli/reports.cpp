@@ -1,8 +1,11 @@
 // The curve and summary answers shared by the CLI and the Python module (reports.hpp).
 #include "reports.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <sstream>
 
 #include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
@@ -26,21 +29,40 @@ std::string choice_note(const BuiltScene& built, const std::string& judged_at) {
 
 }  // namespace
 
+std::vector<double> parse_radii(const std::string& text) {
+  std::vector<double> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    const char* begin = item.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(begin, &end);
+    if (item.empty() || end == begin || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+      throw InputError("--at: '" + item + "' is not a finite number");
+    if (!(v > 0.0)) throw InputError("--at: contact radius " + item + " must be > 0");
+    out.push_back(v);
+  }
+  if (out.empty()) throw InputError("--at: give at least one contact radius");
+  return out;
+}
+
 CurveTable curve_table(const Scene& scene, const std::vector<double>& radii) {
   for (double a : radii)
     if (!(a > 0.0) || !std::isfinite(a))
       throw InputError("contact radius a = " + format_double(a) + " is invalid; valid range: finite and > 0 [m]");
   BuiltScene built = build_scene_for_radii(scene, radii);
   const JkrSolution solution(built.model, scene.w);
+  const ModelErrorEstimator estimator = error_estimator(scene, built);
   CurveTable t;
-  t.error_est = error_estimator(scene, built).along(radii);
+  t.error_est = estimator.along(radii);
   t.states = solution.curve(radii);
   double worst = 0.0, worst_a = 0.0;
   for (std::size_t i = 0; i < t.states.size(); ++i)
     if (t.error_est[i] > worst) worst = t.error_est[i], worst_a = t.states[i].a;
   if (worst > kWarnError)
     built.warnings.push_back("model '" + built.model->name() + "' is estimated " + percent(worst) +
-                             " off its reference model '" + error_estimator(scene, built).reference_name() +
+                             " off its reference model '" + estimator.reference_name() +
                              "' at a = " + format_double(worst_a) + " m (column error_est)");
   t.warnings = built.warnings;
   t.choice_note = choice_note(built, "over the curve's radii");

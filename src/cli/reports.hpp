@@ -15,6 +15,10 @@ namespace layerjkr::cli {
 /// Answers whose estimated model error exceeds this get a warning.
 constexpr double kWarnError = 0.05;
 
+/// The radii of an --at list, "a1,a2,...": each finite and > 0, at least one; throws
+/// InputError naming the item.
+std::vector<double> parse_radii(const std::string& text);
+
 struct CurveTable {
   std::vector<AdhesiveState> states;
   std::vector<double> error_est;  ///< estimated relative model error at each radius
