@@ -119,7 +119,7 @@ DiscreteUncertainty bootstrap_discrete(const FlatPunchData& flat, const ConvexDa
   const bool two = approach == DiscreteApproach::two_models;
   // The data as given must make a model; replicates that do not are counted.
   const ContactModelPtr base = two ? make_discrete_model(flat, convex, options) : make_single_model(convex, options);
-  for (double a : radii) JkrSolution(base, w).at(a);
+  JkrSolution(base, w).curve(radii);
   const FlatResampler flat_draws(flat);
   const LogColumnResampler P_draws(convex.delta, convex.P, options, convex.source);
   std::optional<LogColumnResampler> a_draws;
