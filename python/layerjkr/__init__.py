@@ -64,6 +64,10 @@ def scene(spec, profile=None, r_max=None, samples=501):
     return _core.with_table_profile(s, r.tolist(), z.tolist())
 
 
+# The fit functions take a parameter named scene, as the CLI's --scene; this reaches the function.
+_as_scene = scene
+
+
 def curve(scene_spec, a):
     """The adhesive curve at contact radii ``a`` [m]: a dict of float64 arrays a, P, delta, P_H,
     delta_H, S, dS_da, error_est (as ``layerjkr curve``), plus 'warnings' and 'note'."""
@@ -137,7 +141,7 @@ def fit(delta, P, scene, free, segment=None, **options):
     (approach/retract). Options as the CLI's flags. Returns a :class:`FitResult`."""
     seg = None if segment is None else [int(s) for s in np.asarray(segment).ravel()]
     out = _core.fit(np.asarray(delta, dtype=np.float64), np.asarray(P, dtype=np.float64), seg,
-                    globals()["scene"](scene), _free(free), options)
+                    _as_scene(scene), _free(free), options)
     return FitResult(out)
 
 
@@ -150,7 +154,7 @@ def _items(items):
 def fit_batch(curves, scene, free, jobs=1, **options):
     """Fit many (delta, P) pairs on ``jobs`` threads; one dict per curve (ok, error, report)."""
     pairs = [(np.asarray(d, dtype=np.float64), np.asarray(p, dtype=np.float64)) for d, p in curves]
-    return _items(_core.fit_batch(pairs, globals()["scene"](scene), _free(free), options, int(jobs)))
+    return _items(_core.fit_batch(pairs, _as_scene(scene), _free(free), options, int(jobs)))
 
 
 def fit_files(paths, scene, free, jobs=1, **options):
@@ -158,7 +162,7 @@ def fit_files(paths, scene, free, jobs=1, **options):
     ``layerjkr fit-map``; one dict per curve: source, curve, x, y, grid_x, grid_y, ok, error, report."""
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]
-    return _items(_core.fit_files([os.fspath(p) for p in paths], globals()["scene"](scene), _free(free), options,
+    return _items(_core.fit_files([os.fspath(p) for p in paths], _as_scene(scene), _free(free), options,
                                   int(jobs)))
 
 
