@@ -22,7 +22,7 @@ using namespace layerjkr;
 
 namespace {
 
-double worst_rel_err(const HertzState& s, const HertzState& r) {
+double worst_rel_err(const NonAdhesiveState& s, const NonAdhesiveState& r) {
   auto e = [](double v, double ref) { return std::abs(v / ref - 1.0); };
   return std::max({e(s.P_H, r.P_H), e(s.delta_H, r.delta_H), e(s.S, r.S), e(s.dS_da, r.dS_da)});
 }
@@ -67,7 +67,7 @@ int main() {
     ref_options.panel_width = 0.25;
     ref_options.estimate_error = false;
     const ExactLayerKernel reference(L.layer, ref_options);
-    std::vector<HertzState> refs;
+    std::vector<NonAdhesiveState> refs;
     for (double r : ratios) refs.push_back(reference.solve(*paraboloid, r).state);
     std::printf("\n## %s\n\n| width [h] | nodes | a/h = 0.5 | 5 | 20 | 50 | unknowns at 50 | ms at 50 |\n"
                 "|---|---|---|---|---|---|---|---|\n", L.name);

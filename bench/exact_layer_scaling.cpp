@@ -38,7 +38,7 @@ double median_seconds(F f, int runs) {
   return t[t.size() / 2];
 }
 
-double worst_rel_err(const HertzState& s, const HertzState& r) {
+double worst_rel_err(const NonAdhesiveState& s, const NonAdhesiveState& r) {
   auto e = [](double v, double ref) { return std::abs(v / ref - 1.0); };
   return std::max({e(s.P_H, r.P_H), e(s.delta_H, r.delta_H), e(s.S, r.S), e(s.dS_da, r.dS_da)});
 }

@@ -39,7 +39,7 @@ int main() {
   std::printf("%-26s %14.6f %9s %14.6e %9s %14.6f %9s\n", "FEM (paper)", S_fem, "", delta_fem * 1e3,
               "", P_fem, "");
   for (const Row& r : rows) {
-    const layerjkr::HertzState s = r.model->state(a);
+    const layerjkr::NonAdhesiveState s = r.model->state(a);
     std::printf("%-26s %14.6f %+8.3f%% %14.6e %+8.3f%% %14.6f %+8.3f%%\n", r.name, s.S,
                 100 * (s.S / S_fem - 1), s.delta_H * 1e3, 100 * (s.delta_H / delta_fem - 1), s.P_H,
                 100 * (s.P_H / P_fem - 1));
@@ -53,7 +53,7 @@ int main() {
   const auto rebuilt = layerjkr::make_discrete_model(
       layerjkr::sample_flat_punch(*exact, {0.2e-3, 0.3e-3, 0.4e-3, 0.5e-3, 0.6e-3}, paper_steps),
       layerjkr::sample_convex(*exact, paper_steps));
-  const layerjkr::HertzState t = exact->state(a), r = rebuilt->state(a);
+  const layerjkr::NonAdhesiveState t = exact->state(a), r = rebuilt->state(a);
   std::printf("\nThe workflow (Steps 1-3) on exact-layer data at the paper's sampling, a* = 0.4 mm:\n");
   std::printf("%-26s %14s %14s %14s\n", "", "S* [N/m]", "delta* [mm]", "P* [N]");
   std::printf("%-26s %14.6f %14.6e %14.6f\n", "exact layer (truth)", t.S, t.delta_H * 1e3, t.P_H);

@@ -30,7 +30,7 @@ int main() {
   const layerjkr::JkrSolution jkr(model, 0.02);
 
   const layerjkr::ContactSummary summary = layerjkr::summarize(jkr);
-  std::printf("%s\n", summary.BriefReport().c_str());
+  std::printf("%s\n", summary.brief_report().c_str());
 
   std::printf("%12s %14s %14s\n", "a [nm]", "P [nN]", "delta [nm]");
   for (double a : {50e-9, 100e-9, 200e-9, 400e-9, 800e-9}) {

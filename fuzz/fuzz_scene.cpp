@@ -16,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       return 0;
     const layerjkr::BuiltScene built = layerjkr::build_scene(scene);
     const double a = std::min(scene.profile->length_scale(), 0.5 * scene.profile->max_radius());
-    const layerjkr::HertzState s = built.model->state(a);
+    const layerjkr::NonAdhesiveState s = built.model->state(a);
     if (!std::isfinite(s.P_H) || !std::isfinite(s.delta_H) || !std::isfinite(s.S)) __builtin_trap();
   } catch (const layerjkr::Error&) {
   }

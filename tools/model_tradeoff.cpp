@@ -118,7 +118,7 @@ void peers_study(std::ostream& csv) {
           std::printf("%-10s %-5.2f %-12s %-22s", cone ? "cone 35deg" : "paraboloid", nu,
                       base == Base::bonded ? "bonded" : "frictionless", name.c_str());
           for (double r : ratios) {
-            const HertzState e = exact->state(r * layer.h);
+            const NonAdhesiveState e = exact->state(r * layer.h);
             double err = NAN;
             try {
               err = force(e.delta_H) / e.P_H - 1.0;
@@ -179,7 +179,7 @@ int main(int argc, char** argv) {
       }
       for (double r : ratios) {
         const double a = r * h;
-        const HertzState e = exact->state(a);
+        const NonAdhesiveState e = exact->state(a);
         const double t_exact = median_seconds([&] { (void)exact->state(a); }, 3, 1);
         csv << nu << ',' << base_name << ',' << r << ",exact,0,0," << t_exact << '\n';
         for (std::size_t m = 0; m < models.size(); ++m) {
@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
             rows[2 * m + 1] += "     n/a";
             continue;
           }
-          const HertzState s = models[m].model->state(a);
+          const NonAdhesiveState s = models[m].model->state(a);
           const double eP = s.P_H / e.P_H - 1, ed = s.delta_H / e.delta_H - 1;
           const double t = median_seconds([&] { (void)models[m].model->state(a); }, 5, 200);
           csv << nu << ',' << base_name << ',' << r << ',' << models[m].name << ',' << eP << ','

@@ -30,7 +30,7 @@ struct JkrOptions {
   /// Maximum bracket-expansion steps (factor 2 each) when looking for a root (>= 10).
   int max_bracket_steps = 500;
   /// Throws DomainError naming the first invalid field.
-  void Validate() const;
+  void validate() const;
 };
 
 /// A point of the adhesive curve where an instability occurs.
@@ -94,7 +94,7 @@ struct ContactSummary {
   std::optional<CriticalPoint> pull_off;
   std::optional<CriticalPoint> fixed_grips;
   /// One line per quantity, SI units.
-  std::string BriefReport() const;
+  std::string brief_report() const;
 };
 
 ContactSummary summarize(const JkrSolution& solution);

@@ -46,7 +46,7 @@ struct CurveData {
 
   /// Throws InputError naming the source, the column and the row unless all columns
   /// have equal length, values are finite, a >= 0, weight > 0 and segment in {0, 1}.
-  void Validate() const;
+  void validate() const;
 
   /// Indices of the samples on `branch`, in acquisition order. Without a segment
   /// column the curve is split at its largest delta (approach up to and including it).
@@ -65,7 +65,7 @@ struct CsvOptions {
   double deflection_sign = 1.0;  ///< +1: deflection > 0 when pushed away by the sample
   int curve = -1;  ///< with a curve column: read only this curve (-1: the file must hold one)
   /// Throws DomainError naming the first invalid field.
-  void Validate() const;
+  void validate() const;
 };
 
 /// Parses a length/force unit pair "m,N" | "nm,nN" | "um,uN" | "nm,pN" ... into the

@@ -131,7 +131,7 @@ struct DiscreteOptions {
   Smoothing smoothing = Smoothing::log_polynomial;
   int max_degree = 3;                  ///< of log_polynomial fits, 1 .. 6
   /// Throws DomainError naming the option outside its range.
-  void Validate() const;
+  void validate() const;
 };
 
 /// The two-model non-adhesive curve (paper, section 5): S(a) through the flat-punch S_k and
@@ -157,7 +157,7 @@ struct SyntheticSampling {
   /// The convex run reports a rounded to this mesh spacing [m], as an FEM run that reads the
   /// contact radius off its outermost node in contact; 0 reports the exact radius.
   double radius_resolution = 0.0;
-  void Validate() const;
+  void validate() const;
 };
 /// Flat punch of each radius on the model's body: P = S(a) delta at every substep.
 FlatPunchData sample_flat_punch(const ContactModel& model, const std::vector<double>& radii,
@@ -172,7 +172,7 @@ enum class DiscreteApproach { two_models, single_model };
 struct BootstrapOptions {
   int replicates = 200;  ///< 20 .. 100000
   unsigned seed = 1;
-  void Validate() const;
+  void validate() const;
 };
 
 /// The spread of the JKR reconstruction under the data's own noise: a residual bootstrap.

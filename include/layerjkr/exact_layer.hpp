@@ -56,13 +56,13 @@ struct ExactLayerOptions {
   /// cost). The estimate is that of the coarser solve, so it bounds the returned error.
   bool estimate_error = true;
   /// Throws DomainError naming the first invalid field.
-  void Validate() const;
+  void validate() const;
 };
 
 /// One non-adhesive state with error estimates: |fine - coarse| / |fine|, the error of the
 /// coarser solve, which with spectral convergence is orders above that of the returned one.
 struct ExactLayerState {
-  HertzState state;
+  NonAdhesiveState state;
   double P_H_error = 0.0;      ///< estimated relative error of P_H (NaN if not estimated)
   double delta_H_error = 0.0;  ///< estimated relative error of delta_H (NaN if not estimated)
   int unknowns = 0;            ///< Nystrom nodes of the fine solve
@@ -91,12 +91,12 @@ class ExactLayerKernel {
   /// ExactLayerOptions::estimate_error: a second solve with 3/4 of the nodes).
   ExactLayerState solve(const Profile& profile, double a) const;
   /// The same state without an error estimate (one solve).
-  HertzState state(const Profile& profile, double a) const;
+  NonAdhesiveState state(const Profile& profile, double a) const;
 
   /// Non-adhesive states at a = a_max j / count, j = 1..count, from one factorisation: the
   /// radii are panel boundaries of one grid, and each smaller radius is the leading block
   /// of the largest (no error estimate). count >= 1.
-  std::vector<HertzState> sweep(const Profile& profile, double a_max, int count) const;
+  std::vector<NonAdhesiveState> sweep(const Profile& profile, double a_max, int count) const;
 
   /// Non-adhesive contact pressure p(r) [Pa] at radii r in [0, a) for contact radius a:
   /// p(r) = -int_r^a g'(t) / sqrt(t^2 - r^2) dt (g(a) = 0), with g' from the Nystrom

@@ -3,7 +3,7 @@
 //   layerjkr::FitOptions options;
 //   options.free = {FitParameter::E, FitParameter::w, FitParameter::delta0};
 //   layerjkr::FitSummary s = layerjkr::fit(curve, scene, options);
-//   std::cout << s.BriefReport();
+//   std::cout << s.brief_report();
 //
 // The forward model. The scene fixes the indenter, the medium and the model; the free
 // parameters replace the scene's values. A sample (delta_i, P_i) is predicted as
@@ -100,7 +100,7 @@ struct FitOptions {
   /// Print Ceres' progress per iteration (stdout) and its full report (stderr).
   bool trace = false;
   /// Throws DomainError naming the first invalid field.
-  void Validate() const;
+  void validate() const;
 };
 
 /// One parameter of the fitted model, in SI units.
@@ -109,7 +109,7 @@ struct ParameterEstimate {
   double value = 0.0;
   /// Standard error scaled by the residual variance (as lmfit / nanite do); NaN when not
   /// identifiable or not computed.
-  double stderr_ = 0.0;
+  double standard_error = 0.0;
   double initial = 0.0;   ///< the data-driven start
   bool at_bound = false;  ///< w ended at 0: its error bar is one-sided
   bool identifiable = true;  ///< false: in a group the data cannot separate (see FitSummary)
@@ -147,7 +147,7 @@ struct FitSummary {
   /// The estimate for p; throws Error if p was not free.
   const ParameterEstimate& operator[](FitParameter p) const;
   /// A few lines: status, estimates +- errors, rms, identifiability, warnings.
-  std::string BriefReport() const;
+  std::string brief_report() const;
 };
 
 /// Fits `curve` with the model of `scene`. Throws InputError for data that cannot be

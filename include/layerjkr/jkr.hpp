@@ -18,12 +18,12 @@ struct AdhesiveState {
   double a = 0.0;      ///< contact radius [m]
   double P = 0.0;      ///< force [N], negative = tensile
   double delta = 0.0;  ///< approach [m]
-  HertzState hertz;    ///< the non-adhesive state at the same a
+  NonAdhesiveState hertz;    ///< the non-adhesive state at the same a
 };
 
 /// Generic transform (19). Throws DomainError for w < 0 or non-finite, and, when
 /// w > 0, for S <= 0 or S' <= 0. Accuracy: a few ulps of the inputs.
-AdhesiveState jkr_transform(const HertzState& hertz, double w);
+AdhesiveState jkr_transform(const NonAdhesiveState& hertz, double w);
 
 /// Explicit leading-order (Winkler) solution, eq. (42):
 ///   delta = f(a) - sqrt(2w/K),  P = pi K [a^2 f(a) - 2 M(a) - a^2 sqrt(2w/K)].

@@ -25,7 +25,7 @@
 namespace layerjkr {
 
 /// Non-adhesive state at one contact radius (SI units).
-struct HertzState {
+struct NonAdhesiveState {
   double a = 0.0;        ///< contact radius [m]
   double P_H = 0.0;      ///< force [N]
   double delta_H = 0.0;  ///< approach (indentation) [m]
@@ -44,11 +44,11 @@ class ContactModel {
   virtual ~ContactModel() = default;
 
   /// Non-adhesive state at contact radius a (0 < a, a admissible for the profile).
-  virtual HertzState state(double a) const = 0;
+  virtual NonAdhesiveState state(double a) const = 0;
 
   /// States at several radii, as state(a) for each. Models that can share work across
   /// radii override it (the exact layer: an evenly spaced grid from one factorisation).
-  virtual std::vector<HertzState> states(const std::vector<double>& radii) const;
+  virtual std::vector<NonAdhesiveState> states(const std::vector<double>& radii) const;
 
   /// Short model name, e.g. "winkler", "two_term", "full_foundation", "half_space".
   virtual std::string name() const = 0;

@@ -28,7 +28,7 @@ struct SimulationOptions {
   std::uint64_t seed = 1;
   bool with_radius = false;  ///< also return the contact radius (a JKR rig's a column)
   /// Throws DomainError naming the first invalid field.
-  void Validate() const;
+  void validate() const;
 };
 
 /// Samples the adhesive curve of `scene` (model "auto" chooses for radii down to a tenth

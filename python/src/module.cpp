@@ -148,7 +148,7 @@ FitOutput fit_arrays(const Array& delta, const Array& P, const py::object& segme
     throw InputError("control 'cantilever' needs the spring constant: spring_constant=k [N/m]");
   const FitSummary s = fit(c, scene, p.options);
   out.report = cli::report_json(s, p.options.branch).dump();
-  out.brief = s.BriefReport();
+  out.brief = s.brief_report();
   out.delta = s.delta, out.P = s.P, out.P_fit = s.P_fit, out.excluded = s.excluded;
   return out;
 }

@@ -55,7 +55,7 @@ int run_discrete(const DiscreteArguments& a) {
   BootstrapOptions b;
   b.replicates = a.bootstrap;
   b.seed = a.seed;
-  b.Validate();
+  b.validate();
   const ConvexData convex = read_convex_csv(a.convex);
   const FlatPunchData flat = a.single ? FlatPunchData{} : read_flat_punch_csv(a.flat);
   const ContactModelPtr model = a.single ? make_single_model(convex, o) : make_discrete_model(flat, convex, o);

@@ -83,8 +83,8 @@ Prepared prepare_options(const FitArguments& a) {
     throw InputError("--window = \"" + a.window + "\" is invalid; use all, pull-off or fraction:F");
   }
   try {
-    p.options.Validate();
-    p.csv.Validate();
+    p.options.validate();
+    p.csv.validate();
   } catch (const DomainError& e) {
     throw InputError(std::string("invalid option: ") + e.what());
   }
@@ -108,7 +108,7 @@ nlohmann::ordered_json report_json(const FitSummary& s, Branch branch) {
   json params = json::object();
   for (const auto& e : s.parameters)
     params[to_string(e.parameter)] = {{"value", e.value},
-                                      {"stderr", number_or_null(e.stderr_)},
+                                      {"stderr", number_or_null(e.standard_error)},
                                       {"initial", e.initial},
                                       {"at_bound", e.at_bound},
                                       {"identifiable", e.identifiable}};
@@ -355,7 +355,7 @@ int run_fit(const FitArguments& args, const std::string& data, const std::string
   const FitSummary s = fit(curve, p.scene, p.options);
   if (!plot.empty()) plot_fit(s, plot);
   if (!report.empty()) write_atomically(report, report_json(s, p.options.branch).dump(2) + "\n");
-  std::cout << s.BriefReport();
+  std::cout << s.brief_report();
   return 0;
 }
 
@@ -392,7 +392,7 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
       const FitSummary& s = it.summary;
       csv << "," << s.model << "," << (s.converged ? 1 : 0) << "," << s.iterations << ","
           << format_double(s.rms_residual) << "," << (s.identifiable ? 1 : 0);
-      for (const auto& e : s.parameters) csv << "," << num(e.value) << "," << num(e.stderr_);
+      for (const auto& e : s.parameters) csv << "," << num(e.value) << "," << num(e.standard_error);
     } else {
       ++failed;
       csv << ",,,,,";

@@ -11,7 +11,7 @@
 
 namespace layerjkr {
 
-void BootstrapOptions::Validate() const {
+void BootstrapOptions::validate() const {
   if (replicates < 20 || replicates > 100000) throw DomainError("BootstrapOptions", "replicates", replicates, "20 .. 100000");
 }
 
@@ -114,8 +114,8 @@ class RunningStd {
 DiscreteUncertainty bootstrap_discrete(const FlatPunchData& flat, const ConvexData& convex, double w,
                                        const std::vector<double>& radii, DiscreteApproach approach,
                                        const DiscreteOptions& options, const BootstrapOptions& bootstrap) {
-  options.Validate();
-  bootstrap.Validate();
+  options.validate();
+  bootstrap.validate();
   const bool two = approach == DiscreteApproach::two_models;
   // The data as given must make a model; replicates that do not are counted.
   const ContactModelPtr base = two ? make_discrete_model(flat, convex, options) : make_single_model(convex, options);

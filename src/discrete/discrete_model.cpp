@@ -46,7 +46,7 @@ ConvexData read_convex_csv(const std::string& path) {
   return parse_convex_csv(detail::read_file(path, "the convex-indenter data"), path);
 }
 
-void DiscreteOptions::Validate() const {
+void DiscreteOptions::validate() const {
   if (!(linearity_tolerance > 0.0) || !std::isfinite(linearity_tolerance))
     throw DomainError("DiscreteOptions", "linearity_tolerance", linearity_tolerance, "finite and > 0");
   if (max_degree < 1 || max_degree > 6) throw DomainError("DiscreteOptions", "max_degree", max_degree, "1 .. 6");
@@ -93,7 +93,7 @@ class DiscreteModel final : public DataModel {
       : DataModel("discrete", "the flat-punch radii the convex data reach", a_lo, a_hi),
         S_(std::move(S)), P_(std::move(P)), d_lo_(d_lo), d_hi_(d_hi) {}
 
-  HertzState state(double a) const override {
+  NonAdhesiveState state(double a) const override {
     check_radius(a);
     const double S = S_->value(a);
     const double dS = S * S_->log_slope(a) / a;
@@ -114,7 +114,7 @@ class SingleModel final : public DataModel {
   SingleModel(FitPtr A, FitPtr P, double a_lo, double a_hi, double d_lo, double d_hi)
       : DataModel("single", "the convex data's radii", a_lo, a_hi), A_(std::move(A)), P_(std::move(P)), d_lo_(d_lo), d_hi_(d_hi) {}
 
-  HertzState state(double a) const override {
+  NonAdhesiveState state(double a) const override {
     check_radius(a);
     const double d = solve_in([&](double x) { return A_->value(x) - a; }, d_lo_, d_hi_);
     const double P = P_->value(d), m = P_->log_slope(d), mc = P_->log_curvature(d);
@@ -141,7 +141,7 @@ std::pair<double, double> contact_range(const ConvexData& convex) {
 }  // namespace
 
 ContactModelPtr make_single_model(const ConvexData& convex, const DiscreteOptions& options) {
-  options.Validate();
+  options.validate();
   if (convex.a.size() != convex.delta.size())
     throw InputError(convex.source + ": the single-model approach needs the contact radius a of every sample");
   auto A = fit_log_log(convex.delta, convex.a, options.smoothing, options.max_degree, convex.source + " (a)");
@@ -153,7 +153,7 @@ ContactModelPtr make_single_model(const ConvexData& convex, const DiscreteOption
 }
 
 ContactModelPtr make_discrete_model(const FlatPunchData& flat, const ConvexData& convex, const DiscreteOptions& options) {
-  options.Validate();
+  options.validate();
   const FlatPunchStiffness stiff = fit_flat_punch(flat, options.linearity_tolerance);
   auto S = fit_log_log(stiff.a, stiff.S, options.smoothing, options.max_degree, flat.source);
   auto P = fit_log_log(convex.delta, convex.P, options.smoothing, options.max_degree, convex.source);

@@ -10,7 +10,7 @@
 
 namespace layerjkr {
 
-void SyntheticSampling::Validate() const {
+void SyntheticSampling::validate() const {
   if (load_steps < 2 || load_steps > 100000) throw DomainError("SyntheticSampling", "load_steps", load_steps, "2 .. 100000");
   if (!(delta_max > 0.0) || !std::isfinite(delta_max))
     throw DomainError("SyntheticSampling", "delta_max", delta_max, "finite and > 0 [m]");
@@ -51,7 +51,7 @@ double radius_at_approach(const ContactModel& model, double delta) {
 }  // namespace
 
 FlatPunchData sample_flat_punch(const ContactModel& model, const std::vector<double>& radii, const SyntheticSampling& sampling) {
-  sampling.Validate();
+  sampling.validate();
   FlatPunchData d;
   d.source = "flat punch sampled from " + model.name();
   ForceNoise noisy(sampling.noise, sampling.seed);
@@ -68,13 +68,13 @@ FlatPunchData sample_flat_punch(const ContactModel& model, const std::vector<dou
 }
 
 ConvexData sample_convex(const ContactModel& model, const SyntheticSampling& sampling) {
-  sampling.Validate();
+  sampling.validate();
   ConvexData c;
   c.source = "convex indenter sampled from " + model.name();
   ForceNoise noisy(sampling.noise, sampling.seed);
   for (int i = 1; i <= sampling.load_steps; ++i) {
     const double delta = sampling.delta_max * i / sampling.load_steps;
-    const HertzState s = model.state(radius_at_approach(model, delta));
+    const NonAdhesiveState s = model.state(radius_at_approach(model, delta));
     c.delta.push_back(delta);
     c.P.push_back(noisy(s.P_H));
     const double node = sampling.radius_resolution;

@@ -277,7 +277,7 @@ void record_solution(CurveEvaluator& ev, const ParameterMap& map, const FitData&
   out->rms_residual = std::sqrt(ss / static_cast<double>(std::max<std::size_t>(kept, 1)));
   for (std::size_t j = 0; j < x.size(); ++j) {
     out->parameters[j].value = map.value(map.free[j], x.data());
-    out->parameters[j].stderr_ = kNaN;
+    out->parameters[j].standard_error = kNaN;
   }
   out->correlation.assign(x.size(), std::vector<double>(x.size(), kNaN));
 }
@@ -292,8 +292,8 @@ const ParameterEstimate& FitSummary::operator[](FitParameter p) const {
 
 FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& options) {
   const auto t_begin = std::chrono::steady_clock::now();
-  options.Validate();
-  curve.Validate();
+  options.validate();
+  curve.validate();
   if (!scene.profile) throw InputError("fit: the scene has no indenter profile");
 
   double span = 0.0, force_span = 0.0;

@@ -16,7 +16,7 @@ template <class Load>
 std::vector<BatchItem> run_batch(std::size_t n, Load load, const Scene& scene,
                                  const FitOptions& options, const BatchOptions& batch) {
   if (batch.jobs < 1) throw DomainError("fit_batch", "jobs", batch.jobs, ">= 1");
-  options.Validate();
+  options.validate();
   std::vector<BatchItem> items(n);
   std::atomic<std::size_t> next{0}, done{0};
   std::mutex progress_mutex;
@@ -65,7 +65,7 @@ std::vector<BatchItem> fit_batch(const std::vector<CurveData>& curves, const Sce
 std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Scene& scene,
                                  const FitOptions& options, const CsvOptions& csv,
                                  const BatchOptions& batch) {
-  csv.Validate();
+  csv.validate();
   // Instrument files are read here, once each (a map holds many curves); CSV files are read
   // by the workers. A slot without data and without a path carries a read error.
   struct Slot {

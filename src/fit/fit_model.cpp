@@ -185,7 +185,7 @@ class TabulatedCurve final : public CurveModelBase<TabulatedCurve> {
     positive_delta_ = true;
     for (int i = 0; i < n; ++i) {
       t[i] = std::log(a_lo) + (std::log(a_hi) - std::log(a_lo)) * i / (n - 1);
-      const HertzState st = model_->state(std::exp(t[i]));
+      const NonAdhesiveState st = model_->state(std::exp(t[i]));
       if (!(st.P_H > 0.0 && st.S > 0.0 && st.dS_da > 0.0))
         throw NumericalError("fit: model '" + model_->name() + "' has P_H, S or S' <= 0 at a = " +
                              format_double(std::exp(t[i])) + " m; it cannot be tabulated for a fit");
@@ -206,7 +206,7 @@ class TabulatedCurve final : public CurveModelBase<TabulatedCurve> {
     // Interpolation error, measured at the midpoints of every 8th interval.
     for (int i = 0; i + 1 < n; i += 8) {
       const double tm = 0.5 * (t[i] + t[i + 1]);
-      const HertzState st = model_->state(std::exp(tm));
+      const NonAdhesiveState st = model_->state(std::exp(tm));
       const double dh = positive_delta_ ? std::exp(delta_->value(tm)) : delta_->value(tm);
       max_error_ = std::max({max_error_, std::abs(std::exp(lnP_->value(tm)) / st.P_H - 1.0),
                              std::abs(dh / st.delta_H - 1.0),

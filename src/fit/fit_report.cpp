@@ -43,7 +43,7 @@ std::vector<FitParameter> parse_fit_parameters(const std::string& list, const st
   return out;
 }
 
-void FitOptions::Validate() const {
+void FitOptions::validate() const {
   const char* fn = "FitOptions";
   if (free.empty()) throw DomainError(fn, "free (number of free parameters)", 0.0, ">= 1");
   std::set<FitParameter> seen(free.begin(), free.end());
@@ -70,7 +70,7 @@ void FitOptions::Validate() const {
     throw DomainError(fn, "exclusion_sigmas", exclusion_sigmas, "finite and >= 0 (0: keep every sample)");
 }
 
-std::string FitSummary::BriefReport() const {
+std::string FitSummary::brief_report() const {
   std::ostringstream o;
   o.precision(6);
   o << "layerjkr fit: " << (converged ? "converged" : "NOT converged") << " after " << iterations
@@ -86,8 +86,8 @@ std::string FitSummary::BriefReport() const {
   for (std::size_t j = 0; j < parameters.size(); ++j) {
     const ParameterEstimate& e = parameters[j];
     o << "  " << to_string(e.parameter) << " = " << e.value;
-    if (std::isfinite(e.stderr_))
-      o << " +- " << e.stderr_;
+    if (std::isfinite(e.standard_error))
+      o << " +- " << e.standard_error;
     else if (e.at_bound)
       o << " (at its bound)";
     else if (!e.identifiable)

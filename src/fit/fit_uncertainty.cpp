@@ -84,7 +84,7 @@ void report_correlated_pairs(const std::vector<bool>& separable, const FitOption
         out->unidentifiable.push_back(std::string(to_string(options.free[i])) + " and " + to_string(options.free[j]) +
                                       " (correlation " + format_double(out->correlation[i][j]) + ")");
         for (std::size_t k : {i, j}) {
-          out->parameters[k].stderr_ = std::numeric_limits<double>::quiet_NaN();
+          out->parameters[k].standard_error = std::numeric_limits<double>::quiet_NaN();
           out->parameters[k].identifiable = false;
         }
       }
@@ -121,7 +121,7 @@ void compute_error_bars(ceres::Problem* problem, double final_cost, const Parame
             C[i * p_free + j] / std::sqrt(C[i * p_free + i] * C[j * p_free + j]);
   for (std::size_t j = 0; j < p_free; ++j) {
     if (!separable[j] || out->parameters[j].at_bound) continue;
-    out->parameters[j].stderr_ = std::abs(map.derivative(options.free[j], x.data())) * std::sqrt(C[j * p_free + j] * s2);
+    out->parameters[j].standard_error = std::abs(map.derivative(options.free[j], x.data())) * std::sqrt(C[j * p_free + j] * s2);
   }
   report_correlated_pairs(separable, options, out);
 }

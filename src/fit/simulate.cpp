@@ -9,7 +9,7 @@
 
 namespace layerjkr {
 
-void SimulationOptions::Validate() const {
+void SimulationOptions::validate() const {
   const char* fn = "SimulationOptions";
   if (points_per_branch < 2)
     throw DomainError(fn, "points_per_branch", static_cast<double>(points_per_branch), ">= 2");
@@ -21,7 +21,7 @@ void SimulationOptions::Validate() const {
 }
 
 CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
-  o.Validate();
+  o.validate();
   // Where contact starts without adhesion sets the radius scale for "auto".
   const double a_scale = std::sqrt(o.max_indentation * scene.profile->length_scale());
   const BuiltScene built = build_scene(scene, 0.1 * a_scale);

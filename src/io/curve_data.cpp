@@ -65,7 +65,7 @@ const char* to_string(Branch branch) {
   return "?";
 }
 
-void CurveData::Validate() const {
+void CurveData::validate() const {
   const std::size_t n = delta.size();
   auto fail = [&](const std::string& what) { throw InputError(source + ": " + what); };
   if (P.size() != n) fail("columns delta and P differ in length");
@@ -105,7 +105,7 @@ std::vector<std::size_t> CurveData::select(Branch branch) const {
   return idx;
 }
 
-void CsvOptions::Validate() const {
+void CsvOptions::validate() const {
   const char* fn = "CsvOptions";
   detail::require_positive(fn, "length_unit", length_unit);
   detail::require_positive(fn, "force_unit", force_unit);
@@ -246,7 +246,7 @@ void require_acquisition_order(const CurveData& d, const Fail& fail) {
 
 CurveData parse_curve_csv(const std::string& text, const std::string& source,
                           const CsvOptions& options) {
-  options.Validate();
+  options.validate();
   const Fail fail{source};
   if (text.find('\0') != std::string::npos) fail("is not a text file (it contains NUL bytes)");
   detail::CsvRows rows(text);
@@ -275,7 +275,7 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
   if (options.curve >= 0 && d.delta.empty())
     fail("has no rows of curve " + std::to_string(options.curve));
   if (d.delta.empty()) fail("has a header but no data rows");
-  d.Validate();
+  d.validate();
   require_acquisition_order(d, fail);
   return d;
 }

@@ -58,7 +58,7 @@ CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source,
       d.segment.push_back(retracting ? 1 : 0);
     }
   }
-  d.Validate();
+  d.validate();
   return d;
 }
 

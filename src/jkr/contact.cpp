@@ -17,8 +17,8 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 }
 
-void JkrOptions::Validate() const {
-  const char* fn = "JkrOptions::Validate";
+void JkrOptions::validate() const {
+  const char* fn = "JkrOptions::validate";
   if (scan_points < 8) throw DomainError(fn, "scan_points", scan_points, ">= 8");
   if (!(scan_decades > 0.0) || !std::isfinite(scan_decades))
     throw DomainError(fn, "scan_decades", scan_decades, "finite and > 0");
@@ -31,7 +31,7 @@ JkrSolution::JkrSolution(ContactModelPtr model, double w, JkrOptions options)
     : model_(std::move(model)), w_(w), options_(options) {
   if (!model_) throw Error("layerjkr::JkrSolution: the model is null");
   detail::require_non_negative("JkrSolution", "w", w);
-  options_.Validate();
+  options_.validate();
 }
 
 AdhesiveState JkrSolution::at(double a) const { return jkr_transform(model_->state(a), w_); }
@@ -39,7 +39,7 @@ AdhesiveState JkrSolution::at(double a) const { return jkr_transform(model_->sta
 std::vector<AdhesiveState> JkrSolution::curve(const std::vector<double>& radii) const {
   std::vector<AdhesiveState> out;
   out.reserve(radii.size());
-  for (const HertzState& h : model_->states(radii)) out.push_back(jkr_transform(h, w_));
+  for (const NonAdhesiveState& h : model_->states(radii)) out.push_back(jkr_transform(h, w_));
   return out;
 }
 
@@ -246,7 +246,7 @@ ContactSummary summarize(const JkrSolution& solution) {
   return s;
 }
 
-std::string ContactSummary::BriefReport() const {
+std::string ContactSummary::brief_report() const {
   std::ostringstream out;
   auto point = [&](const char* label, const std::optional<CriticalPoint>& p) {
     out << label;

@@ -14,7 +14,7 @@ constexpr double kPi = boost::math::constants::pi<double>();
 void require_w(const char* fn, double w) { detail::require_non_negative(fn, "w", w); }
 }  // namespace
 
-AdhesiveState jkr_transform(const HertzState& h, double w) {
+AdhesiveState jkr_transform(const NonAdhesiveState& h, double w) {
   require_w("jkr_transform", w);
   AdhesiveState s{h.a, h.P_H, h.delta_H, h};
   if (w == 0.0) return s;

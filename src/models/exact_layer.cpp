@@ -36,8 +36,8 @@ struct GlFree {
 
 }  // namespace
 
-void ExactLayerOptions::Validate() const {
-  const char* fn = "ExactLayerOptions::Validate";
+void ExactLayerOptions::validate() const {
+  const char* fn = "ExactLayerOptions::validate";
   if (!(max_a_over_h > 0.0 && max_a_over_h <= 1000.0))
     throw DomainError(fn, "max_a_over_h", max_a_over_h, "(0, 1000]");
   if (points_per_panel < 4 || points_per_panel > 32)
@@ -51,7 +51,7 @@ void ExactLayerOptions::Validate() const {
 ExactLayerKernel::ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions options)
     : layer_(layer), options_(options) {
   detail::silence_gsl_errors();
-  options_.Validate();
+  options_.validate();
   detail::require_positive("ExactLayerKernel", "h", layer.h);
   E_star_ = layerjkr::effective_modulus(layer.E, layer.nu);  // validates E, nu in (-1, 0.5]
   kernel_ = detail::shared_layer_kernel(layer.nu, layer.base == Base::bonded);
@@ -310,9 +310,9 @@ bool sweep_is_cheaper(const ExactLayerOptions& o, double rho, int count) {
 
 }  // namespace
 
-HertzState ExactLayerKernel::state(const Profile& profile, double a) const {
+NonAdhesiveState ExactLayerKernel::state(const Profile& profile, double a) const {
   const double rho = checked_a_over_h(*this, "exact_layer", profile, a);
-  const HertzState s = exact_state_from(detail::exact_moments(*this, profile, rho), a, layer_.h, E_star_);
+  const NonAdhesiveState s = exact_state_from(detail::exact_moments(*this, profile, rho), a, layer_.h, E_star_);
   if (!std::isfinite(s.P_H) || !std::isfinite(s.delta_H))
     throw NumericalError("layerjkr::exact_layer: the Nystrom solve is not finite at a = " + format_double(a));
   return s;
@@ -328,7 +328,7 @@ ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const 
   out.P_H_error = out.delta_H_error = std::numeric_limits<double>::quiet_NaN();
   if (options_.estimate_error) {  // the same panels with 3/4 of the nodes
     const int coarse = std::max(2, 3 * p / 4);
-    const HertzState c =
+    const NonAdhesiveState c =
         exact_state_from(nystrom_solve(*this, profile, rho, panels, coarse).moments, a, layer_.h, E_star_);
     out.P_H_error = std::abs(out.state.P_H - c.P_H) / std::abs(out.state.P_H);
     out.delta_H_error = std::abs(out.state.delta_H - c.delta_H) / std::abs(out.state.delta_H);
@@ -336,16 +336,16 @@ ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const 
   return out;
 }
 
-std::vector<HertzState> ExactLayerKernel::sweep(const Profile& profile, double a_max, int count) const {
+std::vector<NonAdhesiveState> ExactLayerKernel::sweep(const Profile& profile, double a_max, int count) const {
   if (count < 1) throw DomainError("ExactLayerKernel::sweep", "count", count, ">= 1");
   const double rho = checked_a_over_h(*this, "ExactLayerKernel::sweep", profile, a_max);
   const int per_step = sweep_panels_per_step(options_, rho, count);
   const std::vector<Moments> all =
       nystrom_sweep(*this, profile, rho, per_step * count, options_.points_per_panel);
-  std::vector<HertzState> out;
+  std::vector<NonAdhesiveState> out;
   for (int j = 1; j <= count; ++j) {
     const double a = a_max * j / count;
-    HertzState s = exact_state_from(all[static_cast<std::size_t>(j * per_step - 1)], a, layer_.h, E_star_);
+    NonAdhesiveState s = exact_state_from(all[static_cast<std::size_t>(j * per_step - 1)], a, layer_.h, E_star_);
     if (!std::isfinite(s.P_H) || !std::isfinite(s.delta_H))
       throw NumericalError("layerjkr::exact_layer: the Nystrom sweep is not finite at a = " + format_double(a));
     out.push_back(s);
@@ -434,7 +434,7 @@ class ExactLayerModel final : public ContactModel {
       }
   }
   // A ContactModel returns no error estimate, so none is computed (solve() has it).
-  HertzState state(double a) const override {
+  NonAdhesiveState state(double a) const override {
     if (table_) {
       const double h = kernel_.layer().h, rho = checked_a_over_h(kernel_, "exact_layer", profile(), a);
       if (table_->covers(rho)) {  // the unit profile's moments, scaled to B r^d on this layer
@@ -449,12 +449,12 @@ class ExactLayerModel final : public ContactModel {
   }
   // A tabulated power law is cheapest radius by radius. Otherwise an evenly spaced grid a_max j / n (as `layerjkr curve --a-max A --points N` asks for)
   // comes from one factorisation; any other set of radii is solved radius by radius.
-  std::vector<HertzState> states(const std::vector<double>& radii) const override {
+  std::vector<NonAdhesiveState> states(const std::vector<double>& radii) const override {
     const std::size_t n = radii.size();
     if (table_ || n < 2 || !evenly_spaced(radii) || !(radii.back() <= max_radius()) ||
         !sweep_is_cheaper(kernel_.options(), radii.back() / kernel_.layer().h, static_cast<int>(n)))
       return ContactModel::states(radii);
-    std::vector<HertzState> out = kernel_.sweep(profile(), radii.back(), static_cast<int>(n));
+    std::vector<NonAdhesiveState> out = kernel_.sweep(profile(), radii.back(), static_cast<int>(n));
     for (std::size_t j = 0; j < n; ++j) out[j].a = radii[j];
     return out;
   }
@@ -483,12 +483,12 @@ class EdgeCorrected final : public ContactModel {
  public:
   EdgeCorrected(ProfilePtr p, double K, double shift)
       : ContactModel(p), winkler_(make_winkler(std::move(p), K)), shift_(shift) {}
-  HertzState state(double a) const override {
+  NonAdhesiveState state(double a) const override {
     if (!(a + shift_ > 0.0))
       throw DomainError("edge_corrected", "contact radius a", a,
                         "> -beta h = " + format_double(-shift_) +
                             " (the effective radius a + beta h must be positive)");
-    HertzState s = winkler_->state(a + shift_);
+    NonAdhesiveState s = winkler_->state(a + shift_);
     s.a = a;  // the JKR energy term uses the true contact radius
     return s;
   }

@@ -20,8 +20,8 @@ struct ExactMoments {
 
 // delta_H = phi_f(a)/phi0(a), S = 2E* h int phi0, P_H = 2E* h (delta_H int phi0 - int phi_f),
 // S' = 2E* phi0(a)^2 (docs/theory.md s.4): no differentiation anywhere.
-inline HertzState exact_state_from(const ExactMoments& mo, double a, double h, double E_star) {
-  HertzState s;
+inline NonAdhesiveState exact_state_from(const ExactMoments& mo, double a, double h, double E_star) {
+  NonAdhesiveState s;
   s.a = a;
   s.delta_H = mo.endf / mo.end0;
   s.S = 2.0 * E_star * h * mo.int0;

@@ -14,7 +14,7 @@ detail::ProfileAt<double> profile_at(const Profile& p, double a) {
   return {d.f, d.df, d.d2f, p.moment(a)};
 }
 
-HertzState hertz_state(double a, const detail::StateOf<double>& s) {
+NonAdhesiveState hertz_state(double a, const detail::StateOf<double>& s) {
   return {a, s.P_H, s.delta_H, s.S, s.dS_da};
 }
 
@@ -22,7 +22,7 @@ class TwoTerm final : public ContactModel {
  public:
   TwoTerm(ProfilePtr p, double K, double G)
       : ContactModel(std::move(p)), K_(K), G_(G), name_(model_name(G == 0.0 ? ModelKind::winkler : ModelKind::two_term)) {}
-  HertzState state(double a) const override {
+  NonAdhesiveState state(double a) const override {
     profile().require_contact_radius(name_, a);
     return hertz_state(a, detail::two_term_state(a, profile_at(profile(), a), K_, G_));
   }
@@ -37,7 +37,7 @@ class FullFoundation final : public ContactModel {
  public:
   FullFoundation(ProfilePtr p, double K, double G)
       : ContactModel(std::move(p)), K_(K), G_(G), lambda_(std::sqrt(K / G)) {}
-  HertzState state(double a) const override {
+  NonAdhesiveState state(double a) const override {
     profile().require_contact_radius(model_name(ModelKind::full_foundation), a);
     return hertz_state(a, detail::full_foundation_state(a, profile_at(profile(), a), K_, G_, lambda_));
   }
@@ -66,8 +66,8 @@ double ContactModel::typical_radius() const { return profile().length_scale(); }
 
 double ContactModel::numerical_error(double /*a*/) const { return 1e-12; }
 
-std::vector<HertzState> ContactModel::states(const std::vector<double>& radii) const {
-  std::vector<HertzState> out;
+std::vector<NonAdhesiveState> ContactModel::states(const std::vector<double>& radii) const {
+  std::vector<NonAdhesiveState> out;
   out.reserve(radii.size());
   for (double a : radii) out.push_back(state(a));
   return out;

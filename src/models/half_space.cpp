@@ -12,7 +12,7 @@ namespace {
 class HalfSpace final : public ContactModel {
  public:
   HalfSpace(ProfilePtr p, double E_star) : ContactModel(std::move(p)), E_star_(E_star) {}
-  HertzState state(double a) const override {
+  NonAdhesiveState state(double a) const override {
     profile().require_contact_radius(model_name(ModelKind::half_space), a);
     const SneddonIntegrals I = profile().sneddon(a);
     const auto s = detail::half_space_state(a, I.I0, I.I2, E_star_);

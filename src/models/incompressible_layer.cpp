@@ -43,7 +43,7 @@ class IncompressibleLayer final : public ContactModel {
   // p'(r) = -c (delta r/2 - M(r)/r). The non-adhesive edge has no pressure gradient,
   // p'(a) = 0, so delta_H = 2 M(a)/a^2; then P = pi c (delta a^4/8 - int_0^a r M dr)
   // gives P_H = (pi c / 4) I(a), S = pi c a^4 / 8 and S' = pi c a^3 / 2.
-  HertzState state(double a) const override {
+  NonAdhesiveState state(double a) const override {
     profile().require_contact_radius(model_name(ModelKind::incompressible), a);
     const Moments m = profile_moments(profile(), a);
     const double a2 = a * a;

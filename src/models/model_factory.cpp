@@ -35,7 +35,7 @@ void validate(const ModelSpec& spec) {
     case ModelKind::exact:
       detail::require_positive(fn, "h", spec.layer.h);
       (void)effective_modulus(spec.layer.E, spec.layer.nu);
-      spec.exact.Validate();
+      spec.exact.validate();
       return;
     case ModelKind::incompressible:
       (void)make_incompressible_layer(make_paraboloid(1.0), spec.layer);  // checks; costs nothing

@@ -40,9 +40,9 @@ class OdeFoundation final : public ContactModel {
     detail::silence_gsl_errors();
   }
 
-  HertzState state(double a) const override {
+  NonAdhesiveState state(double a) const override {
     profile().require_contact_radius("ode_foundation", a);
-    HertzState s = local(a);
+    NonAdhesiveState s = local(a);
     s.P_H = integrate_force(a);
     return s;
   }
@@ -50,9 +50,9 @@ class OdeFoundation final : public ContactModel {
 
  private:
   // Everything but P_H: the edge condition and the flat-punch stiffness.
-  HertzState local(double a) const {
+  NonAdhesiveState local(double a) const {
     const ProfileDerivatives d = profile().derivatives(a);
-    HertzState s;
+    NonAdhesiveState s;
     s.a = a;
     if (full_) {
       const double q = detail::bessel_k1_over_k0(lambda_ * a);

@@ -106,7 +106,7 @@ class PressureFormLayer final : public ContactModel {
  public:
   PressureFormLayer(ProfilePtr p, double eps, double D) : ContactModel(std::move(p)), eps_(eps), D_(D) {}
 
-  HertzState state(double a) const override {
+  NonAdhesiveState state(double a) const override {
     profile().require_contact_radius(kName, a);
     const double x = a * std::sqrt(eps_ / D_);
     std::vector<double> cuts;
@@ -136,11 +136,11 @@ class EdgeShifted final : public ContactModel {
  public:
   EdgeShifted(ContactModelPtr inner, double shift)
       : ContactModel(inner->profile_ptr()), inner_(std::move(inner)), shift_(shift) {}
-  HertzState state(double a) const override {
+  NonAdhesiveState state(double a) const override {
     if (!(a + shift_ > 0.0))
       throw DomainError(kName, "contact radius a", a,
                         "> -beta h = " + format_double(-shift_) + " (a + beta h must be positive)");
-    HertzState s = inner_->state(a + shift_);
+    NonAdhesiveState s = inner_->state(a + shift_);
     s.a = a;  // the JKR energy term uses the true contact radius
     return s;
   }

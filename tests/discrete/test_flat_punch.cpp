@@ -89,7 +89,7 @@ ConvexData convex_from(const ContactModel& model, double a_max, int n, double no
   std::normal_distribution<double> gauss(0.0, 1.0);
   ConvexData c;
   for (int i = 1; i <= n; ++i) {
-    const HertzState s = model.state(a_max * i / n);
+    const NonAdhesiveState s = model.state(a_max * i / n);
     c.delta.push_back(s.delta_H);
     c.P.push_back(s.P_H * (1.0 + noise * gauss(rng)));
     c.a.push_back(s.a);
@@ -104,7 +104,7 @@ TEST_CASE("two-model approach: Winkler data give Winkler back, and its JKR pull-
   const std::vector<double> radii{1e-4, 2e-4, 3e-4, 4e-4, 5e-4, 6e-4};
   const auto model = make_discrete_model(steps_from(*winkler, radii, 0.0, 1), convex_from(*winkler, 8e-4, 20, 0.0, 1));
   for (double a : {1.5e-4, 3.3e-4, 5.5e-4}) {
-    const HertzState d = model->state(a), t = winkler->state(a);
+    const NonAdhesiveState d = model->state(a), t = winkler->state(a);
     INFO("a = " << a);
     CHECK(rel_err(d.delta_H, t.delta_H) < 1e-9);
     CHECK(rel_err(d.P_H, t.P_H) < 1e-9);
@@ -127,7 +127,7 @@ TEST_CASE("two-model approach on the exact layer: the reconstruction error, meas
   const auto model = make_discrete_model(steps_from(*exact, radii, 1e-3, 3), convex_from(*exact, 7e-4, 20, 1e-3, 4));
   double worst_P = 0.0, worst_S = 0.0;
   for (double a = 1.5e-4; a <= 5.5e-4; a += 0.5e-4) {
-    const HertzState d = model->state(a), t = exact->state(a);
+    const NonAdhesiveState d = model->state(a), t = exact->state(a);
     worst_P = std::max(worst_P, rel_err(d.P_H, t.P_H));
     worst_S = std::max(worst_S, rel_err(d.S, t.S));
   }
@@ -246,7 +246,7 @@ TEST_CASE("Appendix A workflow: (delta*, P*) at a* = 0.4 mm from exact-layer dat
   const SyntheticSampling steps{20, 0.025e-3};
   const auto rebuilt = make_discrete_model(sample_flat_punch(*exact, {0.2e-3, 0.3e-3, 0.4e-3, 0.5e-3, 0.6e-3}, steps),
                                            sample_convex(*exact, steps));
-  const HertzState t = exact->state(0.4e-3), r = rebuilt->state(0.4e-3);
+  const NonAdhesiveState t = exact->state(0.4e-3), r = rebuilt->state(0.4e-3);
   CHECK(rel_err(r.S, t.S) < 1e-4);
   CHECK(rel_err(r.delta_H, t.delta_H) < 5e-4);
   CHECK(rel_err(r.P_H, t.P_H) < 1e-3);

@@ -61,7 +61,7 @@ class Matrix {
   }
 };
 
-bool finite_state(const HertzState& s) {
+bool finite_state(const NonAdhesiveState& s) {
   return std::isfinite(s.P_H) && std::isfinite(s.delta_H) && std::isfinite(s.S) && std::isfinite(s.dS_da);
 }
 
@@ -100,7 +100,7 @@ void poisson(Matrix& m) {
     }
     m.guarded(n + ", exact layer", "finite, S and P_H increasing", [&] {
       const ContactModelPtr ex = make_exact_layer(p, layer);
-      const HertzState s1 = ex->state(1e-5), s2 = ex->state(2e-5), s4 = ex->state(4e-5);
+      const NonAdhesiveState s1 = ex->state(1e-5), s2 = ex->state(2e-5), s4 = ex->state(4e-5);
       const bool ok = finite_state(s1) && finite_state(s2) && finite_state(s4) && s1.P_H < s2.P_H &&
                       s2.P_H < s4.P_H && s1.S < s2.S && s2.S < s4.S && s2.dS_da > 0;
       m.truth(n + ", exact layer", ok, "finite, S and P_H increasing in a",
@@ -127,7 +127,7 @@ void thickness(Matrix& m) {
     const ElasticLayer layer{1.0, nu, ha * a, Base::bonded};
     const std::string cell = "h/a = " + sci(ha) + ", exact";
     m.guarded(cell, "limit", [&] {
-      const HertzState s = make_exact_layer(p, layer)->state(a);
+      const NonAdhesiveState s = make_exact_layer(p, layer)->state(a);
       if (ha >= 1e2) {
         m.rel(cell + " vs half-space", s.P_H, 4 * Es * a * a * a / (3 * R), 3.0 / ha);
       } else if (ha <= 1e-2) {
@@ -185,7 +185,7 @@ void radius(Matrix& m) {
   const ContactModelPtr wk = make_winkler(s, 1e12), wp = make_winkler(make_paraboloid(R), 1e12);
   m.rel("a/R = 1e-12, Winkler sphere vs paraboloid", wk->state(1e-15).P_H, wp->state(1e-15).P_H, 1e-13);
   m.guarded("a/R = 0.999, Winkler sphere", "finite, increasing", [&] {
-    const HertzState a1 = wk->state(0.99 * R), a2 = wk->state(0.999 * R);
+    const NonAdhesiveState a1 = wk->state(0.99 * R), a2 = wk->state(0.999 * R);
     m.truth("a/R = 0.999, Winkler sphere", finite_state(a2) && a2.P_H > a1.P_H, "finite, increasing",
             "P_H " + sci(a2.P_H));
   });
@@ -210,7 +210,7 @@ void adhesion(Matrix& m) {
     m.rel("w = " + sci(w) + ", pull-off vs -3/2 pi w R", po ? po->P : NAN, -1.5 * kPi * w * R, 1e-10);
   }
   const double a = 1e-5;
-  const HertzState h = hs->state(a);
+  const NonAdhesiveState h = hs->state(a);
   const AdhesiveState zero = JkrSolution(hs, 0.0).at(a), tiny = JkrSolution(hs, 1e-12).at(a);
   m.truth("w = 0", zero.P == h.P_H && zero.delta == h.delta_H && !JkrSolution(hs, 0.0).pull_off(),
           "non-adhesive state bit for bit, no pull-off", zero.P == h.P_H ? "identical" : "differs");
@@ -222,9 +222,9 @@ void foundation(Matrix& m) {
   m.area = "Foundation constants (sphere R = 1 mm, a = 10 um)";
   const ProfilePtr s = make_sphere(1e-3);
   const double a = 1e-5, K = 1e12;
-  const HertzState w0 = make_winkler(s, K)->state(a);
+  const NonAdhesiveState w0 = make_winkler(s, K)->state(a);
   for (double G : {1e-12, -1e-12, 1e-30, -1e-30}) {
-    const HertzState g = make_two_term(s, K, G)->state(a);
+    const NonAdhesiveState g = make_two_term(s, K, G)->state(a);
     const ProfileDerivatives d = s->derivatives(a);
     m.rel("two-term G = " + sci(G) + ": delta_H vs Winkler - (G/K)(f'' + f'/a)", g.delta_H,
           w0.delta_H - (G / K) * (d.d2f + d.df / a), 1e-15);
@@ -232,7 +232,7 @@ void foundation(Matrix& m) {
   double previous = INFINITY;
   bool decreasing = true;
   for (double T : {1e-3, 1e-9, 1e-15}) {
-    const HertzState f = make_full_foundation(s, K, T)->state(a);
+    const NonAdhesiveState f = make_full_foundation(s, K, T)->state(a);
     const double e = std::abs(f.P_H / w0.P_H - 1.0);
     decreasing = decreasing && e < previous;
     previous = e;
@@ -271,7 +271,7 @@ void tables(Matrix& m) {
       bool ok = true;
       double previous = 0.0;
       for (int k = 1; k <= 20; ++k) {
-        const HertzState s = hs->state(r.back() * k / 20.0);
+        const NonAdhesiveState s = hs->state(r.back() * k / 20.0);
         ok = ok && finite_state(s) && s.P_H > previous;
         previous = s.P_H;
       }

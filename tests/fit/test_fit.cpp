@@ -68,7 +68,7 @@ TEST_CASE("half-space JKR from closed forms: E, w, delta0, P0 recovered within t
     const CurveData c = jkr_half_space_retract(E_star, w, R, d0, P0, 0.0, 1, 400);
     const FitSummary s = fit(c, scene, options({FitParameter::E, FitParameter::w,
                                                 FitParameter::delta0, FitParameter::P0}));
-    INFO(s.BriefReport());
+    INFO(s.brief_report());
     CHECK(s.converged);
     CHECK(s.family == "hertz");
     CHECK(rel_err(s[FitParameter::E].value, E) < 1e-8);
@@ -82,13 +82,13 @@ TEST_CASE("half-space JKR from closed forms: E, w, delta0, P0 recovered within t
     const CurveData c = jkr_half_space_retract(E_star, w, R, d0, P0, noise, 7, 400);
     const FitSummary s = fit(c, scene, options({FitParameter::E, FitParameter::w,
                                                 FitParameter::delta0, FitParameter::P0}));
-    INFO(s.BriefReport());
+    INFO(s.brief_report());
     CHECK(s.converged);
-    CHECK(std::abs(s[FitParameter::E].value - E) < 4 * s[FitParameter::E].stderr_);
-    CHECK(std::abs(s[FitParameter::w].value - w) < 4 * s[FitParameter::w].stderr_);
-    CHECK(std::abs(s[FitParameter::delta0].value - d0) < 4 * s[FitParameter::delta0].stderr_);
+    CHECK(std::abs(s[FitParameter::E].value - E) < 4 * s[FitParameter::E].standard_error);
+    CHECK(std::abs(s[FitParameter::w].value - w) < 4 * s[FitParameter::w].standard_error);
+    CHECK(std::abs(s[FitParameter::delta0].value - d0) < 4 * s[FitParameter::delta0].standard_error);
     CHECK(rel_err(s.rms_residual, noise) < 0.15);
-    CHECK(s[FitParameter::E].stderr_ < 0.05 * E);
+    CHECK(s[FitParameter::E].standard_error < 0.05 * E);
   }
 }
 
@@ -114,9 +114,9 @@ TEST_CASE("error bars cover the truth at the nominal rate over many seeds", "[fi
     const FitSummary s = fit(simulate_curve(truth, so), guess, o);
     REQUIRE(s.converged);
     ++n;
-    inside_K += std::abs(s[FitParameter::K].value - 1e12) < s[FitParameter::K].stderr_;
-    inside_w += std::abs(s[FitParameter::w].value - 0.05) < s[FitParameter::w].stderr_;
-    inside_d0 += std::abs(s[FitParameter::delta0].value - 1e-6) < s[FitParameter::delta0].stderr_;
+    inside_K += std::abs(s[FitParameter::K].value - 1e12) < s[FitParameter::K].standard_error;
+    inside_w += std::abs(s[FitParameter::w].value - 0.05) < s[FitParameter::w].standard_error;
+    inside_d0 += std::abs(s[FitParameter::delta0].value - 1e-6) < s[FitParameter::delta0].standard_error;
   }
   for (int inside : {inside_K, inside_w, inside_d0}) {
     INFO("coverage " << double(inside) / n);
@@ -160,7 +160,7 @@ TEST_CASE("every family recovers noiseless synthetic data", "[fit][families]") {
       guess.medium.K *= 20.0;
       guess.medium.E *= 20.0;
       const FitSummary s = fit(data, guess, options(c.free, Branch::all));
-      INFO(s.BriefReport());
+      INFO(s.brief_report());
       CHECK(s.converged);
       const bool by_E = std::find(c.free.begin(), c.free.end(), FitParameter::E) != c.free.end();
       CHECK(rel_err(s[by_E ? FitParameter::E : FitParameter::K].value, c.E_or_K) < c.tol);
@@ -180,22 +180,22 @@ TEST_CASE("a paraboloid with a free contact point cannot identify G (theory.md s
   const CurveData data = simulate_curve(truth, so);
   const FitSummary s = fit(data, truth, options({FitParameter::K, FitParameter::G, FitParameter::w,
                                                  FitParameter::delta0}));
-  INFO(s.BriefReport());
+  INFO(s.brief_report());
   CHECK_FALSE(s.identifiable);
   REQUIRE(s.unidentifiable.size() >= 1);
   CHECK(s.unidentifiable[0].find("G") != std::string::npos);
   CHECK(s.unidentifiable[0].find("delta0") != std::string::npos);
-  CHECK(std::isnan(s[FitParameter::G].stderr_));
-  CHECK(std::isnan(s[FitParameter::delta0].stderr_));
-  CHECK(std::isfinite(s[FitParameter::K].stderr_));  // K and w stay determined
+  CHECK(std::isnan(s[FitParameter::G].standard_error));
+  CHECK(std::isnan(s[FitParameter::delta0].standard_error));
+  CHECK(std::isfinite(s[FitParameter::K].standard_error));  // K and w stay determined
   CHECK(rel_err(s[FitParameter::K].value, 1e12) < 0.01);
-  CHECK(s.BriefReport().find("not identifiable") != std::string::npos);
+  CHECK(s.brief_report().find("not identifiable") != std::string::npos);
 
   // With the contact point known, G is determined by the same data.
   const FitSummary fixed = fit(data, truth, options({FitParameter::K, FitParameter::G, FitParameter::w}));
-  INFO(fixed.BriefReport());
+  INFO(fixed.brief_report());
   CHECK(fixed.identifiable);
-  CHECK(std::abs(fixed[FitParameter::G].value - 50) < 4 * fixed[FitParameter::G].stderr_);
+  CHECK(std::abs(fixed[FitParameter::G].value - 50) < 4 * fixed[FitParameter::G].standard_error);
 }
 
 TEST_CASE("the start does not depend on the scene's stiffness", "[fit][start]") {
@@ -213,7 +213,7 @@ TEST_CASE("the start does not depend on the scene's stiffness", "[fit][start]") 
     guess.medium.E *= factor;
     guess.w = 0.0;
     const FitSummary s = fit(data, guess, o);
-    INFO("factor " << factor << "\n" << s.BriefReport());
+    INFO("factor " << factor << "\n" << s.brief_report());
     CHECK(s.converged);
     CHECK(rel_err(s[FitParameter::E].value, ref[FitParameter::E].value) < 1e-6);
     CHECK(rel_err(s[FitParameter::w].value, ref[FitParameter::w].value) < 1e-5);
@@ -233,7 +233,7 @@ TEST_CASE("robust losses resist outliers that bias least squares", "[fit][loss]"
   const FitSummary huber = fit(c, scene, o);
   o.loss = LossType::cauchy;
   const FitSummary cauchy = fit(c, scene, o);
-  INFO(plain.BriefReport() << huber.BriefReport() << cauchy.BriefReport());
+  INFO(plain.brief_report() << huber.brief_report() << cauchy.brief_report());
   const double E = E_star * 0.75;
   CHECK(rel_err(huber[FitParameter::E].value, E) < 0.3 * rel_err(plain[FitParameter::E].value, E));
   CHECK(rel_err(cauchy[FitParameter::E].value, E) < 0.3 * rel_err(plain[FitParameter::E].value, E));
@@ -253,10 +253,10 @@ TEST_CASE("measured contact radii tighten the estimates", "[fit][radius]") {
   without_a.a.clear();
   const auto o = options({FitParameter::E, FitParameter::w, FitParameter::delta0});
   const FitSummary sa = fit(with_a, truth, o), s = fit(without_a, truth, o);
-  INFO(sa.BriefReport() << s.BriefReport());
+  INFO(sa.brief_report() << s.brief_report());
   CHECK(sa.converged);
-  CHECK(std::abs(sa[FitParameter::E].value - 1e6) < 4 * sa[FitParameter::E].stderr_);
-  CHECK(sa[FitParameter::w].stderr_ < 0.5 * s[FitParameter::w].stderr_);
+  CHECK(std::abs(sa[FitParameter::E].value - 1e6) < 4 * sa[FitParameter::E].standard_error);
+  CHECK(sa[FitParameter::w].standard_error < 0.5 * s[FitParameter::w].standard_error);
 }
 
 TEST_CASE("no adhesion in the data: w ends at its bound and says so", "[fit][w0]") {
@@ -267,10 +267,10 @@ TEST_CASE("no adhesion in the data: w ends at its bound and says so", "[fit][w0]
   so.max_indentation = 1e-6;
   const FitSummary s = fit(simulate_curve(truth, so), truth,
                            options({FitParameter::E, FitParameter::w, FitParameter::delta0}, Branch::approach));
-  INFO(s.BriefReport());
+  INFO(s.brief_report());
   CHECK(s[FitParameter::w].value < 1e-12);
   CHECK(s[FitParameter::w].at_bound);
-  CHECK(std::isnan(s[FitParameter::w].stderr_));
+  CHECK(std::isnan(s[FitParameter::w].standard_error));
   CHECK(rel_err(s[FitParameter::E].value, 1e6) < 1e-8);
 }
 

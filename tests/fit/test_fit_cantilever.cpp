@@ -77,19 +77,19 @@ FitSummary fit_retract(const CurveData& c, double k, double exclusion_sigmas = 3
 }
 
 void check_recovered(const FitSummary& s, double sigmas) {
-  INFO(s.BriefReport());
+  INFO(s.brief_report());
   REQUIRE(s.converged);
-  CHECK(std::abs(s[FitParameter::E].value - kE) < sigmas * s[FitParameter::E].stderr_);
-  CHECK(std::abs(s[FitParameter::w].value - kW) < sigmas * s[FitParameter::w].stderr_);
-  CHECK(std::abs(s[FitParameter::delta0].value - kDelta0) < sigmas * s[FitParameter::delta0].stderr_);
-  CHECK(std::abs(s[FitParameter::P0].value - kP0) < sigmas * s[FitParameter::P0].stderr_);
+  CHECK(std::abs(s[FitParameter::E].value - kE) < sigmas * s[FitParameter::E].standard_error);
+  CHECK(std::abs(s[FitParameter::w].value - kW) < sigmas * s[FitParameter::w].standard_error);
+  CHECK(std::abs(s[FitParameter::delta0].value - kDelta0) < sigmas * s[FitParameter::delta0].standard_error);
+  CHECK(std::abs(s[FitParameter::P0].value - kP0) < sigmas * s[FitParameter::P0].standard_error);
 }
 
 }  // namespace
 
 TEST_CASE("cantilever retract, noiseless: exact recovery, nothing excluded", "[fit][cantilever]") {
   const FitSummary s = fit_retract(synthetic_retract(0.0, 0.0, 1), kK);
-  INFO(s.BriefReport());
+  INFO(s.brief_report());
   CHECK(s.converged);
   CHECK(rel_err(s[FitParameter::E].value, kE) < 1e-7);
   CHECK(rel_err(s[FitParameter::w].value, kW) < 1e-7);
@@ -116,11 +116,11 @@ TEST_CASE("a non-JKR tail after the jump is excluded, counted, and does not bias
   REQUIRE(s.excluded.size() == c.size());
   CHECK_FALSE(s.excluded[0]);        // in contact
   CHECK_FALSE(s.excluded.back());    // back at the baseline
-  CHECK(s.BriefReport().find("excluded") != std::string::npos);
+  CHECK(s.brief_report().find("excluded") != std::string::npos);
   // Without the rule the tail drags the baseline below its true value.
   const FitSummary kept = fit_retract(c, kK, 0.0);
   CHECK(kept.excluded_count == 0);
-  CHECK(kept[FitParameter::P0].value < kP0 - 4.0 * s[FitParameter::P0].stderr_);
+  CHECK(kept[FitParameter::P0].value < kP0 - 4.0 * s[FitParameter::P0].standard_error);
 }
 
 TEST_CASE("the model lets go where the cantilever did; bad options name themselves", "[fit][cantilever]") {
@@ -129,10 +129,10 @@ TEST_CASE("the model lets go where the cantilever did; bad options name themselv
   FitOptions bad;
   bad.free = {FitParameter::E};
   bad.cantilever_stiffness = -1.0;
-  CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("cantilever_stiffness") && Catch::Contains("-1"));
+  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("cantilever_stiffness") && Catch::Contains("-1"));
   bad.cantilever_stiffness = 0.0;
   bad.exclusion_sigmas = -2.0;
-  CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("exclusion_sigmas"));
+  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("exclusion_sigmas"));
 }
 
 TEST_CASE("a tilted baseline is measured off contact and removed", "[fit][cantilever]") {
@@ -140,12 +140,12 @@ TEST_CASE("a tilted baseline is measured off contact and removed", "[fit][cantil
   CurveData c = synthetic_retract(0.1e-6, noise, 11);
   for (std::size_t i = 0; i < c.size(); ++i) c.P[i] += slope * (c.delta[i] - kDelta0);
   const FitSummary s = fit_retract(c, kK, 3.0, [](FitOptions& o) { o.baseline_tilt = true; });
-  INFO(s.BriefReport());
+  INFO(s.brief_report());
   CHECK(std::abs(s.baseline_slope - slope) < 4.0 * s.baseline_slope_stderr);
-  CHECK(std::abs(s[FitParameter::E].value - kE) < 4.0 * s[FitParameter::E].stderr_);
-  CHECK(std::abs(s[FitParameter::w].value - kW) < 4.0 * s[FitParameter::w].stderr_);
+  CHECK(std::abs(s[FitParameter::E].value - kE) < 4.0 * s[FitParameter::E].standard_error);
+  CHECK(std::abs(s[FitParameter::w].value - kW) < 4.0 * s[FitParameter::w].standard_error);
   CHECK(s.excluded_count > 10);
-  CHECK(s.BriefReport().find("baseline tilt") != std::string::npos);
+  CHECK(s.brief_report().find("baseline tilt") != std::string::npos);
 }
 
 TEST_CASE("retract windows: down to the pull-off, and the top fraction of the force range", "[fit][cantilever]") {
@@ -157,7 +157,7 @@ TEST_CASE("retract windows: down to the pull-off, and the top fraction of the fo
     o.retract_window = FitOptions::RetractWindow::to_pull_off;
     o.free = {FitParameter::E, FitParameter::w, FitParameter::delta0};
   });
-  INFO(pull.BriefReport());
+  INFO(pull.brief_report());
   const auto deepest = std::min_element(c.P.begin(), c.P.end()) - c.P.begin();
   CHECK(pull.points == static_cast<std::size_t>(deepest) + 1);
   CHECK(rel_err(pull[FitParameter::E].value, kE) < 1e-6);
@@ -167,12 +167,12 @@ TEST_CASE("retract windows: down to the pull-off, and the top fraction of the fo
     o.window_fraction = 0.5;
     o.free = {FitParameter::E, FitParameter::w, FitParameter::delta0};
   });
-  INFO(top.BriefReport());
+  INFO(top.brief_report());
   CHECK(top.points < pull.points);
   for (double p : top.P) CHECK(p >= c.P[0] - 0.5 * (c.P[0] - c.P[static_cast<std::size_t>(deepest)]) - 1e-18);
   CHECK(rel_err(top[FitParameter::E].value, kE) < 1e-4);
   FitOptions bad;
   bad.free = {FitParameter::E};
   bad.window_fraction = 0.0;
-  CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("window_fraction = 0"));
+  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("window_fraction = 0"));
 }

@@ -34,12 +34,12 @@ TEST_CASE("jpk_spot3_0192: E and contact point match nanite to 1e-4", "[fit][rea
   o.free = {FitParameter::E, FitParameter::delta0};
   o.branch = Branch::all;  // the file holds the fitted window of the approach only
   const FitSummary s = fit(data, scene, o);
-  INFO(s.BriefReport());
+  INFO(s.brief_report());
   CHECK(s.converged);
   CHECK(rel_err(s[FitParameter::E].value, E_ref) < 1e-4);
   CHECK(rel_err(-s[FitParameter::delta0].value, cp_ref) < 1e-4);
-  CHECK(rel_err(s[FitParameter::E].stderr_, meta["fit"]["E_stderr_Pa"].get<double>()) < 1e-2);
-  CHECK(rel_err(s[FitParameter::delta0].stderr_, meta["fit"]["contact_point_stderr_m"].get<double>()) < 1e-2);
+  CHECK(rel_err(s[FitParameter::E].standard_error, meta["fit"]["E_stderr_Pa"].get<double>()) < 1e-2);
+  CHECK(rel_err(s[FitParameter::delta0].standard_error, meta["fit"]["contact_point_stderr_m"].get<double>()) < 1e-2);
 }
 
 TEST_CASE("every unweighted reference fit is reproduced to 1e-4", "[fit][real]") {
@@ -62,7 +62,7 @@ TEST_CASE("every unweighted reference fit is reproduced to 1e-4", "[fit][real]")
     if (f["baseline_vary"].get<bool>()) o.free.push_back(FitParameter::P0);
     o.branch = Branch::all;
     const FitSummary s = fit(data, scene, o);
-    INFO(f["data_csv"] << " " << f["variant"] << "\n" << s.BriefReport());
+    INFO(f["data_csv"] << " " << f["variant"] << "\n" << s.brief_report());
     CHECK(s.converged);
     CHECK(rel_err(s[FitParameter::E].value, f["E"].get<double>()) < 1e-4);
     CHECK(rel_err(s[FitParameter::delta0].value, -f["contact_point"].get<double>()) < 1e-4);

@@ -83,8 +83,8 @@ TEST_CASE("Appendix A: slope, approach and force against the paper's FEM", "[con
   const ThinLayerConstants c = thin_layer_constants({3e6, 0.3, 1e-4, Base::bonded});
   const auto sphere = make_sphere(1e-2);
   const double a = 4e-4, S_fem = 20276.406, delta_fem = 8.770e-6, P_fem = 0.090009;
-  const HertzState winkler = make_winkler(sphere, c.K)->state(a);
-  const HertzState two = make_two_term(sphere, c.K, c.G)->state(a);
+  const NonAdhesiveState winkler = make_winkler(sphere, c.K)->state(a);
+  const NonAdhesiveState two = make_two_term(sphere, c.K, c.G)->state(a);
   CHECK(winkler.S == Approx(20299.5).epsilon(5e-6));
   CHECK(rel_err(winkler.S, S_fem) < 1.2e-3);
   CHECK(two.S == winkler.S);
@@ -107,5 +107,5 @@ TEST_CASE("JkrSolution validates its arguments", "[contact][errors]") {
   CHECK_THROWS_WITH(JkrSolution(model, 0.1, bad), Catch::Contains("scan_points = 3"));
   bad = JkrOptions{};
   bad.scan_decades = NAN;
-  CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("scan_decades"));
+  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("scan_decades"));
 }

@@ -48,7 +48,7 @@ TEST_CASE("w = 0 reproduces the non-adhesive state exactly", "[jkr]") {
   for (const auto& np : test::profile_zoo()) {
     const auto model = make_full_foundation(np.profile, 4e10, 35.0);
     for (double a : np.radii) {
-      const HertzState h = model->state(a);
+      const NonAdhesiveState h = model->state(a);
       const AdhesiveState s = jkr_transform(h, 0.0);
       CHECK(s.P == h.P_H);
       CHECK(s.delta == h.delta_H);
@@ -61,7 +61,7 @@ TEST_CASE("w = 0 reproduces the non-adhesive state exactly", "[jkr]") {
 
 TEST_CASE("the adhesive correction vanishes like sqrt(w) as w -> 0", "[jkr]") {
   const auto model = make_half_space(make_sphere(1e-3), 1e6, 0.3);
-  const HertzState h = model->state(2e-4);
+  const NonAdhesiveState h = model->state(2e-4);
   double previous = 0.0;
   for (double w : {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12}) {
     const AdhesiveState s = jkr_transform(h, w);
@@ -73,15 +73,15 @@ TEST_CASE("the adhesive correction vanishes like sqrt(w) as w -> 0", "[jkr]") {
 }
 
 TEST_CASE("jkr_transform and the explicit forms reject invalid input", "[jkr][errors]") {
-  const HertzState ok{1e-4, 1.0, 1e-6, 10.0, 1e5};
+  const NonAdhesiveState ok{1e-4, 1.0, 1e-6, 10.0, 1e5};
   CHECK_THROWS_WITH(jkr_transform(ok, -0.1), Catch::Contains("w = -0.10000000000000001"));
   CHECK_THROWS_AS(jkr_transform(ok, NAN), DomainError);
   CHECK_THROWS_AS(jkr_transform(ok, INFINITY), DomainError);
-  HertzState flat = ok;
+  NonAdhesiveState flat = ok;
   flat.dS_da = 0.0;
   CHECK_THROWS_WITH(jkr_transform(flat, 0.1), Catch::Contains("dS/da = 0"));
   CHECK_NOTHROW(jkr_transform(flat, 0.0));  // no adhesion: S' is not needed
-  HertzState soft = ok;
+  NonAdhesiveState soft = ok;
   soft.S = -1.0;
   CHECK_THROWS_WITH(jkr_transform(soft, 0.1), Catch::Contains("S = -1"));
   const auto p = make_paraboloid(1e-2);

@@ -67,8 +67,8 @@ TEST_CASE("exact layer stays within 1e-6 at a/h = 100 against a finer setting", 
     normal.estimate_error = finer.estimate_error = false;
     finer.points_per_panel = 10;
     finer.panel_width = 0.4;
-    const HertzState a = ExactLayerKernel(layer, normal).solve(*p, 100.0).state;
-    const HertzState b = ExactLayerKernel(layer, finer).solve(*p, 100.0).state;
+    const NonAdhesiveState a = ExactLayerKernel(layer, normal).solve(*p, 100.0).state;
+    const NonAdhesiveState b = ExactLayerKernel(layer, finer).solve(*p, 100.0).state;
     INFO("nu=" << nu);
     CHECK(rel_err(a.P_H, b.P_H) < 1e-6);
     CHECK(rel_err(a.delta_H, b.delta_H) < 1e-6);
@@ -88,10 +88,10 @@ TEST_CASE("exact layer sweep: one factorisation gives every panel-boundary radiu
       o.min_panels = 2;
       const ExactLayerKernel k(layer, o);
       const int count = 6;
-      const std::vector<HertzState> swept = k.sweep(*sphere, 12.0, count);  // 4 panels per step
+      const std::vector<NonAdhesiveState> swept = k.sweep(*sphere, 12.0, count);  // 4 panels per step
       REQUIRE(swept.size() == std::size_t(count));
       for (int j = 1; j <= count; ++j) {
-        const HertzState single = k.solve(*sphere, 2.0 * j).state;
+        const NonAdhesiveState single = k.solve(*sphere, 2.0 * j).state;
         INFO("nu=" << nu << " bonded=" << (base == Base::bonded) << " a=" << 2.0 * j);
         CHECK(swept[j - 1].a == Approx(2.0 * j));
         CHECK(rel_err(swept[j - 1].P_H, single.P_H) < 1e-11);
@@ -114,9 +114,9 @@ TEST_CASE("exact model: an evenly spaced curve comes from the sweep, others radi
   std::vector<double> even, uneven;
   for (int j = 1; j <= 40; ++j) even.push_back(20.0 * j / 40);
   for (int j = 1; j <= 7; ++j) uneven.push_back(0.3 * j * j);
-  const std::vector<HertzState> swept = model->states(even), single = model->states(uneven);
+  const std::vector<NonAdhesiveState> swept = model->states(even), single = model->states(uneven);
   for (std::size_t j = 0; j < even.size(); ++j) {  // different panels: both converged to 1e-8
-    const HertzState r = model->state(even[j]);
+    const NonAdhesiveState r = model->state(even[j]);
     INFO("a/h=" << even[j]);
     CHECK(swept[j].a == even[j]);
     CHECK(rel_err(swept[j].P_H, r.P_H) < 1e-8);
@@ -136,7 +136,7 @@ TEST_CASE("exact layer: thick limit is the half-space, with an O(a/h) shift", "[
   const ExactLayerKernel k({1.0, nu, 1.0, Base::bonded}, range(1));
   double previous = 0.0;
   for (double a : {1e-2, 1e-3, 1e-4}) {
-    const HertzState s = k.solve(*p, a).state;
+    const NonAdhesiveState s = k.solve(*p, a).state;
     const double e_delta = rel_err(s.delta_H, a * a / R);
     INFO("a/h=" << a << " delta error " << e_delta);
     CHECK(rel_err(s.P_H, 4 * Es * a * a * a / (3 * R)) < 2 * a * a);
@@ -169,10 +169,10 @@ TEST_CASE("exact layer satisfies S = dP_H/d delta_H and S' = 2 E* phi0(a)^2", "[
         return boost::math::differentiation::finite_difference_derivative<decltype(g), double, 6>(
                    g, std::log(a)) / a;
       };
-      const HertzState s = model->state(a);
-      const double dP = along([](const HertzState& h) { return h.P_H; });
-      const double dd = along([](const HertzState& h) { return h.delta_H; });
-      const double dS = along([](const HertzState& h) { return h.S; });
+      const NonAdhesiveState s = model->state(a);
+      const double dP = along([](const NonAdhesiveState& h) { return h.P_H; });
+      const double dd = along([](const NonAdhesiveState& h) { return h.delta_H; });
+      const double dS = along([](const NonAdhesiveState& h) { return h.S; });
       INFO("nu=" << nu << " a/h=" << a);
       CHECK(rel_err(dP / dd, s.S) < 1e-6);
       CHECK(rel_err(dS, s.dS_da) < 1e-6);
@@ -197,10 +197,10 @@ TEST_CASE("exact layer rejects invalid input", "[exact][errors]") {
   CHECK_THROWS_WITH(ExactLayerKernel({0.0, 0.3, 1.0, Base::bonded}), Catch::Contains("E = 0"));
   ExactLayerOptions o;
   o.points_per_panel = 2;
-  CHECK_THROWS_WITH(o.Validate(), Catch::Contains("points_per_panel = 2"));
+  CHECK_THROWS_WITH(o.validate(), Catch::Contains("points_per_panel = 2"));
   o = ExactLayerOptions{};
   o.max_a_over_h = 0.0;
-  CHECK_THROWS_WITH(o.Validate(), Catch::Contains("max_a_over_h = 0"));
+  CHECK_THROWS_WITH(o.validate(), Catch::Contains("max_a_over_h = 0"));
   const ExactLayerKernel k({1.0, 0.3, 1.0, Base::bonded}, range(5));
   CHECK_THROWS_WITH(k.solve(*p, 6.0), Catch::Contains("a/h = 6") && Catch::Contains("max_a_over_h"));
   CHECK_THROWS_AS(k.solve(*p, 0.0), DomainError);
@@ -252,7 +252,7 @@ TEST_CASE("edge correction: beta as theory.md s.6 reports, 10x better than Winkl
     const auto winkler = make_winkler(p, thin_layer_constants(layer).K);
     const ExactLayerKernel k(layer, range(12));
     for (double a : {5.0, 10.0}) {
-      const HertzState e = k.solve(*p, a).state, c = edge->state(a), w = winkler->state(a);
+      const NonAdhesiveState e = k.solve(*p, a).state, c = edge->state(a), w = winkler->state(a);
       INFO("nu=" << layer.nu << " a/h=" << a);
       CHECK(std::abs(c.P_H / e.P_H - 1) < 0.1 * std::abs(w.P_H / e.P_H - 1));
       CHECK(std::abs(c.delta_H / e.delta_H - 1) < 0.1 * std::abs(w.delta_H / e.delta_H - 1));
@@ -263,7 +263,7 @@ TEST_CASE("edge correction: beta as theory.md s.6 reports, 10x better than Winkl
       auto f = [&](double x) { return field(edge->state(std::exp(x))); };
       return boost::math::differentiation::finite_difference_derivative<decltype(f), double, 6>(f, std::log(3.0));
     };
-    CHECK(rel_err(g([](const HertzState& s) { return s.P_H; }) / g([](const HertzState& s) { return s.delta_H; }),
+    CHECK(rel_err(g([](const NonAdhesiveState& s) { return s.P_H; }) / g([](const NonAdhesiveState& s) { return s.delta_H; }),
                   edge->state(3.0).S) < 1e-8);
   }
   CHECK_THROWS_WITH(edge_correction_beta({1.0, 0.5, 1.0, Base::bonded}), Catch::Contains("nu = 0.5"));
@@ -296,7 +296,7 @@ TEST_CASE("exact layer: conjugate gradients agree with the dense Cholesky solve"
       const ElasticLayer layer{2.0, nu, 1.0, base};
       const ExactLayerKernel kd(layer, dense), ki(layer, iterative);
       for (double a : {0.3, 7.0, 60.0, 150.0}) {
-        const HertzState d = kd.state(*sphere, a), i = ki.state(*sphere, a);
+        const NonAdhesiveState d = kd.state(*sphere, a), i = ki.state(*sphere, a);
         INFO("nu=" << nu << " bonded=" << (base == Base::bonded) << " a/h=" << a);
         const double tol = nu == 0.5 ? 1e-10 : 1e-12;  // conditioning ~0.2 (a/h)^3 at nu = 0.5
         CHECK(rel_err(i.P_H, d.P_H) < tol);
@@ -308,7 +308,7 @@ TEST_CASE("exact layer: conjugate gradients agree with the dense Cholesky solve"
   }
   ExactLayerOptions bad;
   bad.dense_max_unknowns = 0;
-  CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("dense_max_unknowns = 0"));
+  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("dense_max_unknowns = 0"));
 }
 
 TEST_CASE("exact layer at a/h = 1000 approaches the edge-corrected thin layer as O(h/a)", "[exact][iterative]") {

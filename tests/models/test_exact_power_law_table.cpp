@@ -15,7 +15,7 @@ using namespace layerjkr;
 using test::rel_err;
 
 namespace {
-double worst_rel_err(const HertzState& s, const HertzState& r) {
+double worst_rel_err(const NonAdhesiveState& s, const NonAdhesiveState& r) {
   return std::max({rel_err(s.P_H, r.P_H), rel_err(s.delta_H, r.delta_H), rel_err(s.S, r.S),
                    rel_err(s.dS_da, r.dS_da)});
 }

@@ -26,7 +26,7 @@ TEST_CASE("incompressible layer: paraboloid and flat-punch closed forms (theory.
   const double R = 5e-3, E = kLayer.E, h = kLayer.h, mu = E / 3.0;
   const auto model = make_incompressible_layer(make_paraboloid(R), kLayer);
   for (double a : {1e-5, 2e-4, 3e-3}) {
-    const HertzState s = model->state(a);
+    const NonAdhesiveState s = model->state(a);
     CHECK(rel_err(s.delta_H, a * a / (4.0 * R)) < 1e-14);
     CHECK(rel_err(s.P_H, kPi * mu * std::pow(a, 6) / (32.0 * R * h * h * h)) < 1e-13);
     CHECK(rel_err(s.P_H, 2.0 * kPi * mu * R * R * std::pow(s.delta_H, 3) / (h * h * h)) < 1e-13);
@@ -77,7 +77,7 @@ TEST_CASE("incompressible layer: the exact layer at nu = 1/2 approaches it as O(
   const auto thin = make_incompressible_layer(p, unit), exact = make_exact_layer(p, unit);
   double previous = INFINITY;
   for (double a : {30.0, 100.0, 300.0}) {
-    const HertzState t = thin->state(a), e = exact->state(a);
+    const NonAdhesiveState t = thin->state(a), e = exact->state(a);
     const double err = std::max({rel_err(t.P_H, e.P_H), rel_err(t.delta_H, e.delta_H), rel_err(t.S, e.S)});
     INFO("a/h = " << a << " worst relative difference " << err);
     CHECK(err * a < 10.0);     // O(h/a) with a measured constant of 8-9

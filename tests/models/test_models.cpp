@@ -59,7 +59,7 @@ TEST_CASE("S = dP_H/d delta_H and S' = dS/da for every model and profile", "[mod
     for (const auto& m : models) {
       for (double a : np.radii) {
         INFO(np.name << " / " << m.name << " a=" << a);
-        const HertzState s = m.closed->state(a);
+        const NonAdhesiveState s = m.closed->state(a);
         const double dP = derivative([&](double x) { return m.closed->state(x).P_H; }, a);
         const double dd = derivative([&](double x) { return m.closed->state(x).delta_H; }, a);
         const double dS = derivative([&](double x) { return m.closed->state(x).S; }, a);
@@ -77,7 +77,7 @@ TEST_CASE("ODE route agrees with the closed forms to 1e-9", "[models][ode]") {
     for (const auto& m : foundation_models(np.profile)) {
       for (double a : np.radii) {
         INFO(np.name << " / " << m.name << " a=" << a);
-        const HertzState c = m.closed->state(a), o = m.ode->state(a);
+        const NonAdhesiveState c = m.closed->state(a), o = m.ode->state(a);
         CHECK(rel_err(o.P_H, c.P_H) < 1e-9);
         CHECK(rel_err(o.delta_H, c.delta_H) < 1e-12);
         CHECK(rel_err(o.S, c.S) < 1e-13);
@@ -123,7 +123,7 @@ TEST_CASE("paraboloid two-term force is independent of G", "[models][erratum]") 
     const double winkler = make_winkler(p, K)->state(a).P_H;
     CHECK(rel_err(winkler, M_PI * K * std::pow(a, 4) / (4 * R)) < 1e-14);
     for (double G : {-50.0, -1e-3, 1e-3, 50.0}) {
-      const HertzState s = make_two_term(p, K, G)->state(a);
+      const NonAdhesiveState s = make_two_term(p, K, G)->state(a);
       CHECK(rel_err(s.P_H, winkler) < 1e-14);
       CHECK(rel_err(s.delta_H, a * a / (2 * R) - 2 * G / (K * R)) < 1e-13);
     }
@@ -135,12 +135,12 @@ TEST_CASE("G -> 0 is continuous between Winkler, two-term and the full foundatio
     const double K = 4e10;
     const auto winkler = make_winkler(np.profile, K);
     for (double a : np.radii) {
-      const HertzState w = winkler->state(a);
+      const NonAdhesiveState w = winkler->state(a);
       double previous_two = 1.0, previous_full = 1.0;
       for (double G : {1e-2, 1e-4, 1e-6}) {
-        const HertzState tp = make_two_term(np.profile, K, G)->state(a);
-        const HertzState tn = make_two_term(np.profile, K, -G)->state(a);
-        const HertzState fu = make_full_foundation(np.profile, K, G)->state(a);
+        const NonAdhesiveState tp = make_two_term(np.profile, K, G)->state(a);
+        const NonAdhesiveState tn = make_two_term(np.profile, K, -G)->state(a);
+        const NonAdhesiveState fu = make_full_foundation(np.profile, K, G)->state(a);
         const double e_two = std::max(rel_err(tp.P_H, w.P_H), rel_err(tn.delta_H, w.delta_H));
         const double e_full = std::max(rel_err(fu.P_H, w.P_H), rel_err(fu.delta_H, w.delta_H));
         INFO(np.name << " a=" << a << " G=" << G << " two=" << e_two << " full=" << e_full);
@@ -162,7 +162,7 @@ TEST_CASE("full foundation force equals the spring reaction over the whole plane
   for (const auto& np : test::profile_zoo()) {
     const auto model = make_full_foundation(np.profile, K, G);
     for (double a : np.radii) {
-      const HertzState s = model->state(a);
+      const NonAdhesiveState s = model->state(a);
       // Dimensionless variables: t = r/a inside, u = lam (r - a) outside.
       boost::math::quadrature::tanh_sinh<double> ts;
       const double inner = a * a * ts.integrate(
@@ -185,8 +185,8 @@ TEST_CASE("full foundation force equals the spring reaction over the whole plane
 TEST_CASE("full foundation stays finite for huge lambda*a (scaled Bessel ratio)", "[models]") {
   const auto p = make_paraboloid(1e-2);
   const double K = 1e20, G = 1e-6;  // lam a ~ 1e10: unscaled K0 underflows
-  const HertzState s = make_full_foundation(p, K, G)->state(1e-3);
-  const HertzState w = make_winkler(p, K)->state(1e-3);
+  const NonAdhesiveState s = make_full_foundation(p, K, G)->state(1e-3);
+  const NonAdhesiveState w = make_winkler(p, K)->state(1e-3);
   CHECK(std::isfinite(s.P_H));
   CHECK(rel_err(s.P_H, w.P_H) < 1e-8);
 }
@@ -211,17 +211,17 @@ TEST_CASE("half-space: Sneddon form equals Galin's eq. (21) and the closed forms
         delta += ts.integrate([&](double r) { return lap_r(r) * std::acosh(a / r); }, cuts[i],
                               cuts[i + 1], 1e-13);
       }
-      const HertzState s = model->state(a);
+      const NonAdhesiveState s = model->state(a);
       INFO(np.name << " a=" << a);
       CHECK(rel_err(s.P_H, P) < 1e-9);
       CHECK(rel_err(s.delta_H, delta) < 1e-9);
     }
   }
   const double R = 1e-2, a = 7e-4, cot = 1 / std::tan(1.2);
-  const HertzState hertz = make_half_space(make_paraboloid(R), E, nu)->state(a);
+  const NonAdhesiveState hertz = make_half_space(make_paraboloid(R), E, nu)->state(a);
   CHECK(rel_err(hertz.P_H, 4 * Es * a * a * a / (3 * R)) < 1e-15);
   CHECK(rel_err(hertz.delta_H, a * a / R) < 1e-15);
-  const HertzState cone = make_half_space(make_cone(1.2), E, nu)->state(a);
+  const NonAdhesiveState cone = make_half_space(make_cone(1.2), E, nu)->state(a);
   CHECK(rel_err(cone.P_H, M_PI / 2 * Es * a * a * cot) < 1e-15);
   CHECK(rel_err(cone.delta_H, M_PI / 2 * a * cot) < 1e-15);
 }

@@ -22,7 +22,7 @@ using test::rel_err;
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-double worst_difference(const HertzState& s, const HertzState& reference) {
+double worst_difference(const NonAdhesiveState& s, const NonAdhesiveState& reference) {
   return std::max({rel_err(s.P_H, reference.P_H), rel_err(s.delta_H, reference.delta_H),
                    rel_err(s.S, reference.S)});
 }
@@ -59,7 +59,7 @@ TEST_CASE("uniform layer: pressure form against unscaled Bessel functions and K 
         const double delta = top / (a * cyl_bessel_i(1, x) / k);
         const double P = kPi * K * (a * a * delta - 2.0 * p->moment(a));
         const double S = kPi * K * a * a * (1.0 - 2.0 * cyl_bessel_i(1, x) / (x * cyl_bessel_i(0, x)));
-        const HertzState s = model->state(a);
+        const NonAdhesiveState s = model->state(a);
         INFO(p->describe() << " nu = " << nu << " a = " << a);
         CHECK(rel_err(s.delta_H, delta) < 1e-12);
         CHECK(rel_err(s.P_H, P) < 1e-9);  // the oracle cancels: a^2 delta ~ 2M
@@ -74,7 +74,7 @@ TEST_CASE("uniform layer: at nu = 1/2 without edge correction it is the incompre
   for (const ProfilePtr& p : {make_sphere(1e-3), make_cone(1.2), make_power_law(30.0, 1.5)}) {
     const auto uniform = make_uniform_layer(p, layer, false), lubrication = make_incompressible_layer(p, layer);
     for (double a : {1e-5, 2e-4}) {
-      const HertzState u = uniform->state(a), l = lubrication->state(a);
+      const NonAdhesiveState u = uniform->state(a), l = lubrication->state(a);
       INFO(p->describe() << " a = " << a);
       CHECK(worst_difference(u, l) < 1e-12);
       CHECK(rel_err(u.dS_da, l.dS_da) < 1e-14);
@@ -82,7 +82,7 @@ TEST_CASE("uniform layer: at nu = 1/2 without edge correction it is the incompre
   }
   // And near it (x = k a small but not 0) the series branch joins continuously.
   const auto p = make_paraboloid(1e-3);
-  const HertzState near = make_uniform_layer(p, {3e4, 0.5 - 1e-12, 2e-5, Base::bonded}, false)->state(1e-4);
+  const NonAdhesiveState near = make_uniform_layer(p, {3e4, 0.5 - 1e-12, 2e-5, Base::bonded}, false)->state(1e-4);
   CHECK(worst_difference(near, make_incompressible_layer(p, layer)->state(1e-4)) < 1e-9);
 }
 
@@ -100,10 +100,10 @@ TEST_CASE("uniform layer: dP_H/d delta_H = S and S' = dS/da on every branch", "[
           return boost::math::differentiation::finite_difference_derivative(
                      [&](double t) { return field(model->state(a * t)); }, 1.0) / a;
         };
-        const double dP = along([](const HertzState& s) { return s.P_H; });
-        const double dd = along([](const HertzState& s) { return s.delta_H; });
-        const double dS = along([](const HertzState& s) { return s.S; });
-        const HertzState s = model->state(a);
+        const double dP = along([](const NonAdhesiveState& s) { return s.P_H; });
+        const double dd = along([](const NonAdhesiveState& s) { return s.delta_H; });
+        const double dS = along([](const NonAdhesiveState& s) { return s.S; });
+        const NonAdhesiveState s = model->state(a);
         INFO(p->describe() << " nu = " << nu << " a = " << a);
         CHECK(rel_err(dP / dd, s.S) < 1e-7);
         CHECK(rel_err(s.dS_da, dS) < 1e-7);
@@ -121,7 +121,7 @@ TEST_CASE("uniform layer: error against the exact layer, uniformly in nu", "[uni
       const auto exact = make_exact_layer(p, layer);
       const auto corrected = make_uniform_layer(p, layer), plain = make_uniform_layer(p, layer, false);
       for (double a : {10.0, 30.0}) {
-        const HertzState e = exact->state(a);
+        const NonAdhesiveState e = exact->state(a);
         const double err_plain = worst_difference(plain->state(a), e);
         const double err = worst_difference(corrected->state(a), e);
         INFO(p->describe() << " nu = " << nu << " a/h = " << a << ": " << err_plain << " -> " << err);
