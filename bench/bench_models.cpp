@@ -8,7 +8,6 @@
 
 #include "layerjkr/callable_profile.hpp"
 #include "layerjkr/layerjkr.hpp"
-#include "reports.hpp"
 
 namespace {
 
@@ -152,7 +151,7 @@ void BM_CurveTable200_Hydrogel(benchmark::State& st) {
   const Scene scene = load_scene(LAYERJKR_SOURCE_DIR "/data/scenes/hydrogel_film_two_term.json");
   std::vector<double> radii;
   for (int i = 0; i < 200; ++i) radii.push_back(1e-7 + (2e-6 - 1e-7) * i / 199);
-  for (auto _ : st) benchmark::DoNotOptimize(cli::curve_table(scene, radii));
+  for (auto _ : st) benchmark::DoNotOptimize(solve_curve(scene, radii));
 }
 BENCHMARK(BM_CurveTable200_Hydrogel)->Unit(benchmark::kMicrosecond);
 

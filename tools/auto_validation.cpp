@@ -129,24 +129,25 @@ int main(int argc, char** argv) {
         try {
           const ContactModelPtr m = make_contact_model(s.profile, layer_model_spec(kind, s.layer));
           if (real_error(summarize(JkrSolution(m, s.w)), truth) <= s.tolerance) {
-            best = model_name(kind);
+            best = to_string(kind);
             break;
           }
         } catch (const Error&) {  // a candidate that cannot reach the scene's radii
         }
       }
+      const std::string chosen_name = to_string(c.model);
       const bool ok = real <= c.estimated_error;
       bounded += ok;
-      cheapest += best == c.model;
-      ++chosen[c.model];
+      cheapest += best == chosen_name;
+      ++chosen[chosen_name];
       if (c.estimated_error > 0.0) worst_ratio = std::max(worst_ratio, real / c.estimated_error);
       csv << i << ',' << s.kind << ',' << s.layer.nu << ',' << (s.layer.base == Base::bonded ? "bonded" : "frictionless")
-          << ',' << s.target << ',' << s.w << ',' << s.tolerance << ',' << c.model << ',' << c.estimated_error << ','
-          << real << ',' << ok << ',' << best << ',' << (best == c.model) << '\n';
+          << ',' << s.target << ',' << s.w << ',' << s.tolerance << ',' << chosen_name << ',' << c.estimated_error << ','
+          << real << ',' << ok << ',' << best << ',' << (best == chosen_name) << '\n';
       std::fprintf(stderr, "%3d %-10s nu=%.3f %-12s a/h~%6.2f tol=%.3f -> %-15s est %.2e real %.2e%s\n", i,
                    s.kind.c_str(), s.layer.nu, s.layer.base == Base::bonded ? "bonded" : "frictionless", s.target,
-                   s.tolerance, c.model.c_str(), c.estimated_error, real,
-                   ok ? (best == c.model ? "" : "  (not the cheapest)") : "  NOT BOUNDED");
+                   s.tolerance, chosen_name.c_str(), c.estimated_error, real,
+                   ok ? (best == chosen_name ? "" : "  (not the cheapest)") : "  NOT BOUNDED");
     } catch (const Error& e) {
       ++failed;
       std::fprintf(stderr, "%3d %s: failed: %s\n", i, s.kind.c_str(), e.what());

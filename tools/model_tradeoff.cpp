@@ -59,7 +59,7 @@ struct Named {
 std::vector<Named> reduced_models(const ProfilePtr& p, const ElasticLayer& layer) {
   std::vector<Named> out;
   for (ModelKind kind : layer_model_candidates(layer))
-    out.push_back({model_name(kind), make_contact_model(p, layer_model_spec(kind, layer))});
+    out.push_back({to_string(kind), make_contact_model(p, layer_model_spec(kind, layer))});
   return out;
 }
 

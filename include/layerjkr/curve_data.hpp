@@ -22,14 +22,9 @@
 #include <string>
 #include <vector>
 
+#include "layerjkr/types.hpp"
+
 namespace layerjkr {
-
-/// Which part of a curve a fit uses.
-enum class Branch { approach, retract, all };
-
-/// Parses "approach" | "retract" | "all"; throws InputError naming `what` otherwise.
-Branch parse_branch(const std::string& text, const std::string& what = "branch");
-const char* to_string(Branch branch);
 
 /// A measured force curve in SI units.
 struct CurveData {

@@ -119,9 +119,6 @@ class LogSplineFit final : public LogLogFit {
   std::size_t order_ = 4;
 };
 
-/// How both data sets are smoothed (chosen by the study in tools/discrete_study.cpp).
-enum class Smoothing { log_polynomial, log_spline };
-
 /// Fits `y(x)` with the chosen smoothing; `what` names the data in error messages.
 std::shared_ptr<const LogLogFit> fit_log_log(const std::vector<double>& x, const std::vector<double>& y,
                                              Smoothing smoothing, int max_degree, const std::string& what);
@@ -165,9 +162,6 @@ FlatPunchData sample_flat_punch(const ContactModel& model, const std::vector<dou
 /// The model's convex indenter under displacement control: P and a at every substep (delta
 /// beyond the model's largest radius throws DomainError).
 ConvexData sample_convex(const ContactModel& model, const SyntheticSampling& sampling);
-
-/// Which reconstruction a bootstrap repeats.
-enum class DiscreteApproach { two_models, single_model };
 
 struct BootstrapOptions {
   int replicates = 200;  ///< 20 .. 100000

@@ -33,50 +33,43 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "layerjkr/curve_data.hpp"
 #include "layerjkr/scene.hpp"
+#include "layerjkr/types.hpp"
 
 namespace layerjkr {
-
-enum class FitParameter { K, G, w, delta0, P0, E, R };
-
-/// "K", "G", "w", "delta0", "P0", "E", "R".
-const char* to_string(FitParameter p);
-/// Parses one name; throws InputError naming `what` and the known names.
-FitParameter parse_fit_parameter(const std::string& name, const std::string& what = "--free");
-/// Parses a comma-separated list, rejecting duplicates and unknown names.
-std::vector<FitParameter> parse_fit_parameters(const std::string& list,
-                                               const std::string& what = "--free");
-
-enum class LossType { none, huber, cauchy };
 
 struct FitOptions {
   /// Parameters to identify (at least one, no duplicates). Others come from the scene
   /// (delta0 = 0 and P0 = 0 unless freed).
   std::vector<FitParameter> free;
   Branch branch = Branch::approach;
-  /// Stiffness [N/m] of the cantilever that controls the retract: the tip follows the
-  /// adhesive branch beyond the load-controlled pull-off until dP/d delta = -k, then jumps
-  /// free. 0 (default): load control, the jump at the pull-off; infinity: fixed grips; NaN:
-  /// the curve's own CurveData::spring_constant (an instrument file's), load control if 0.
-  double cantilever_stiffness = 0.0;
+  /// What controls the retract. Under a cantilever of stiffness k the tip follows the adhesive
+  /// branch beyond the load-controlled pull-off until dP/d delta = -k, then jumps free; under
+  /// load control it jumps at the pull-off, under fixed grips at the minimum of delta.
+  /// `automatic` uses a cantilever where its stiffness is known, else load control;
+  /// `cantilever` requires the stiffness (the fit throws InputError naming the curve without it).
+  RetractControl retract_control = RetractControl::load;
+  /// The cantilever's stiffness [N/m], finite and > 0; nullopt: the curve's own
+  /// CurveData::spring_constant (an instrument file's; 0 there means unknown).
+  std::optional<double> cantilever_stiffness;
   /// Retract samples after the model's jump that have not yet returned to the baseline
   /// (|P - P0| > exclusion_sigmas x the noise of the shallowest quarter of the samples) are
   /// not JKR: they are excluded from the fit, counted and reported (FitSummary::excluded).
   /// 0 keeps every sample.
   double exclusion_sigmas = 3.0;
-  /// Also fit a linear tilt of the baseline, P0 + slope * delta, with the slope taken by least
-  /// squares from the samples the fitted model puts off contact (never from excluded ones);
-  /// the data are detilted and refitted once (FitSummary::baseline_slope).
-  bool baseline_tilt = false;
+  /// Baseline::tilt also fits a linear tilt of the baseline, P0 + slope * delta, with the slope
+  /// taken by least squares from the samples the fitted model puts off contact (never from
+  /// excluded ones); the data are detilted and refitted once (FitSummary::baseline_slope).
+  Baseline baseline = Baseline::constant;
   /// Which unloading samples a retract fit uses: every one (all); from the largest force
   /// down to the observed pull-off, the force minimum (to_pull_off); or from the largest force
   /// down to P_max - window_fraction (P_max - P_min) (force_fraction), as linearised-JKR and
   /// two-point analyses use. Approach samples are not affected.
-  enum class RetractWindow { all, to_pull_off, force_fraction };
   RetractWindow retract_window = RetractWindow::all;
   double window_fraction = 0.5;  ///< in (0, 1], for force_fraction
   /// Robust loss on force residuals; loss_scale [N] > 0 is where it departs from
@@ -120,7 +113,7 @@ struct FitSummary {
   std::string termination;  ///< Ceres' termination message
   int iterations = 0;
   std::string model;        ///< the contact model that was fitted (e.g. "two_term")
-  std::string family;       ///< foundation | hertz | tabulated
+  FitFamily family = FitFamily::foundation;  ///< how the model was evaluated
   std::vector<ParameterEstimate> parameters;  ///< the free parameters, in FitOptions order
   /// Correlation matrix of the free parameters (row-major, NaN when not computed).
   std::vector<std::vector<double>> correlation;

@@ -1,6 +1,8 @@
 // layerjkr: umbrella header - adhesive (JKR) contact of thin elastic layers.
 #pragma once
 
+#include "layerjkr/answer.hpp"
+#include "layerjkr/built_scene.hpp"
 #include "layerjkr/contact.hpp"
 #include "layerjkr/curve_data.hpp"
 #include "layerjkr/discrete.hpp"
@@ -16,3 +18,4 @@
 #include "layerjkr/profile.hpp"
 #include "layerjkr/scene.hpp"
 #include "layerjkr/simulate.hpp"
+#include "layerjkr/types.hpp"

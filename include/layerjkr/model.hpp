@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "layerjkr/profile.hpp"
+#include "layerjkr/types.hpp"
 
 namespace layerjkr {
 
@@ -101,18 +102,12 @@ ContactModelPtr make_full_foundation(ProfilePtr profile, double K, double G);
 /// cone and power law, adaptive quadrature otherwise. E > 0 [Pa], nu in (-1, 0.5].
 ContactModelPtr make_half_space(ProfilePtr profile, double E, double nu);
 
-/// Which foundation the ODE route integrates.
-enum class FoundationKind { asymptotic, full };
-
 /// The ODE route: delta_H from the local edge condition, S from the flat punch, and
 /// P_H(a) = int_0^a S(s) delta_H'(s) ds by GSL's adaptive QAGP (split at profile kinks),
 /// relative tolerance `rel_tol`. Independent of the closed-form moment; used to verify
 /// the closed forms and for profiles whose moment is expensive. kind = full needs G > 0.
 ContactModelPtr make_ode_foundation(ProfilePtr profile, double K, double G, FoundationKind kind,
                                     double rel_tol = 1e-12);
-
-/// How a thin layer is attached to its rigid base.
-enum class Base { bonded, frictionless };
 
 /// An isotropic elastic layer of thickness h on a rigid base.
 struct ElasticLayer {

@@ -28,7 +28,7 @@ std::vector<ModelKind> layer_model_candidates(const ElasticLayer& layer);
 ModelSpec layer_model_spec(ModelKind kind, const ElasticLayer& layer);
 
 struct ModelChoice {
-  std::string model;             ///< one of layer_model_candidates' names, or "exact"
+  ModelKind model = ModelKind::exact;  ///< one of layer_model_candidates, or exact
   double estimated_error = 0.0;  ///< the chosen model's worst estimate where it was judged
   ContactModelPtr contact_model;
   ContactModelPtr reference;     ///< the exact layer it was judged by (null if it is the choice)

@@ -13,38 +13,6 @@
 
 namespace layerjkr {
 
-/// Every model the library builds.
-enum class ModelKind {
-  winkler,          ///< p = K w (eq. 41)
-  two_term,         ///< p = K w - G lap w inside the contact (eqs. 43-45, corrected force)
-  full_foundation,  ///< Pasternak / Filonenko-Borodich on the whole plane (G > 0)
-  half_space,       ///< elastic half-space (Galin / Sneddon)
-  edge_corrected,   ///< Winkler at a + beta h (exact_layer.hpp)
-  exact,            ///< the exact elastic layer (exact_layer.hpp)
-  incompressible,   ///< thin incompressible bonded layer, lubrication law (model.hpp)
-  uniform,          ///< bonded thin layer, two-term compliance form uniform in nu (model.hpp)
-};
-
-/// The name reports print for a kind: "winkler", "two_term", "full_foundation",
-/// "half_space", "edge_corrected", "exact", "incompressible", "uniform" (ContactModel::name() of what it builds;
-/// the ODE route prints "ode(<kind>)"). Inline: models name themselves on every query.
-constexpr const char* model_name(ModelKind kind) {
-  switch (kind) {
-    case ModelKind::winkler: return "winkler";
-    case ModelKind::two_term: return "two_term";
-    case ModelKind::full_foundation: return "full_foundation";
-    case ModelKind::half_space: return "half_space";
-    case ModelKind::edge_corrected: return "edge_corrected";
-    case ModelKind::exact: return "exact";
-    case ModelKind::incompressible: return "incompressible";
-    case ModelKind::uniform: return "uniform";
-  }
-  return "unknown";
-}
-
-/// The kind a model_name() names; nullopt for any other string.
-std::optional<ModelKind> model_kind(const std::string& name);
-
 /// A model with its constants; the fields a kind does not use are ignored.
 struct ModelSpec {
   ModelKind kind = ModelKind::winkler;

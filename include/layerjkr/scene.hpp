@@ -19,29 +19,15 @@
 // naming the key and the value; nothing is ignored.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "layerjkr/model.hpp"
-#include "layerjkr/model_error.hpp"
 #include "layerjkr/model_spec.hpp"
 #include "layerjkr/profile.hpp"
+#include "layerjkr/types.hpp"
 
 namespace layerjkr {
-
-enum class MediumType { winkler, pasternak, filonenko_borodich, layer, half_space };
-
-/// The scene's "model" key: what the user asked for. Which ones a medium accepts:
-/// winkler: winkler; half_space: half_space; layer: leading, two_term, edge_corrected,
-/// exact, incompressible, uniform, automatic ("auto"); pasternak and filonenko_borodich: asymptotic, full.
-enum class SceneModel { winkler, half_space, leading, two_term, edge_corrected, exact, automatic,
-                        asymptotic, full, incompressible, uniform };
-
-/// The scene's spelling of a SceneModel ("auto" for automatic).
-const char* to_string(SceneModel model);
-
-/// How a foundation's P_H is computed: closed forms, or the ODE route (model.hpp).
-enum class Solver { closed_form, ode };
 
 /// The medium as given in the scene (unused fields are NaN).
 struct MediumSpec {
@@ -60,57 +46,37 @@ struct Scene {
   double tolerance = 0.0;             ///< relative error target of model "auto", in (0, 1)
 };
 
-/// The scene turned into a contact model, with the constants it used.
-struct BuiltScene {
-  ContactModelPtr model;
-  /// The model `model` approximates, which its errors are estimated against
-  /// (model_error.hpp): the exact layer for every thin-layer law, the full foundation for an
-  /// asymptotic one with G > 0; null where `model` solves its medium exactly.
-  ContactModelPtr reference;
-  bool has_foundation_constants = false;
-  double K = 0.0;  ///< foundation modulus [N/m^3] (layers: mapped)
-  double G = 0.0;  ///< shear modulus or tension [N/m] (layers: mapped)
-  bool has_effective_modulus = false;
-  double E_star = 0.0;  ///< [Pa], layers and half-space
-  std::vector<std::string> warnings;
-  /// Model "auto": what was chosen and its estimated error where it was judged.
-  bool automatic = false;
-  std::string chosen_model;
-  double estimated_error = 0.0;
-};
-
 /// Parses a scene from JSON text; `source` names it in error messages.
 Scene parse_scene(const std::string& json_text, const std::string& source = "scene");
 
 /// Reads and parses a scene file. Throws InputError if it cannot be read.
 Scene load_scene(const std::string& path);
 
-/// What a scene's model resolves to. Throws DomainError for invalid constants and Error
-/// for model "auto", which resolves only for a contact radius (build_scene).
+/// What a scene's model resolves to: the one place that reads a scene's medium and model
+/// (the answers, model "auto", the fit and the reports all start from here). Cheap: nothing
+/// is built. Throws DomainError for invalid constants.
 struct ResolvedModel {
+  /// The model to build. Model "auto": the exact layer, the fallback its candidates fall back
+  /// to and are judged by (model_choice.hpp); the choice needs the radii of an answer.
   ModelSpec spec;
-  /// The medium's foundation constants, as summaries report them (a layer's thin-layer
-  /// K and G, also for "leading" and "edge_corrected"; none for "exact").
-  bool has_foundation_constants = false;
-  double K = 0.0, G = 0.0;
+  bool automatic = false;
+  double tolerance = 0.0;  ///< model "auto": the relative error target, in (0, 1)
+  /// The model `spec` approximates, which its answers are judged against (model_error.hpp):
+  /// the exact layer for every thin-layer law, the full foundation for an asymptotic one with
+  /// G > 0; none where `spec` solves its medium exactly.
+  std::optional<ModelSpec> reference;
+  /// True where K and G come from a layer's E, nu and h (leading and two_term on a layer): a
+  /// fit of E scales both.
+  bool constants_from_layer = false;
+  /// The medium's foundation constants as summaries report them: a foundation's own, or a
+  /// layer's thin-layer constants (also for "leading", "edge_corrected" and "auto" with
+  /// nu < 1/2; none for "exact", "incompressible", "uniform" and the half-space).
+  std::optional<double> K;  ///< [N/m^3]
+  std::optional<double> G;  ///< [N/m] shear modulus, or the tension T (see g_is_tension)
+  bool g_is_tension = false;  ///< Filonenko-Borodich: G holds the membrane tension T
+  std::optional<double> E_star;  ///< plane-strain modulus [Pa]: layers and the half-space
   std::vector<std::string> warnings;  ///< the thin-layer constants' validity warnings
 };
 ResolvedModel resolve_model(const Scene& scene);
-
-/// Builds the contact model of a parsed scene (through make_contact_model). Model "auto"
-/// chooses the cheapest model within the scene's tolerance at contact radii a_min * 2^k,
-/// k = 0..4 (a_min [m] required > 0 for "auto", ignored otherwise): every reduced model's
-/// error falls as a/h grows, so a range starting at a_min is judged by its first octaves.
-BuiltScene build_scene(const Scene& scene, double a_min = 0.0);
-
-/// The same, with "auto" judged at exactly these contact radii [m] (a curve's).
-BuiltScene build_scene_for_radii(const Scene& scene, const std::vector<double>& radii);
-
-/// The same, with "auto" judged by what a summary reports: the pull-off force and the
-/// zero-load radius, against the exact layer's.
-BuiltScene build_scene_for_summary(const Scene& scene);
-
-/// The judge of a built scene's answers: its model against its reference, for the scene's w.
-ModelErrorEstimator error_estimator(const Scene& scene, const BuiltScene& built);
 
 }  // namespace layerjkr

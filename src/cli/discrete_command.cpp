@@ -9,7 +9,7 @@
 #include "layerjkr/discrete.hpp"
 #include "layerjkr/error.hpp"
 #include "reports.hpp"
-#include "summary_json.hpp"
+#include "reports.hpp"
 
 namespace layerjkr::cli {
 
@@ -67,7 +67,7 @@ int run_discrete(const DiscreteArguments& a) {
     const DiscreteUncertainty u = bootstrap_discrete(flat, convex, a.w, {}, approach, o, b);
     warn_failed(u);
     const ContactSummary summary = summarize(jkr);
-    auto j = summary_json(summary, "(data)");
+    auto j = contact_json(summary, "(data)");
     const std::string range = "[" + format_double(a_lo) + ", " + format_double(a_hi) + "] m";
     std::vector<std::string> warnings;
     if (!summary.pull_off) warnings.push_back("no pull-off force within the data's radii " + range + "; it needs data that reach it");

@@ -31,8 +31,8 @@ void print_warnings(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) std::cerr << "layerjkr: warning: " << w << "\n";
 }
 
-void print_choice(const std::string& note) {
-  if (!note.empty()) std::cerr << "layerjkr: " << note << "\n";
+void print_choice(const std::optional<layerjkr::AutoChoice>& choice) {
+  if (choice) std::cerr << "layerjkr: " << choice->brief_report() << "\n";
 }
 
 int run_curve(const std::string& path, const std::string& at, double a_max, int points) {
@@ -47,25 +47,18 @@ int run_curve(const std::string& path, const std::string& at, double a_max, int 
     for (int i = 1; i <= points; ++i) radii.push_back(a_max * i / points);
   }
   // Compute everything before printing so a failure never leaves partial output.
-  const layerjkr::cli::CurveTable t = layerjkr::cli::curve_table(scene, radii);
-  std::string out = "a,P,delta,P_H,delta_H,S,error_est\n";
-  for (std::size_t i = 0; i < t.states.size(); ++i) {
-    const auto& s = t.states[i];
-    out += format_double(s.a) + "," + format_double(s.P) + "," + format_double(s.delta) + "," +
-           format_double(s.hertz.P_H) + "," + format_double(s.hertz.delta_H) + "," +
-           format_double(s.hertz.S) + "," + format_double(t.error_est[i]) + "\n";
-  }
-  print_warnings(t.warnings);
-  print_choice(t.choice_note);
-  std::cout << out;
+  const layerjkr::CurveAnswer answer = layerjkr::solve_curve(scene, radii);
+  print_warnings(answer.warnings);
+  print_choice(answer.choice);
+  std::cout << layerjkr::cli::curve_csv(answer);
   return 0;
 }
 
 int run_summary(const std::string& path) {
-  const layerjkr::cli::SummaryReport r = layerjkr::cli::summary_report(layerjkr::load_scene(path));
-  print_warnings(r.warnings);
-  print_choice(r.choice_note);
-  std::cout << r.json.dump(2) << "\n";
+  const layerjkr::SummaryAnswer answer = layerjkr::solve_summary(layerjkr::load_scene(path));
+  print_warnings(answer.warnings);
+  print_choice(answer.choice);
+  std::cout << layerjkr::cli::summary_json(answer).dump(2) << "\n";
   return 0;
 }
 

@@ -1,33 +1,60 @@
-// The curve and summary answers shared by the CLI and the Python module (reports.hpp).
+// The report schema of `summary`, `curve` and `fit --out` (reports.hpp).
 #include "reports.hpp"
 
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
-#include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
-#include "layerjkr/model_error.hpp"
-#include "summary_json.hpp"
 
 namespace layerjkr::cli {
 namespace {
 
-std::string percent(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g %%", 100.0 * x);
-  return buf;
-}
+using json = nlohmann::ordered_json;
 
-std::string choice_note(const BuiltScene& built, const std::string& judged_at) {
-  if (!built.automatic) return "";
-  return "auto chose model '" + built.chosen_model + "' (estimated error " + format_double(built.estimated_error) + " " +
-         judged_at + ")";
-}
+// JSON has no infinity: a point the model misses is null, and the warning says why.
+json finite_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+
 
 }  // namespace
+
+json report_json(const FitSummary& s, Branch branch) {
+  json j;
+  j["converged"] = s.converged;
+  j["termination"] = s.termination;
+  j["iterations"] = s.iterations;
+  j["model"] = s.model;
+  j["family"] = to_string(s.family);
+  j["branch"] = to_string(branch);
+  json params = json::object();
+  for (const auto& e : s.parameters)
+    params[to_string(e.parameter)] = {{"value", e.value},
+                                      {"stderr", finite_or_null(e.standard_error)},
+                                      {"initial", e.initial},
+                                      {"at_bound", e.at_bound},
+                                      {"identifiable", e.identifiable}};
+  j["parameters"] = params;
+  json corr = json::object();
+  for (std::size_t i = 0; i < s.parameters.size(); ++i) {
+    json row = json::object();
+    for (std::size_t k = 0; k < s.parameters.size(); ++k)
+      row[to_string(s.parameters[k].parameter)] = finite_or_null(s.correlation[i][k]);
+    corr[to_string(s.parameters[i].parameter)] = row;
+  }
+  j["correlation"] = corr;
+  j["rms_residual"] = s.rms_residual;
+  j["excluded"] = s.excluded_count;
+  j["pull_off_force"] = finite_or_null(s.pull_off_force);
+  j["baseline_slope"] = s.baseline_slope;
+  j["baseline_slope_stderr"] = s.baseline_slope_stderr;
+  j["points"] = s.points;
+  j["points_in_contact"] = s.points_in_contact;
+  j["identifiable"] = s.identifiable;
+  j["unidentifiable"] = s.unidentifiable;
+  j["warnings"] = s.warnings;
+  return j;
+}
 
 std::vector<double> parse_radii(const std::string& text) {
   std::vector<double> out;
@@ -47,55 +74,50 @@ std::vector<double> parse_radii(const std::string& text) {
   return out;
 }
 
-CurveTable curve_table(const Scene& scene, const std::vector<double>& radii) {
-  for (double a : radii)
-    if (!(a > 0.0) || !std::isfinite(a))
-      throw InputError("contact radius a = " + format_double(a) + " is invalid; valid range: finite and > 0 [m]");
-  BuiltScene built = build_scene_for_radii(scene, radii);
-  const JkrSolution solution(built.model, scene.w);
-  const ModelErrorEstimator estimator = error_estimator(scene, built);
-  CurveTable t;
-  t.error_est = estimator.along(radii);
-  t.states = solution.curve(radii);
-  double worst = 0.0, worst_a = 0.0;
-  for (std::size_t i = 0; i < t.states.size(); ++i)
-    if (t.error_est[i] > worst) worst = t.error_est[i], worst_a = t.states[i].a;
-  if (worst > kWarnError)
-    built.warnings.push_back("model '" + built.model->name() + "' is estimated " + percent(worst) +
-                             " off its reference model '" + estimator.reference_name() +
-                             "' at a = " + format_double(worst_a) + " m (column error_est)");
-  t.warnings = built.warnings;
-  t.choice_note = choice_note(built, "over the curve's radii");
-  return t;
+json contact_json(const ContactSummary& s, const std::string& profile) {
+  json j;
+  j["model"] = s.model;
+  j["profile"] = profile;
+  j["w"] = s.w;
+  auto opt = [](const std::optional<double>& v) { return v ? json(*v) : json(nullptr); };
+  j["pull_off_force"] = s.pull_off ? json(s.pull_off->P) : json(nullptr);
+  j["pull_off_radius"] = s.pull_off ? json(s.pull_off->a) : json(nullptr);
+  j["pull_off_delta"] = s.pull_off ? json(s.pull_off->delta) : json(nullptr);
+  j["zero_load_radius"] = opt(s.zero_load_radius);
+  if (s.fixed_grips)
+    j["fixed_grips_critical"] = {{"force", s.fixed_grips->P}, {"radius", s.fixed_grips->a}, {"delta", s.fixed_grips->delta}};
+  else
+    j["fixed_grips_critical"] = nullptr;
+  return j;
 }
 
-SummaryReport summary_report(const Scene& scene) {
-  BuiltScene built = build_scene_for_summary(scene);
-  const JkrSolution solution(built.model, scene.w);
-  const ContactSummary s = summarize(solution);
-  const SummaryError error = error_estimator(scene, built).summary(s);
-  nlohmann::ordered_json j = summary_json(s, scene.profile->describe());
-  // JSON has no infinity: a point the model misses is null, and the warning says why.
-  auto finite_or_null = [](double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nullptr; };
-  j["model_error_estimate"] = {{"pull_off_force", finite_or_null(error.pull_off_force)},
-                               {"zero_load_radius", finite_or_null(error.zero_load_radius)},
-                               {"reference", error.reference}};
-  if (built.has_foundation_constants) {
-    j["K"] = built.K;
-    j[scene.medium.type == MediumType::filonenko_borodich ? "T" : "G"] = built.G;
+json summary_json(const SummaryAnswer& a) {
+  json j = contact_json(a.contact, a.profile);
+  j["model_error_estimate"] = {{"pull_off_force", finite_or_null(a.error.pull_off_force)},
+                               {"zero_load_radius", finite_or_null(a.error.zero_load_radius)},
+                               {"reference", a.error.reference}};
+  if (a.K) {
+    j["K"] = *a.K;
+    j[a.g_is_tension ? "T" : "G"] = a.G.value_or(0.0);
   }
-  if (built.has_effective_modulus) j["E_star"] = built.E_star;
-  if (built.automatic)
-    j["model_choice"] = {{"model", built.chosen_model}, {"estimated_error", built.estimated_error}, {"tolerance", scene.tolerance}};
-  if (!std::isfinite(error.worst()))
-    built.warnings.push_back("model '" + s.model + "' misses a critical point its reference model '" + error.reference +
-                             "' has (estimated error unbounded)");
-  else if (error.worst() > kWarnError)
-    built.warnings.push_back("model '" + s.model + "' is estimated " + percent(error.pull_off_force) +
-                             " off its reference model '" + error.reference + "' in the pull-off force and " +
-                             percent(error.zero_load_radius) + " in the zero-load radius");
-  j["warnings"] = built.warnings;
-  return {j, built.warnings, choice_note(built, "at the pull-off and zero-load point")};
+  if (a.E_star) j["E_star"] = *a.E_star;
+  if (a.choice)
+    j["model_choice"] = {{"model", to_string(a.choice->model)},
+                         {"estimated_error", a.choice->estimated_error},
+                         {"tolerance", a.choice->tolerance}};
+  j["warnings"] = a.warnings;
+  return j;
+}
+
+std::string curve_csv(const CurveAnswer& c) {
+  std::string out = "a,P,delta,P_H,delta_H,S,error_est\n";
+  for (std::size_t i = 0; i < c.states.size(); ++i) {
+    const AdhesiveState& s = c.states[i];
+    out += format_double(s.a) + "," + format_double(s.P) + "," + format_double(s.delta) + "," +
+           format_double(s.hertz.P_H) + "," + format_double(s.hertz.delta_H) + "," + format_double(s.hertz.S) + "," +
+           format_double(c.error_estimate[i]) + "\n";
+  }
+  return out;
 }
 
 }  // namespace layerjkr::cli

@@ -1,5 +1,4 @@
-// layerjkr front ends (CLI, Python): the curve and summary answers with their error estimates
-// and warnings, computed once so that both print the same numbers.
+// layerjkr CLI: the report schema - how the library's answers (answer.hpp) are printed.
 #pragma once
 
 #include <string>
@@ -7,32 +6,28 @@
 
 #include <nlohmann/json.hpp>
 
-#include "layerjkr/jkr.hpp"
-#include "layerjkr/scene.hpp"
+#include "layerjkr/answer.hpp"
+#include "layerjkr/contact.hpp"
+#include "layerjkr/fit.hpp"
 
 namespace layerjkr::cli {
-
-/// Answers whose estimated model error exceeds this get a warning.
-constexpr double kWarnError = 0.05;
 
 /// The radii of an --at list, "a1,a2,...": each finite and > 0, at least one; throws
 /// InputError naming the item.
 std::vector<double> parse_radii(const std::string& text);
 
-struct CurveTable {
-  std::vector<AdhesiveState> states;
-  std::vector<double> error_est;  ///< estimated relative model error at each radius
-  std::vector<std::string> warnings;
-  std::string choice_note;  ///< model auto's choice, empty otherwise
-};
-/// The scene's adhesive states at `radii` [m] (each finite and > 0).
-CurveTable curve_table(const Scene& scene, const std::vector<double>& radii);
+/// The keys every summary prints (summary, discrete --summary): model, profile, w, pull-off,
+/// zero load, fixed grips.
+nlohmann::ordered_json contact_json(const ContactSummary& s, const std::string& profile);
 
-struct SummaryReport {
-  nlohmann::ordered_json json;  ///< the keys of `layerjkr summary`, warnings included
-  std::vector<std::string> warnings;
-  std::string choice_note;
-};
-SummaryReport summary_report(const Scene& scene);
+/// `layerjkr summary`: contact_json plus model_error_estimate, K, G (T), E_star,
+/// model_choice and warnings.
+nlohmann::ordered_json summary_json(const SummaryAnswer& answer);
+
+/// `layerjkr fit --out`: the fit report's JSON keys (docs/fitting.md).
+nlohmann::ordered_json report_json(const FitSummary& summary, Branch branch);
+
+/// `layerjkr curve`: CSV a,P,delta,P_H,delta_H,S,error_est with 17 significant digits.
+std::string curve_csv(const CurveAnswer& answer);
 
 }  // namespace layerjkr::cli

@@ -72,7 +72,7 @@ void require_supported(const CurveModel& model, const FitOptions& options) {
       std::string why = q == FitParameter::R ? "R can vary only for a paraboloid indenter with a closed-form model"
                         : q == FitParameter::E ? "E can vary only for a layer or half-space medium"
                                                : std::string(to_string(q)) + " is not a parameter of this medium; use E";
-      throw InputError(std::string("fit: --free ") + to_string(q) + " is not available for model '" +
+      throw InputError(std::string("fit: free parameter ") + to_string(q) + " is not available for model '" +
                        model.model_name() + "' (" + why + ")");
     }
   if (has(options, FitParameter::E) && (has(options, FitParameter::K) || has(options, FitParameter::G)))
@@ -80,9 +80,9 @@ void require_supported(const CurveModel& model, const FitOptions& options) {
 }
 
 // Where each free parameter sits in x, and the scales that make x dimensionless.
-ParameterMap make_parameter_map(const FitOptions& options, const Scene& scene,
+ParameterMap make_parameter_map(const FitOptions& options, const ResolvedModel& resolved,
                                 detail::SceneParameters fixed, double span, double force_span) {
-  if (scene.medium.type == MediumType::layer && (has(options, FitParameter::K) || has(options, FitParameter::G)))
+  if (has(options, FitParameter::K) || has(options, FitParameter::G))
     fixed.layer_foundation = false;  // K, G vary independently of E
   ParameterMap map;
   map.free = options.free;
@@ -97,7 +97,7 @@ ParameterMap make_parameter_map(const FitOptions& options, const Scene& scene,
   map.ref[static_cast<int>(FitParameter::E)] = f.E;
   map.ref[static_cast<int>(FitParameter::R)] = f.R;
   map.ref[static_cast<int>(FitParameter::G)] = f.G;
-  map.G_log = scene.model == SceneModel::full;
+  map.G_log = resolved.spec.kind == ModelKind::full_foundation && !resolved.automatic;
   map.G_scale = f.G != 0.0 ? std::abs(f.G) : f.K * span * span;
   map.s_scale = std::sqrt(force_span / span) * 0.1;
   return map;
@@ -228,7 +228,7 @@ std::vector<bool> exclude_non_jkr(CurveEvaluator& ev, const ParameterMap& map, c
   return excluded;
 }
 
-// FitOptions::baseline_tilt: the slope of P against delta over the samples the model puts
+// Baseline::tilt: the slope of P against delta over the samples the model puts
 // off contact (excluded ones have weight 0 and do not count), removed from the data, then one
 // more solve. The slope's error is that of the straight-line fit.
 void detilt_baseline(CurveEvaluator& ev, const ParameterMap& map, const FitOptions& options, FitData& data,
@@ -282,6 +282,22 @@ void record_solution(CurveEvaluator& ev, const ParameterMap& map, const FitData&
   out->correlation.assign(x.size(), std::vector<double>(x.size(), kNaN));
 }
 
+// The stiffness that lets the retract go, as the evaluator takes it: 0 for load control,
+// infinity for fixed grips.
+double control_stiffness(const FitOptions& options, const CurveData& curve) {
+  const double k = options.cantilever_stiffness.value_or(curve.spring_constant);
+  switch (options.retract_control) {
+    case RetractControl::load: return 0.0;
+    case RetractControl::fixed_grips: return std::numeric_limits<double>::infinity();
+    case RetractControl::automatic: return k > 0.0 ? k : 0.0;
+    case RetractControl::cantilever: break;
+  }
+  if (!(k > 0.0))
+    throw InputError(curve.source + ": retract control 'cantilever' needs the cantilever's spring constant, which "
+                                    "the curve does not carry; give it (FitOptions::cantilever_stiffness [N/m])");
+  return k;
+}
+
 }  // namespace
 
 const ParameterEstimate& FitSummary::operator[](FitParameter p) const {
@@ -300,19 +316,20 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   FitData data = detail::select_fit_data(curve, options, &span, &force_span);
   FitSummary out;
   detail::SceneParameters fixed;
-  const std::unique_ptr<CurveModel> model = detail::make_curve_model(scene, options, span, &fixed);
+  const ResolvedModel resolved = resolve_model(scene);
+  const std::unique_ptr<CurveModel> model = detail::make_curve_model(scene, resolved, options, span, &fixed);
   out.model = model->model_name();
   out.family = model->family();
   require_supported(*model, options);
-  ParameterMap map = make_parameter_map(options, scene, fixed, span, force_span);  // the start refines it
-  if (scene.solver == Solver::ode)
+  ParameterMap map = make_parameter_map(options, resolved, fixed, span, force_span);  // the start refines it
+  if (resolved.spec.ode)
     out.warnings.push_back("solver 'ode' verifies the closed forms; the fit evaluates the same "
                            "foundation in closed form");
   out.warnings.insert(out.warnings.end(), fixed.warnings.begin(), fixed.warnings.end());
   for (const auto& note : model->notes()) out.warnings.push_back(note);
 
   std::vector<double> x(options.free.size(), 0.0);
-  const double k = std::isnan(options.cantilever_stiffness) ? curve.spring_constant : options.cantilever_stiffness;
+  const double k = control_stiffness(options, curve);
   data.cantilever = k > 0.0;
   CurveEvaluator ev(*model, map, data, k);
   detail::find_start(data, map, ev, x, curve.source);
@@ -332,7 +349,7 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   try_extra_starts(ev, map, options, x, summary, problem);
   const std::vector<double> weights = data.sqrt_weight;
   std::vector<bool> excluded = exclude_non_jkr(ev, map, options, data, x, summary, problem);
-  if (options.baseline_tilt) {
+  if (options.baseline == Baseline::tilt) {
     detilt_baseline(ev, map, options, data, x, summary, problem, &out);
     data.sqrt_weight = weights;  // the exclusion is decided again on the detilted data
     ev.invalidate();

@@ -21,7 +21,7 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::size_t> idx = curve.select(options.branch);
   const std::vector<bool> retract = curve.retract_mask();
-  if (options.retract_window != FitOptions::RetractWindow::all) {
+  if (options.retract_window != RetractWindow::all) {
     // In acquisition order: the retract samples from the largest force down to the window's end.
     std::vector<std::size_t> unloading;
     for (std::size_t i : idx)
@@ -31,7 +31,7 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
                                          [&](auto i, auto j) { return curve.P[i] < curve.P[j]; });
       const auto bottom = std::min_element(top, unloading.end(), [&](auto i, auto j) { return curve.P[i] < curve.P[j]; });
       auto end = bottom + 1;  // to_pull_off: down to the force minimum, inclusive
-      if (options.retract_window == FitOptions::RetractWindow::force_fraction) {
+      if (options.retract_window == RetractWindow::force_fraction) {
         const double floor = curve.P[*top] - options.window_fraction * (curve.P[*top] - curve.P[*bottom]);
         end = std::find_if(top, bottom + 1, [&](std::size_t i) { return curve.P[i] < floor; });
       }

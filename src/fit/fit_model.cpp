@@ -13,6 +13,7 @@
 #include "jkr/jkr_transform.hpp"
 #include "models/state_formulas.hpp"
 #include "layerjkr/error.hpp"
+#include "layerjkr/built_scene.hpp"
 #include "layerjkr/model_spec.hpp"
 #include "layerjkr/model.hpp"
 
@@ -102,8 +103,8 @@ class FoundationCurve final : public CurveModelBase<FoundationCurve> {
   }
   double min_radius() const override { return 0.0; }
   double max_radius() const override { return profile_->max_radius(); }
-  std::string family() const override { return "foundation"; }
-  std::string model_name() const override { return layerjkr::model_name(name_); }
+  FitFamily family() const override { return FitFamily::foundation; }
+  std::string model_name() const override { return to_string(name_); }
 
  private:
   ProfilePtr profile_;
@@ -133,8 +134,8 @@ class HertzCurve final : public CurveModelBase<HertzCurve> {
   }
   double min_radius() const override { return 0.0; }
   double max_radius() const override { return std::numeric_limits<double>::infinity(); }
-  std::string family() const override { return "hertz"; }
-  std::string model_name() const override { return layerjkr::model_name(ModelKind::half_space); }
+  FitFamily family() const override { return FitFamily::hertz; }
+  std::string model_name() const override { return to_string(ModelKind::half_space); }
 
  private:
   double one_minus_nu2_;
@@ -241,7 +242,7 @@ class TabulatedCurve final : public CurveModelBase<TabulatedCurve> {
   }
   double min_radius() const override { return a_lo_; }
   double max_radius() const override { return a_hi_; }
-  std::string family() const override { return "tabulated"; }
+  FitFamily family() const override { return FitFamily::tabulated; }
   std::string model_name() const override { return model_->name(); }
   std::vector<std::string> notes() const override {
     return {"model '" + model_->name() + "' tabulated on a in [" + format_double(a_lo_) + ", " +
@@ -263,47 +264,50 @@ double paraboloid_radius(const Profile& p) {
 
 }  // namespace
 
-std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const FitOptions& options,
-                                             double delta_span, SceneParameters* fixed) {
-  const MediumSpec& m = scene.medium;
+std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const ResolvedModel& resolved,
+                                             const FitOptions& options, double delta_span, SceneParameters* fixed) {
+  const ModelSpec& spec = resolved.spec;
   SceneParameters sp;
   sp.values.s = std::sqrt(scene.w);
   sp.values.R = paraboloid_radius(*scene.profile);
   std::unique_ptr<CurveModel> model;
-  const bool foundation_medium = m.type == MediumType::winkler || m.type == MediumType::pasternak ||
-                                 m.type == MediumType::filonenko_borodich;
-  const bool layer_foundation = m.type == MediumType::layer && (scene.model == SceneModel::leading ||
-                                                               scene.model == SceneModel::two_term);
-  if (foundation_medium) {
-    sp.values.K = m.K;
-    sp.values.G = m.type == MediumType::pasternak ? m.G : m.type == MediumType::filonenko_borodich ? m.T : 0.0;
-    const bool full = scene.model == SceneModel::full;
-    const ModelKind name = full ? ModelKind::full_foundation : sp.values.G == 0.0 ? ModelKind::winkler : ModelKind::two_term;
-    model = std::make_unique<FoundationCurve>(scene.profile, full, false, name);
-  } else if (layer_foundation) {
-    const ThinLayerConstants unit = thin_layer_constants({1.0, m.nu, m.h, m.base});
+  const bool foundation = !resolved.automatic && (spec.kind == ModelKind::winkler || spec.kind == ModelKind::two_term ||
+                                                  spec.kind == ModelKind::full_foundation);
+  if (foundation && resolved.constants_from_layer) {
+    // K and G scale with E at fixed nu and h: the unit layer's constants, and its warnings
+    // (they depend on nu only, so they are the scene's).
+    const ElasticLayer& layer = spec.layer;
+    const ThinLayerConstants unit = thin_layer_constants({1.0, layer.nu, layer.h, layer.base});
     sp.layer_foundation = true;
-    sp.warnings = unit.warnings;  // they depend on nu only, so the unit layer's are the scene's
+    sp.warnings = unit.warnings;
     sp.k_per_E = unit.K;
-    sp.g_per_E = scene.model == SceneModel::leading ? 0.0 : unit.G;
-    sp.values.E = m.E;
-    sp.values.K = m.E * sp.k_per_E;
-    sp.values.G = m.E * sp.g_per_E;
-    model = std::make_unique<FoundationCurve>(scene.profile, false, true,
-                                              sp.g_per_E == 0.0 ? ModelKind::winkler : ModelKind::two_term);
-  } else if (m.type == MediumType::half_space && scene.profile->is_paraboloid()) {
-    sp.values.E = m.E;
-    sp.nu = m.nu;
-    effective_modulus(m.E, m.nu);  // validates nu
-    model = std::make_unique<HertzCurve>(m.nu);
+    sp.g_per_E = spec.kind == ModelKind::winkler ? 0.0 : unit.G;
+    sp.values.E = layer.E;
+    sp.values.K = layer.E * sp.k_per_E;
+    sp.values.G = layer.E * sp.g_per_E;
+    model = std::make_unique<FoundationCurve>(scene.profile, false, true, spec.kind);
+  } else if (foundation) {  // a foundation medium's own constants
+    sp.values.K = spec.K;
+    sp.values.G = spec.G;
+    const bool full = spec.kind == ModelKind::full_foundation;
+    const ModelKind name = full ? ModelKind::full_foundation : spec.G == 0.0 ? ModelKind::winkler : ModelKind::two_term;
+    model = std::make_unique<FoundationCurve>(scene.profile, full, false, name);
+  } else if (spec.kind == ModelKind::half_space && scene.profile->is_paraboloid()) {
+    sp.values.E = spec.layer.E;
+    sp.nu = spec.layer.nu;
+    effective_modulus(spec.layer.E, spec.layer.nu);  // validates nu
+    model = std::make_unique<HertzCurve>(spec.layer.nu);
   } else {
-    sp.values.E = m.E;
-    sp.nu = m.nu;
-    // "auto" chooses for the radii a fit needs: down to 1/20 of the data's span scale.
-    const double a_min = scene.model == SceneModel::automatic ? std::sqrt(delta_span * scene.profile->length_scale()) / 20.0 : 0.0;
-    const BuiltScene built = build_scene(scene, a_min);
-    model = std::make_unique<TabulatedCurve>(built.model, m.E, delta_span,
-                                             options.table_points_per_decade);
+    // Any other model (exact, edge_corrected, incompressible, uniform, auto, the half-space
+    // with another profile, a full foundation of a layer) is tabulated; nothing is judged here,
+    // so no reference is built. "auto" chooses for the radii a fit needs: down to 1/20 of the
+    // data's span scale.
+    sp.values.E = spec.layer.E;
+    sp.nu = spec.layer.nu;
+    const double a_min =
+        resolved.automatic ? std::sqrt(delta_span * scene.profile->length_scale()) / 20.0 : 0.0;
+    const BuiltScene built = build_scene(scene, a_min, false);
+    model = std::make_unique<TabulatedCurve>(built.model, spec.layer.E, delta_span, options.table_points_per_decade);
   }
   if (fixed) *fixed = sp;
   return model;

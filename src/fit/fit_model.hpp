@@ -49,7 +49,7 @@ class CurveModel {
   /// Admissible radii (a_min may be 0, exclusive).
   virtual double min_radius() const = 0;
   virtual double max_radius() const = 0;
-  virtual std::string family() const = 0;
+  virtual FitFamily family() const = 0;
   virtual std::string model_name() const = 0;
   /// Extra lines for FitSummary::warnings (e.g. the table's interpolation error).
   virtual std::vector<std::string> notes() const { return {}; }
@@ -64,9 +64,10 @@ struct SceneParameters {
   std::vector<std::string> warnings;    ///< the thin-layer warnings of a layer foundation
 };
 
-/// Builds the curve model of `scene` for a fit. `delta_span` [m] > 0 sizes the
-/// tabulated family's radius range so that delta_H reaches several times the data's span.
-std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const FitOptions& options,
-                                             double delta_span, SceneParameters* fixed);
+/// Builds the curve model of `scene` for a fit, dispatching on its resolved model (`resolved`,
+/// resolve_model(scene)). `delta_span` [m] > 0 sizes the tabulated family's radius range so
+/// that delta_H reaches several times the data's span.
+std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const ResolvedModel& resolved,
+                                             const FitOptions& options, double delta_span, SceneParameters* fixed);
 
 }  // namespace layerjkr::detail

@@ -1,4 +1,4 @@
-// Names, option validation and the plain-text report of a fit.
+// Option validation and the plain-text report of a fit.
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -7,41 +7,6 @@
 #include "layerjkr/fit.hpp"
 
 namespace layerjkr {
-
-const char* to_string(FitParameter p) {
-  switch (p) {
-    case FitParameter::K: return "K";
-    case FitParameter::G: return "G";
-    case FitParameter::w: return "w";
-    case FitParameter::delta0: return "delta0";
-    case FitParameter::P0: return "P0";
-    case FitParameter::E: return "E";
-    case FitParameter::R: return "R";
-  }
-  return "?";
-}
-
-FitParameter parse_fit_parameter(const std::string& name, const std::string& what) {
-  for (FitParameter p : {FitParameter::K, FitParameter::G, FitParameter::w, FitParameter::delta0,
-                         FitParameter::P0, FitParameter::E, FitParameter::R})
-    if (name == to_string(p)) return p;
-  if (name == "T") return FitParameter::G;  // Filonenko-Borodich tension plays G's role
-  throw InputError(what + ": '" + name + "' is not a fit parameter (known: K, G or T, w, delta0, P0, E, R)");
-}
-
-std::vector<FitParameter> parse_fit_parameters(const std::string& list, const std::string& what) {
-  std::vector<FitParameter> out;
-  std::set<FitParameter> seen;
-  std::stringstream in(list);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    const FitParameter p = parse_fit_parameter(item, what);
-    if (!seen.insert(p).second) throw InputError(what + ": '" + item + "' is listed twice");
-    out.push_back(p);
-  }
-  if (out.empty()) throw InputError(what + ": give at least one parameter (e.g. E,w,delta0)");
-  return out;
-}
 
 void FitOptions::validate() const {
   const char* fn = "FitOptions";
@@ -61,9 +26,9 @@ void FitOptions::validate() const {
   detail::require_in_open_interval(fn, "correlation_limit", correlation_limit, 0.0, 1.0);
   if (table_points_per_decade < 8 || table_points_per_decade > 1000)
     throw DomainError(fn, "table_points_per_decade", table_points_per_decade, "8 .. 1000");
-  if (cantilever_stiffness < 0.0)
-    throw DomainError(fn, "cantilever_stiffness [N/m]", cantilever_stiffness,
-                      ">= 0 (0: load control, inf: fixed grips, NaN: the curve's own)");
+  if (cantilever_stiffness && !(*cantilever_stiffness > 0.0 && std::isfinite(*cantilever_stiffness)))
+    throw DomainError(fn, "cantilever_stiffness [N/m]", *cantilever_stiffness,
+                      "finite and > 0 (unset: the curve's own spring constant)");
   if (!(window_fraction > 0.0 && window_fraction <= 1.0))
     throw DomainError(fn, "window_fraction", window_fraction, "(0, 1]");
   if (!(exclusion_sigmas >= 0.0) || !std::isfinite(exclusion_sigmas))
@@ -75,7 +40,7 @@ std::string FitSummary::brief_report() const {
   o.precision(6);
   o << "layerjkr fit: " << (converged ? "converged" : "NOT converged") << " after " << iterations
     << " iterations (" << termination << ")\n";
-  o << "  model " << model << " (" << family << "), " << points << " samples, " << points_in_contact
+  o << "  model " << model << " (" << to_string(family) << "), " << points << " samples, " << points_in_contact
     << " in contact, rms residual " << rms_residual << " N\n";
   if (baseline_slope != 0.0)
     o << "  baseline tilt " << baseline_slope << " +- " << baseline_slope_stderr

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "layerjkr/built_scene.hpp"
 #include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
 

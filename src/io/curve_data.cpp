@@ -49,22 +49,6 @@ std::string shorten(std::string_view s) {
 
 }  // namespace
 
-Branch parse_branch(const std::string& text, const std::string& what) {
-  if (text == "approach") return Branch::approach;
-  if (text == "retract") return Branch::retract;
-  if (text == "all") return Branch::all;
-  throw InputError(what + " = \"" + shorten(text) + "\" is unknown (known: approach, retract, all)");
-}
-
-const char* to_string(Branch branch) {
-  switch (branch) {
-    case Branch::approach: return "approach";
-    case Branch::retract: return "retract";
-    case Branch::all: return "all";
-  }
-  return "?";
-}
-
 void CurveData::validate() const {
   const std::size_t n = delta.size();
   auto fail = [&](const std::string& what) { throw InputError(source + ": " + what); };
@@ -125,7 +109,7 @@ void parse_units(const std::string& text, CsvOptions& options) {
   const std::string len(detail::trim(std::string_view(text).substr(0, comma)));
   const std::string force = comma == std::string::npos ? "" : std::string(detail::trim(std::string_view(text).substr(comma + 1)));
   if (comma == std::string::npos || !lengths.count(len) || !forces.count(force))
-    throw InputError("--units = \"" + shorten(text) +
+    throw InputError("units = \"" + shorten(text) +
                      "\" is invalid; give LENGTH,FORCE with LENGTH in m, mm, um, nm, pm and "
                      "FORCE in N, mN, uN, nN, pN (e.g. nm,nN)");
   options.length_unit = lengths.at(len);

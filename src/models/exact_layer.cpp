@@ -458,7 +458,7 @@ class ExactLayerModel final : public ContactModel {
     for (std::size_t j = 0; j < n; ++j) out[j].a = radii[j];
     return out;
   }
-  std::string name() const override { return model_name(ModelKind::exact); }
+  std::string name() const override { return to_string(ModelKind::exact); }
   double numerical_error(double a) const override {
     const ExactLayerState s = kernel_.solve(profile(), a);
     const double solve_error = std::max(s.P_H_error, s.delta_H_error);
@@ -492,7 +492,7 @@ class EdgeCorrected final : public ContactModel {
     s.a = a;  // the JKR energy term uses the true contact radius
     return s;
   }
-  std::string name() const override { return model_name(ModelKind::edge_corrected); }
+  std::string name() const override { return to_string(ModelKind::edge_corrected); }
   double min_radius() const override { return std::max(0.0, -shift_); }
 
  private:

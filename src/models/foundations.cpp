@@ -21,7 +21,7 @@ NonAdhesiveState hertz_state(double a, const detail::StateOf<double>& s) {
 class TwoTerm final : public ContactModel {
  public:
   TwoTerm(ProfilePtr p, double K, double G)
-      : ContactModel(std::move(p)), K_(K), G_(G), name_(model_name(G == 0.0 ? ModelKind::winkler : ModelKind::two_term)) {}
+      : ContactModel(std::move(p)), K_(K), G_(G), name_(to_string(G == 0.0 ? ModelKind::winkler : ModelKind::two_term)) {}
   NonAdhesiveState state(double a) const override {
     profile().require_contact_radius(name_, a);
     return hertz_state(a, detail::two_term_state(a, profile_at(profile(), a), K_, G_));
@@ -38,10 +38,10 @@ class FullFoundation final : public ContactModel {
   FullFoundation(ProfilePtr p, double K, double G)
       : ContactModel(std::move(p)), K_(K), G_(G), lambda_(std::sqrt(K / G)) {}
   NonAdhesiveState state(double a) const override {
-    profile().require_contact_radius(model_name(ModelKind::full_foundation), a);
+    profile().require_contact_radius(to_string(ModelKind::full_foundation), a);
     return hertz_state(a, detail::full_foundation_state(a, profile_at(profile(), a), K_, G_, lambda_));
   }
-  std::string name() const override { return model_name(ModelKind::full_foundation); }
+  std::string name() const override { return to_string(ModelKind::full_foundation); }
 
  private:
   double K_, G_, lambda_;

@@ -13,12 +13,12 @@ class HalfSpace final : public ContactModel {
  public:
   HalfSpace(ProfilePtr p, double E_star) : ContactModel(std::move(p)), E_star_(E_star) {}
   NonAdhesiveState state(double a) const override {
-    profile().require_contact_radius(model_name(ModelKind::half_space), a);
+    profile().require_contact_radius(to_string(ModelKind::half_space), a);
     const SneddonIntegrals I = profile().sneddon(a);
     const auto s = detail::half_space_state(a, I.I0, I.I2, E_star_);
     return {a, s.P_H, s.delta_H, s.S, s.dS_da};
   }
-  std::string name() const override { return model_name(ModelKind::half_space); }
+  std::string name() const override { return to_string(ModelKind::half_space); }
 
  private:
   double E_star_;

@@ -44,12 +44,12 @@ class IncompressibleLayer final : public ContactModel {
   // p'(a) = 0, so delta_H = 2 M(a)/a^2; then P = pi c (delta a^4/8 - int_0^a r M dr)
   // gives P_H = (pi c / 4) I(a), S = pi c a^4 / 8 and S' = pi c a^3 / 2.
   NonAdhesiveState state(double a) const override {
-    profile().require_contact_radius(model_name(ModelKind::incompressible), a);
+    profile().require_contact_radius(to_string(ModelKind::incompressible), a);
     const Moments m = profile_moments(profile(), a);
     const double a2 = a * a;
     return {a, 0.25 * kPi * c_ * m.I, 2.0 * m.M / a2, kPi * c_ * a2 * a2 / 8.0, 0.5 * kPi * c_ * a2 * a};
   }
-  std::string name() const override { return model_name(ModelKind::incompressible); }
+  std::string name() const override { return to_string(ModelKind::incompressible); }
 
  private:
   double c_;  // E / h^3 [N/m^5]

@@ -5,14 +5,6 @@
 
 namespace layerjkr {
 
-std::optional<ModelKind> model_kind(const std::string& name) {
-  for (ModelKind k : {ModelKind::winkler, ModelKind::two_term, ModelKind::full_foundation,
-                      ModelKind::half_space, ModelKind::edge_corrected, ModelKind::exact,
-                      ModelKind::incompressible, ModelKind::uniform})
-    if (name == model_name(k)) return k;
-  return std::nullopt;
-}
-
 void validate(const ModelSpec& spec) {
   const char* fn = "validate(ModelSpec)";
   switch (spec.kind) {

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "layerjkr/built_scene.hpp"
 #include "layerjkr/contact.hpp"
 #include "layerjkr/scene.hpp"
 #include "support/cli_support.hpp"

@@ -114,8 +114,8 @@ void poisson(Matrix& m) {
   });
   m.guarded("nu = 0.499, auto at tolerance 1 %", "chooses exact", [&] {
     const ModelChoice c = choose_layer_model(p, {1e6, 0.499, 1e-5, Base::bonded}, 0.0, 0.01, {2e-5});
-    m.truth("nu = 0.499, auto at tolerance 1 %", c.model == "exact", "chooses exact (no reduced model within 1 % at a/h = 2)",
-            "chose " + c.model);
+    m.truth("nu = 0.499, auto at tolerance 1 %", c.model == ModelKind::exact, "chooses exact (no reduced model within 1 % at a/h = 2)",
+            std::string("chose ") + to_string(c.model));
   });
 }
 
@@ -167,8 +167,8 @@ void thickness(Matrix& m) {
   });
   m.guarded("h/a = 1e4, auto at tolerance 1 %", "not a thin-layer model", [&] {
     const ModelChoice c = choose_layer_model(p, {1.0, nu, 1e4 * a, Base::bonded}, 0.0, 0.01, {a});
-    m.truth("h/a = 1e4, auto at tolerance 1 %", c.model != "leading" && c.model != "two_term",
-            "not a thin-layer model", "chose " + c.model);
+    m.truth("h/a = 1e4, auto at tolerance 1 %", c.model != ModelKind::winkler && c.model != ModelKind::two_term,
+            "not a thin-layer model", std::string("chose ") + to_string(c.model));
   });
 }
 

@@ -70,7 +70,7 @@ TEST_CASE("half-space JKR from closed forms: E, w, delta0, P0 recovered within t
                                                 FitParameter::delta0, FitParameter::P0}));
     INFO(s.brief_report());
     CHECK(s.converged);
-    CHECK(s.family == "hertz");
+    CHECK(s.family == FitFamily::hertz);
     CHECK(rel_err(s[FitParameter::E].value, E) < 1e-8);
     CHECK(rel_err(s[FitParameter::w].value, w) < 1e-8);
     CHECK(std::abs(s[FitParameter::delta0].value - d0) < 1e-8 * R);
@@ -308,6 +308,4 @@ TEST_CASE("data and parameters a fit cannot use are rejected with the reason", "
   bad.free = {FitParameter::E};
   bad.loss = LossType::huber;
   CHECK_THROWS_AS(fit(c, hs, bad), DomainError);
-  CHECK_THROWS_WITH(parse_fit_parameters("E,E"), Catch::Contains("listed twice"));
-  CHECK_THROWS_WITH(parse_fit_parameters("E,nu"), Catch::Contains("'nu' is not a fit parameter"));
 }

@@ -70,6 +70,7 @@ FitSummary fit_retract(const CurveData& c, double k, double exclusion_sigmas = 3
   FitOptions o;
   o.free = {FitParameter::E, FitParameter::w, FitParameter::delta0, FitParameter::P0};
   o.branch = Branch::retract;
+  o.retract_control = RetractControl::cantilever;
   o.cantilever_stiffness = k;
   o.exclusion_sigmas = exclusion_sigmas;
   if (adjust) adjust(o);
@@ -131,15 +132,52 @@ TEST_CASE("the model lets go where the cantilever did; bad options name themselv
   bad.cantilever_stiffness = -1.0;
   CHECK_THROWS_WITH(bad.validate(), Catch::Contains("cantilever_stiffness") && Catch::Contains("-1"));
   bad.cantilever_stiffness = 0.0;
+  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("cantilever_stiffness") && Catch::Contains("> 0"));
+  bad.cantilever_stiffness.reset();
   bad.exclusion_sigmas = -2.0;
   CHECK_THROWS_WITH(bad.validate(), Catch::Contains("exclusion_sigmas"));
+}
+
+// Two fits gave the same answer, bit for bit.
+bool same_fit(const FitSummary& a, const FitSummary& b) {
+  for (std::size_t j = 0; j < a.parameters.size(); ++j)
+    if (a.parameters[j].value != b.parameters[j].value) return false;
+  return a.excluded_count == b.excluded_count && a.points_in_contact == b.points_in_contact;
+}
+
+TEST_CASE("the retract control: typed, with the curve's own spring constant by default", "[fit][cantilever]") {
+  // A non-JKR tail after the jump: the controls let go at different samples, so they differ.
+  CurveData c = synthetic_retract(0.1e-6, 1e-3 * 1.5 * M_PI * kW * kR, 5);
+  const FitSummary given = fit_retract(c, kK);
+  // No stiffness given: the curve's own (an instrument file's) is used; the same fit.
+  c.spring_constant = kK;
+  const FitSummary own = fit_retract(c, kK, 3.0, [](FitOptions& o) { o.cantilever_stiffness.reset(); });
+  CHECK(same_fit(own, given));
+  const FitSummary automatic = fit_retract(c, kK, 3.0, [](FitOptions& o) {
+    o.retract_control = RetractControl::automatic;
+    o.cantilever_stiffness.reset();
+  });
+  CHECK(same_fit(automatic, given));
+  // Without any stiffness, auto falls back to load control, and cantilever refuses, naming the curve.
+  c.spring_constant = 0.0;
+  c.source = "retract.csv";
+  const FitSummary load = fit_retract(c, kK, 3.0, [](FitOptions& o) { o.retract_control = RetractControl::load; });
+  const FitSummary fallback = fit_retract(c, kK, 3.0, [](FitOptions& o) {
+    o.retract_control = RetractControl::automatic;
+    o.cantilever_stiffness.reset();
+  });
+  CHECK(same_fit(fallback, load));
+  INFO(given.brief_report() << load.brief_report());
+  CHECK_FALSE(same_fit(load, given));
+  CHECK_THROWS_WITH(fit_retract(c, kK, 3.0, [](FitOptions& o) { o.cantilever_stiffness.reset(); }),
+                    Catch::Contains("retract.csv") && Catch::Contains("'cantilever' needs"));
 }
 
 TEST_CASE("a tilted baseline is measured off contact and removed", "[fit][cantilever]") {
   const double noise = 2e-3 * 1.5 * M_PI * kW * kR, slope = 2e-4;  // N/m: 0.4 nN over 2 um
   CurveData c = synthetic_retract(0.1e-6, noise, 11);
   for (std::size_t i = 0; i < c.size(); ++i) c.P[i] += slope * (c.delta[i] - kDelta0);
-  const FitSummary s = fit_retract(c, kK, 3.0, [](FitOptions& o) { o.baseline_tilt = true; });
+  const FitSummary s = fit_retract(c, kK, 3.0, [](FitOptions& o) { o.baseline = Baseline::tilt; });
   INFO(s.brief_report());
   CHECK(std::abs(s.baseline_slope - slope) < 4.0 * s.baseline_slope_stderr);
   CHECK(std::abs(s[FitParameter::E].value - kE) < 4.0 * s[FitParameter::E].standard_error);
@@ -154,7 +192,7 @@ TEST_CASE("retract windows: down to the pull-off, and the top fraction of the fo
   CurveData c = synthetic_retract(0.0, 0.0, 1);
   for (double& p : c.P) p -= kP0;
   const FitSummary pull = fit_retract(c, kK, 3.0, [](FitOptions& o) {
-    o.retract_window = FitOptions::RetractWindow::to_pull_off;
+    o.retract_window = RetractWindow::to_pull_off;
     o.free = {FitParameter::E, FitParameter::w, FitParameter::delta0};
   });
   INFO(pull.brief_report());
@@ -163,7 +201,7 @@ TEST_CASE("retract windows: down to the pull-off, and the top fraction of the fo
   CHECK(rel_err(pull[FitParameter::E].value, kE) < 1e-6);
   CHECK(rel_err(pull[FitParameter::w].value, kW) < 1e-6);
   const FitSummary top = fit_retract(c, kK, 3.0, [](FitOptions& o) {
-    o.retract_window = FitOptions::RetractWindow::force_fraction;
+    o.retract_window = RetractWindow::force_fraction;
     o.window_fraction = 0.5;
     o.free = {FitParameter::E, FitParameter::w, FitParameter::delta0};
   });

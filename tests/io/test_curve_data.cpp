@@ -54,8 +54,8 @@ TEST_CASE("branches: segment column or a split at the deepest point", "[csv]") {
   CHECK(c.select(Branch::all).size() == 6);
   c.segment = {0, 0, 1, 1, 1, 1};
   CHECK(c.select(Branch::approach) == std::vector<std::size_t>{0, 1});
-  CHECK(parse_branch("retract") == Branch::retract);
-  CHECK_THROWS_WITH(parse_branch("down"), Catch::Contains("down") && Catch::Contains("approach"));
+  CHECK(parse_enum<Branch>("retract", "branch") == Branch::retract);
+  CHECK_THROWS_WITH(parse_enum<Branch>("down", "branch"), Catch::Contains("down") && Catch::Contains("approach"));
 }
 
 TEST_CASE("every defect names the line and the column", "[csv][errors]") {

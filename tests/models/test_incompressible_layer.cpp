@@ -7,6 +7,7 @@
 #include <boost/math/differentiation/finite_difference.hpp>
 #include <boost/math/quadrature/tanh_sinh.hpp>
 
+#include "layerjkr/built_scene.hpp"
 #include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/exact_layer.hpp"

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "layerjkr/built_scene.hpp"
 #include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/scene.hpp"
@@ -42,9 +43,10 @@ TEST_CASE("valid scenes build the expected models", "[scene]") {
   const Scene s = parse_scene(scene(kPara, kLayer, R"(, "model": "two_term", "w": 0.05)"));
   CHECK(s.w == 0.05);
   const BuiltScene b = build_scene(s);
-  CHECK(b.K == Approx(3e6 * 0.7 / (1e-4 * 1.3 * 0.4)).epsilon(1e-14));
-  CHECK(b.G < 0.0);
-  CHECK(b.E_star == Approx(3e6 / 0.91).epsilon(1e-14));
+  REQUIRE(b.resolved.K);
+  CHECK(*b.resolved.K == Approx(3e6 * 0.7 / (1e-4 * 1.3 * 0.4)).epsilon(1e-14));
+  CHECK(b.resolved.G.value() < 0.0);
+  CHECK(b.resolved.E_star.value() == Approx(3e6 / 0.91).epsilon(1e-14));
   CHECK(build_scene(parse_scene(scene(kPara, R"({"type": "layer", "E": 3e6, "nu": 0.49, "h": 1e-4})", R"(, "model": "two_term")"))).warnings.size() == 1);
 }
 

@@ -34,14 +34,14 @@ ModelChoice first_within(const ProfilePtr& profile, const ElasticLayer& layer, d
       continue;  // the candidate cannot reach a radius asked for
     }
     if (error <= tolerance) {
-      choice.model = model_name(kind);
+      choice.model = kind;
       choice.estimated_error = error;
       choice.contact_model = std::move(candidate);
       choice.reference = exact;
       return choice;
     }
   }
-  choice.model = model_name(ModelKind::exact);
+  choice.model = ModelKind::exact;
   choice.contact_model = exact;
   choice.estimated_error = judge(exact);
   return choice;

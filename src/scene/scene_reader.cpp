@@ -1,4 +1,4 @@
-// Strict JSON scene reader: every key is known, every value checked and named.
+// The strict JSON scene reader (scene.hpp): every key is known, every value checked and named.
 #include "layerjkr/scene.hpp"
 
 #include <cmath>
@@ -11,9 +11,7 @@
 
 #include "io/read_file.hpp"
 #include "layerjkr/error.hpp"
-#include "layerjkr/contact.hpp"
 #include "layerjkr/exact_layer.hpp"
-#include "layerjkr/model_choice.hpp"
 
 namespace layerjkr {
 namespace {
@@ -125,57 +123,47 @@ ProfilePtr read_indenter(const Reader& in, const json& root) {
                                 "\" is unknown (known: paraboloid, sphere, cone, power_law, table)");
 }
 
+// An enum spelled by the registry (types.hpp), or a failure naming the key and the known values.
+template <class E>
+E read_enum(const Reader& in, const std::string& text, const std::string& key) {
+  if (const std::optional<E> e = from_string<E>(text)) return *e;
+  in.fail(key, "= \"" + text + "\" is unknown (known: " + known_names<E>() + ")");
+}
+
 MediumSpec read_medium(const Reader& in, const json& root) {
   const json& med = in.object(root, "medium", "medium");
-  const std::string type = in.string(med, "type", "medium");
   MediumSpec m;
-  if (type == "winkler") {
-    in.only_keys(med, "medium", {"type", "K"});
-    m.type = MediumType::winkler;
-    m.K = in.number(med, "K", "medium");
-  } else if (type == "pasternak") {
-    in.only_keys(med, "medium", {"type", "K", "G"});
-    m.type = MediumType::pasternak;
-    m.K = in.number(med, "K", "medium");
-    m.G = in.number(med, "G", "medium");
-  } else if (type == "filonenko_borodich") {
-    in.only_keys(med, "medium", {"type", "K", "T"});
-    m.type = MediumType::filonenko_borodich;
-    m.K = in.number(med, "K", "medium");
-    m.T = in.number(med, "T", "medium");
-  } else if (type == "layer") {
-    in.only_keys(med, "medium", {"type", "E", "nu", "h", "base"});
-    m.type = MediumType::layer;
-    m.E = in.number(med, "E", "medium");
-    m.nu = in.number(med, "nu", "medium");
-    m.h = in.number(med, "h", "medium");
-    const std::string base = med.contains("base") ? in.string(med, "base", "medium") : "bonded";
-    if (base == "bonded")
-      m.base = Base::bonded;
-    else if (base == "frictionless")
-      m.base = Base::frictionless;
-    else
-      in.fail("medium.base", "= \"" + base + "\" is unknown (known: bonded, frictionless)");
-  } else if (type == "half_space") {
-    in.only_keys(med, "medium", {"type", "E", "nu"});
-    m.type = MediumType::half_space;
-    m.E = in.number(med, "E", "medium");
-    m.nu = in.number(med, "nu", "medium");
-  } else {
-    in.fail("medium.type", "= \"" + type +
-                               "\" is unknown (known: winkler, pasternak, filonenko_borodich, "
-                               "layer, half_space)");
+  m.type = read_enum<MediumType>(in, in.string(med, "type", "medium"), "medium.type");
+  switch (m.type) {
+    case MediumType::winkler:
+      in.only_keys(med, "medium", {"type", "K"});
+      m.K = in.number(med, "K", "medium");
+      break;
+    case MediumType::pasternak:
+      in.only_keys(med, "medium", {"type", "K", "G"});
+      m.K = in.number(med, "K", "medium");
+      m.G = in.number(med, "G", "medium");
+      break;
+    case MediumType::filonenko_borodich:
+      in.only_keys(med, "medium", {"type", "K", "T"});
+      m.K = in.number(med, "K", "medium");
+      m.T = in.number(med, "T", "medium");
+      break;
+    case MediumType::layer:
+      in.only_keys(med, "medium", {"type", "E", "nu", "h", "base"});
+      m.E = in.number(med, "E", "medium");
+      m.nu = in.number(med, "nu", "medium");
+      m.h = in.number(med, "h", "medium");
+      if (med.contains("base")) m.base = read_enum<Base>(in, in.string(med, "base", "medium"), "medium.base");
+      break;
+    case MediumType::half_space:
+      in.only_keys(med, "medium", {"type", "E", "nu"});
+      m.E = in.number(med, "E", "medium");
+      m.nu = in.number(med, "nu", "medium");
+      break;
   }
   return m;
 }
-
-constexpr std::pair<SceneModel, const char*> kSceneModelNames[] = {
-    {SceneModel::winkler, "winkler"},   {SceneModel::half_space, "half_space"},
-    {SceneModel::leading, "leading"},   {SceneModel::two_term, "two_term"},
-    {SceneModel::edge_corrected, "edge_corrected"}, {SceneModel::exact, "exact"},
-    {SceneModel::automatic, "auto"},    {SceneModel::asymptotic, "asymptotic"},
-    {SceneModel::full, "full"},         {SceneModel::incompressible, "incompressible"},
-    {SceneModel::uniform, "uniform"}};
 
 // The models a medium accepts, and its default (none: the scene must name one).
 struct MediumModels {
@@ -238,10 +226,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   s.model = read_model(in, root, s.medium.type);
 
   if (root.contains("solver")) {
-    const std::string solver = in.string(root, "solver", "scene");
-    if (solver != "closed_form" && solver != "ode")
-      in.fail("solver", "= \"" + solver + "\" is unknown (known: closed_form, ode)");
-    s.solver = solver == "ode" ? Solver::ode : Solver::closed_form;
+    s.solver = read_enum<Solver>(in, in.string(root, "solver", "scene"), "solver");
     if (s.solver == Solver::ode && s.medium.type == MediumType::half_space)
       in.fail("solver", "= \"ode\" is available for foundation models only, not half_space");
   }
@@ -261,172 +246,12 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   if (expensive(s.model) && s.solver != Solver::closed_form)
     in.fail("solver", "must be closed_form with model \"" + std::string(to_string(s.model)) + "\"");
   // Every invalid value is reported at parse time, without building anything.
-  in.checked("medium", [&] {
-    if (s.model == SceneModel::automatic) {  // resolves only for a radius: check the layer
-      detail::require_positive("layer", "h", s.medium.h);
-      (void)effective_modulus(s.medium.E, s.medium.nu);
-    } else {
-      validate(resolve_model(s).spec);
-    }
-  });
+  in.checked("medium", [&] { validate(resolve_model(s).spec); });
   return s;
-}
-
-const char* to_string(SceneModel model) {
-  for (const auto& [m, name] : kSceneModelNames)
-    if (m == model) return name;
-  return "unknown";
-}
-
-ResolvedModel resolve_model(const Scene& s) {
-  const MediumSpec& m = s.medium;
-  ResolvedModel r;
-  ModelSpec& spec = r.spec;
-  spec.ode = s.solver == Solver::ode;
-  switch (m.type) {
-    case MediumType::half_space:
-      spec.kind = ModelKind::half_space;
-      spec.layer = {m.E, m.nu, 0.0, Base::bonded};
-      return r;
-    case MediumType::winkler:
-      spec.kind = ModelKind::winkler;
-      spec.K = r.K = m.K;
-      r.has_foundation_constants = true;
-      return r;
-    case MediumType::pasternak:
-    case MediumType::filonenko_borodich:
-      spec.kind = s.model == SceneModel::full ? ModelKind::full_foundation : ModelKind::two_term;
-      spec.K = r.K = m.K;
-      spec.G = r.G = m.type == MediumType::pasternak ? m.G : m.T;
-      r.has_foundation_constants = true;
-      return r;
-    case MediumType::layer:
-      break;
-  }
-  spec.layer = {m.E, m.nu, m.h, m.base};
-  if (s.model == SceneModel::automatic)
-    throw Error("resolve_model: model \"auto\" resolves only for a contact radius (build_scene)");
-  if (s.model == SceneModel::exact) {  // needs no thin-layer constants (allows nu = 0.5)
-    spec.kind = ModelKind::exact;
-    return r;
-  }
-  if (s.model == SceneModel::incompressible) {  // nu = 0.5 only: no compressible constants
-    spec.kind = ModelKind::incompressible;
-    return r;
-  }
-  if (s.model == SceneModel::uniform) {  // finite up to nu = 0.5: no compressible constants
-    spec.kind = ModelKind::uniform;
-    return r;
-  }
-  const ThinLayerConstants c = thin_layer_constants(spec.layer);
-  r.has_foundation_constants = true;
-  r.K = c.K;
-  r.G = c.G;
-  r.warnings = c.warnings;
-  if (s.model == SceneModel::edge_corrected) {
-    spec.kind = ModelKind::edge_corrected;
-    return r;
-  }
-  spec.kind = s.model == SceneModel::leading || c.G == 0.0 ? ModelKind::winkler : ModelKind::two_term;
-  spec.K = c.K;
-  spec.G = s.model == SceneModel::leading ? 0.0 : c.G;
-  return r;
 }
 
 Scene load_scene(const std::string& path) {
   return parse_scene(detail::read_file(path, "the scene file"), path);
-}
-
-namespace {
-
-using Choose = std::function<ModelChoice(const ElasticLayer&)>;
-
-// What a resolved model approximates (BuiltScene::reference).
-ContactModelPtr reference_model(const Scene& s, const ModelSpec& spec) {
-  const MediumSpec& m = s.medium;
-  switch (spec.kind) {
-    case ModelKind::winkler:
-    case ModelKind::two_term:
-    case ModelKind::edge_corrected:
-    case ModelKind::incompressible:
-    case ModelKind::uniform:
-      if (m.type == MediumType::layer) return layer_reference(s.profile, {m.E, m.nu, m.h, m.base});
-      if (spec.kind == ModelKind::two_term && spec.G > 0.0) {  // asymptotic Pasternak / F-B
-        ModelSpec full = spec;
-        full.kind = ModelKind::full_foundation;
-        return make_contact_model(s.profile, full);
-      }
-      return nullptr;
-    case ModelKind::full_foundation:
-      if (m.type == MediumType::layer) return layer_reference(s.profile, {m.E, m.nu, m.h, m.base});
-      return nullptr;
-    case ModelKind::half_space:
-    case ModelKind::exact:
-      return nullptr;
-  }
-  return nullptr;
-}
-
-BuiltScene build(const Scene& s, const Choose& choose) {
-  Reader in("scene");
-  BuiltScene b;
-  const MediumSpec& m = s.medium;
-  if (m.type == MediumType::layer || m.type == MediumType::half_space) {
-    b.has_effective_modulus = true;
-    b.E_star = in.checked("medium", [&] { return effective_modulus(m.E, m.nu); });
-  }
-  if (s.model == SceneModel::automatic) {
-    const ElasticLayer layer{m.E, m.nu, m.h, m.base};
-    if (m.nu < 0.5) {  // the thin-layer constants are reported where they exist
-      const ThinLayerConstants c = in.checked("medium", [&] { return thin_layer_constants(layer); });
-      b.has_foundation_constants = true;
-      b.K = c.K;
-      b.G = c.G;
-    }
-    const ModelChoice choice = in.checked("medium", [&] { return choose(layer); });
-    b.model = choice.contact_model;
-    b.reference = choice.reference;
-    b.automatic = true;
-    b.chosen_model = choice.model;
-    b.estimated_error = choice.estimated_error;
-    return b;
-  }
-  const ResolvedModel r = in.checked("medium", [&] { return resolve_model(s); });
-  b.warnings = r.warnings;
-  b.has_foundation_constants = r.has_foundation_constants;
-  b.K = r.K;
-  b.G = r.G;
-  b.model = in.checked("medium", [&] { return make_contact_model(s.profile, r.spec); });
-  b.reference = in.checked("medium", [&] { return reference_model(s, r.spec); });
-  return b;
-}
-
-}  // namespace
-
-BuiltScene build_scene(const Scene& s, double a_min) {
-  if (s.model != SceneModel::automatic) return build(s, nullptr);
-  if (!(a_min > 0.0) || !std::isfinite(a_min))
-    throw DomainError("build_scene", "a_min (smallest contact radius of interest)", a_min,
-                      "finite and > 0 for model auto");
-  std::vector<double> radii;
-  for (int k = 0; k <= 4; ++k) radii.push_back(a_min * std::ldexp(1.0, k));
-  return build_scene_for_radii(s, radii);
-}
-
-BuiltScene build_scene_for_radii(const Scene& s, const std::vector<double>& radii) {
-  return build(s, [&](const ElasticLayer& layer) {
-    return choose_layer_model(s.profile, layer, s.w, s.tolerance, radii);
-  });
-}
-
-BuiltScene build_scene_for_summary(const Scene& s) {
-  return build(s, [&](const ElasticLayer& layer) {
-    return choose_layer_model_for_summary(s.profile, layer, s.w, s.tolerance);
-  });
-}
-
-ModelErrorEstimator error_estimator(const Scene& s, const BuiltScene& b) {
-  return ModelErrorEstimator(b.model, b.reference, s.w);
 }
 
 }  // namespace layerjkr

@@ -1,0 +1,135 @@
+// layerjkr: every enumeration of the public API and its one spelling registry.
+//
+// As in Ceres (ceres/types.h), options and answers hold enums; strings exist only at the
+// edges - scene files, the CLI, the Python module, reports - and every one of them converts
+// through the functions below, so an enumerator has exactly one spelling:
+//
+//   layerjkr::to_string(layerjkr::Branch::retract)          // "retract"
+//   layerjkr::from_string<layerjkr::Branch>("retract")      // std::optional<Branch>
+//   layerjkr::known_names<layerjkr::Branch>()               // "approach, retract, all"
+//
+// The spellings are the scene schema's and the reports' (docs/fitting.md, scene.hpp).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <type_traits>
+
+namespace layerjkr {
+
+/// How a layer is attached to its rigid base: "bonded", "frictionless".
+enum class Base { bonded, frictionless };
+
+/// Which foundation the ODE route integrates: "asymptotic", "full".
+enum class FoundationKind { asymptotic, full };
+
+/// Every contact model the library builds (model_spec.hpp): "winkler", "two_term",
+/// "full_foundation", "half_space", "edge_corrected", "exact", "incompressible", "uniform".
+enum class ModelKind {
+  winkler,          ///< p = K w (eq. 41)
+  two_term,         ///< p = K w - G lap w inside the contact (eqs. 43-45, corrected force)
+  full_foundation,  ///< Pasternak / Filonenko-Borodich on the whole plane (G > 0)
+  half_space,       ///< elastic half-space (Galin / Sneddon)
+  edge_corrected,   ///< Winkler at a + beta h (exact_layer.hpp)
+  exact,            ///< the exact elastic layer (exact_layer.hpp)
+  incompressible,   ///< thin incompressible bonded layer, lubrication law (model.hpp)
+  uniform,          ///< bonded thin layer, two-term compliance form uniform in nu (model.hpp)
+};
+
+/// A scene's medium (scene.hpp): "winkler", "pasternak", "filonenko_borodich", "layer",
+/// "half_space".
+enum class MediumType { winkler, pasternak, filonenko_borodich, layer, half_space };
+
+/// The scene's "model" key: what the user asked for. Spelled as the enumerator, except
+/// automatic, which is "auto". Which ones a medium accepts: scene.hpp.
+enum class SceneModel { winkler, half_space, leading, two_term, edge_corrected, exact, automatic,
+                        asymptotic, full, incompressible, uniform };
+
+/// How a foundation's P_H is computed: "closed_form", or the ODE route "ode" (model.hpp).
+enum class Solver { closed_form, ode };
+
+/// Which part of a curve a fit uses: "approach", "retract", "all".
+enum class Branch { approach, retract, all };
+
+/// A fitted quantity (fit.hpp): "K", "G", "w", "delta0", "P0", "E", "R". ("T", a
+/// Filonenko-Borodich tension, is read as G by from_string.)
+enum class FitParameter { K, G, w, delta0, P0, E, R };
+
+/// Robust loss on force residuals (fit.hpp): "none", "huber", "cauchy".
+enum class LossType { none, huber, cauchy };
+
+/// Which unloading samples a retract fit uses (fit.hpp): "all", "pull_off", "fraction".
+enum class RetractWindow { all, to_pull_off, force_fraction };
+
+/// What controls the retract (fit.hpp): "auto", "load", "cantilever", "grips".
+enum class RetractControl {
+  automatic,    ///< a cantilever where its stiffness is known (given or the curve's own), else load
+  load,         ///< load control: the tip lets go at the pull-off force
+  cantilever,   ///< a cantilever of known stiffness (given or the curve's own; required)
+  fixed_grips,  ///< displacement control: the tip lets go at the fixed-grips instability
+};
+
+/// The baseline a fit subtracts (fit.hpp): "constant" (P0), "tilt" (P0 + slope delta).
+enum class Baseline { constant, tilt };
+
+/// How a fit evaluates its model (fit.hpp): "foundation" (closed forms in K, G or E),
+/// "hertz" (half-space with a paraboloid), "tabulated" (a spline of any other model).
+enum class FitFamily { foundation, hertz, tabulated };
+
+/// A segment of an instrument curve (instrument.hpp): "extend", "retract", "pause".
+enum class SegmentStyle { extend, retract, pause };
+
+/// An instrument file's format (instrument.hpp): "jpk-force", "jpk-force-map",
+/// "jpk-qi-data", "ibw".
+enum class InstrumentFormat { jpk_force, jpk_force_map, jpk_qi_data, ibw };
+
+/// Smoothing of discrete data (discrete.hpp): "log_polynomial", "log_spline".
+enum class Smoothing { log_polynomial, log_spline };
+
+/// Which reconstruction from discrete data (discrete.hpp): "two_models", "single_model".
+enum class DiscreteApproach { two_models, single_model };
+
+/// True for the enumerations above (those the registry knows).
+template <class E>
+struct is_registered_enum : std::false_type {};
+#define LAYERJKR_REGISTERED_ENUM(E) \
+  template <>                       \
+  struct is_registered_enum<E> : std::true_type {};
+LAYERJKR_REGISTERED_ENUM(Base)
+LAYERJKR_REGISTERED_ENUM(FoundationKind)
+LAYERJKR_REGISTERED_ENUM(ModelKind)
+LAYERJKR_REGISTERED_ENUM(MediumType)
+LAYERJKR_REGISTERED_ENUM(SceneModel)
+LAYERJKR_REGISTERED_ENUM(Solver)
+LAYERJKR_REGISTERED_ENUM(Branch)
+LAYERJKR_REGISTERED_ENUM(FitParameter)
+LAYERJKR_REGISTERED_ENUM(LossType)
+LAYERJKR_REGISTERED_ENUM(RetractWindow)
+LAYERJKR_REGISTERED_ENUM(RetractControl)
+LAYERJKR_REGISTERED_ENUM(Baseline)
+LAYERJKR_REGISTERED_ENUM(FitFamily)
+LAYERJKR_REGISTERED_ENUM(SegmentStyle)
+LAYERJKR_REGISTERED_ENUM(InstrumentFormat)
+LAYERJKR_REGISTERED_ENUM(Smoothing)
+LAYERJKR_REGISTERED_ENUM(DiscreteApproach)
+#undef LAYERJKR_REGISTERED_ENUM
+
+/// The spelling of `value` (a static string; "unknown" for a value outside the enumeration).
+template <class E, class = std::enable_if_t<is_registered_enum<E>::value>>
+const char* to_string(E value);
+
+/// The enumerator spelled `name`, or nullopt.
+template <class E, class = std::enable_if_t<is_registered_enum<E>::value>>
+std::optional<E> from_string(std::string_view name);
+
+/// Every spelling of E, comma-separated, in declaration order (for error messages).
+template <class E, class = std::enable_if_t<is_registered_enum<E>::value>>
+std::string known_names();
+
+/// The enumerator spelled `name`; throws InputError "<what> = "<name>" is unknown (known:
+/// ...)" otherwise. `what` names the key or option the text came from.
+template <class E, class = std::enable_if_t<is_registered_enum<E>::value>>
+E parse_enum(std::string_view name, const std::string& what);
+
+}  // namespace layerjkr

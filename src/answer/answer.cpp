@@ -1,0 +1,83 @@
+// solve_summary and solve_curve (answer.hpp): the scene's model, its JKR solution and the
+// judge of both, with the warnings the estimates call for.
+#include "layerjkr/answer.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "layerjkr/error.hpp"
+
+namespace layerjkr {
+namespace {
+
+std::string percent(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g %%", 100.0 * x);
+  return buf;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+void AnswerOptions::validate() const {
+  detail::require_in_open_interval("AnswerOptions", "warning_threshold", warning_threshold, 0.0, 1.0);
+}
+
+SummaryAnswer solve_summary(const Scene& scene, const AnswerOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  options.validate();
+  BuiltScene built = build_scene_for_summary(scene);
+  const JkrSolution solution(built.model, scene.w);
+  SummaryAnswer s;
+  s.contact = summarize(solution);
+  s.error = error_estimator(scene, built).summary(s.contact);
+  s.profile = scene.profile->describe();
+  s.K = built.resolved.K;
+  s.G = built.resolved.G;
+  s.g_is_tension = built.resolved.g_is_tension;
+  s.E_star = built.resolved.E_star;
+  s.choice = built.choice;
+  s.warnings = std::move(built.warnings);
+  if (!std::isfinite(s.error.worst()))
+    s.warnings.push_back("model '" + s.contact.model + "' misses a critical point its reference model '" +
+                         s.error.reference + "' has (estimated error unbounded)");
+  else if (s.error.worst() > options.warning_threshold)
+    s.warnings.push_back("model '" + s.contact.model + "' is estimated " + percent(s.error.pull_off_force) +
+                         " off its reference model '" + s.error.reference + "' in the pull-off force and " +
+                         percent(s.error.zero_load_radius) + " in the zero-load radius");
+  s.seconds = seconds_since(start);
+  return s;
+}
+
+CurveAnswer solve_curve(const Scene& scene, const std::vector<double>& radii, const AnswerOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  options.validate();
+  if (radii.empty()) throw InputError("curve: give at least one contact radius");
+  for (double a : radii)
+    if (!(a > 0.0) || !std::isfinite(a))
+      throw InputError("contact radius a = " + format_double(a) + " is invalid; valid range: finite and > 0 [m]");
+  BuiltScene built = build_scene_for_radii(scene, radii);
+  const JkrSolution solution(built.model, scene.w);
+  const ModelErrorEstimator estimator = error_estimator(scene, built);
+  CurveAnswer c;
+  c.error_estimate = estimator.along(radii);
+  c.states = solution.curve(radii);
+  c.model = built.model->name();
+  c.reference = estimator.reference_name();
+  c.choice = built.choice;
+  c.warnings = std::move(built.warnings);
+  double worst = 0.0, worst_a = 0.0;
+  for (std::size_t i = 0; i < c.states.size(); ++i)
+    if (c.error_estimate[i] > worst) worst = c.error_estimate[i], worst_a = c.states[i].a;
+  if (worst > options.warning_threshold)
+    c.warnings.push_back("model '" + c.model + "' is estimated " + percent(worst) + " off its reference model '" +
+                         c.reference + "' at a = " + format_double(worst_a) + " m (column error_est)");
+  c.seconds = seconds_since(start);
+  return c;
+}
+
+}  // namespace layerjkr

@@ -1,0 +1,122 @@
+// The fit flags and their mapping to typed library options (fit_options.hpp). The CLI's
+// mini-languages (E,w lists, huber:SCALE, fraction:F) end here.
+#include "fit_options.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <set>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "layerjkr/error.hpp"
+#include "layerjkr/types.hpp"
+
+namespace layerjkr::cli {
+namespace {
+
+// "E,w,delta0": known names, no duplicates, at least one.
+std::vector<FitParameter> parse_free(const std::string& list) {
+  std::vector<FitParameter> out;
+  std::set<FitParameter> seen;
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    const std::optional<FitParameter> p = from_string<FitParameter>(item);
+    if (!p) throw InputError("--free: '" + item + "' is not a fit parameter (known: K, G or T, w, delta0, P0, E, R)");
+    if (!seen.insert(*p).second) throw InputError("--free: '" + item + "' is listed twice");
+    out.push_back(*p);
+  }
+  if (out.empty()) throw InputError("--free: give at least one parameter (e.g. E,w,delta0)");
+  return out;
+}
+
+void parse_loss(const std::string& text, FitOptions& o) {
+  if (text == "none") return;
+  const auto colon = text.find(':');
+  const std::optional<LossType> kind = from_string<LossType>(text.substr(0, colon));
+  if (!kind || *kind == LossType::none || colon == std::string::npos)
+    throw InputError("--loss = \"" + text + "\" is invalid; use none, huber:SCALE or cauchy:SCALE (SCALE in N)");
+  o.loss = *kind;
+  const std::string scale = text.substr(colon + 1);
+  char* end = nullptr;
+  const double s = std::strtod(scale.c_str(), &end);
+  if (scale.empty() || *end != '\0' || !(s > 0.0) || !std::isfinite(s))
+    throw InputError("--loss: scale '" + scale + "' must be a finite number > 0 [N]");
+  o.loss_scale = s;
+}
+
+void parse_window(const std::string& text, FitOptions& o) {
+  if (text == "all") {
+    o.retract_window = RetractWindow::all;
+  } else if (text == "pull-off" || text == "pull_off") {
+    o.retract_window = RetractWindow::to_pull_off;
+  } else if (text.rfind("fraction:", 0) == 0) {
+    const std::string f = text.substr(9);
+    char* end = nullptr;
+    const double v = std::strtod(f.c_str(), &end);
+    if (f.empty() || *end != '\0' || !(v > 0.0 && v <= 1.0))
+      throw InputError("--window fraction:" + f + " is invalid; the fraction must be in (0, 1]");
+    o.retract_window = RetractWindow::force_fraction;
+    o.window_fraction = v;
+  } else {
+    throw InputError("--window = \"" + text + "\" is invalid; use all, pull-off or fraction:F");
+  }
+}
+
+}  // namespace
+
+Prepared prepare_options(const FitArguments& a) {
+  Prepared p;
+  p.options.free = parse_free(a.free);
+  p.options.branch = parse_enum<Branch>(a.branch, "--branch");
+  parse_loss(a.loss, p.options);
+  p.options.extra_starts = a.extra_starts;
+  p.options.max_iterations = a.max_iterations;
+  parse_units(a.units, p.csv);
+  p.csv.spring_constant = a.spring_constant;
+  p.csv.z_sign = a.z_sign;
+  p.csv.deflection_sign = a.deflection_sign;
+  p.csv.curve = a.curve;
+  // The spring constant comes with the curve (an instrument file, or --spring-constant, which
+  // the readers put into CurveData::spring_constant).
+  p.options.retract_control = parse_enum<RetractControl>(a.control, "--control");
+  p.options.baseline = parse_enum<Baseline>(a.baseline, "--baseline");
+  parse_window(a.window, p.options);
+  try {
+    p.options.validate();
+    p.csv.validate();
+  } catch (const DomainError& e) {
+    throw InputError(std::string("invalid option: ") + e.what());
+  }
+  return p;
+}
+
+Prepared prepare(const FitArguments& a) {
+  Prepared p = prepare_options(a);
+  p.scene = load_scene(a.scene);
+  return p;
+}
+
+void add_fit_options(CLI::App& c, FitArguments& a) {
+  c.add_option("--scene", a.scene, "Scene JSON: indenter, medium, model; starting values")->required();
+  c.add_option("--free", a.free, "Parameters to fit, comma-separated: K,G (or T),w,delta0,P0,E,R")->required();
+  c.add_option("--loss", a.loss, "Robust loss: none | huber:SCALE | cauchy:SCALE (SCALE in N)");
+  c.add_option("--branch", a.branch, "approach | retract | all (default approach)");
+  c.add_option("--units", a.units, "Units of the CSV: LENGTH,FORCE, e.g. nm,nN (default m,N)");
+  c.add_option("--spring-constant", a.spring_constant, "Cantilever stiffness [N/m] for z,deflection data");
+  c.add_option("--z-sign", a.z_sign, "+1 if z grows towards the sample, -1 if it decreases");
+  c.add_option("--deflection-sign", a.deflection_sign, "+1 if deflection > 0 means repulsion, else -1");
+  c.add_option("--starts", a.extra_starts, "Extra starts around the data-driven guess (default 0)");
+  c.add_option("--max-iterations", a.max_iterations, "Ceres iteration limit (default 200)");
+  c.add_option("--curve", a.curve, "Which curve of a file holding several (instrument map or export)");
+  c.add_option("--baseline", a.baseline, "constant | tilt (a linear baseline from the samples off contact)");
+  c.add_option("--window", a.window,
+               "Retract samples used: all | pull-off (largest force to the force minimum) | fraction:F (the top F "
+               "of the unloading force range)");
+  c.add_option("--control", a.control,
+               "Retract control: auto (cantilever when the spring constant is known, else load) | load | "
+               "cantilever | grips");
+}
+
+}  // namespace layerjkr::cli

@@ -1,0 +1,42 @@
+// layerjkr CLI: the options `fit` and `fit-map` share, as typed on the command line, and
+// their mapping to the library's typed options (fit.hpp, curve_data.hpp).
+#pragma once
+
+#include <string>
+
+#include "layerjkr/curve_data.hpp"
+#include "layerjkr/fit.hpp"
+#include "layerjkr/scene.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace layerjkr::cli {
+
+/// The flags shared by `fit` and `fit-map`, as typed.
+struct FitArguments {
+  std::string scene, free, loss = "none", branch = "approach", units = "m,N";
+  double spring_constant = 0.0, z_sign = 1.0, deflection_sign = 1.0;
+  int extra_starts = 0, max_iterations = 200;
+  int curve = -1;  ///< --curve: which curve of a file holding several (-1: it must hold one)
+  std::string control = "auto";  ///< --control: auto | load | cantilever | grips
+  std::string baseline = "constant";  ///< --baseline: constant | tilt
+  std::string window = "all";    ///< --window: all | pull-off | fraction:F
+};
+
+/// The arguments as library options.
+struct Prepared {
+  Scene scene;
+  FitOptions options;
+  CsvOptions csv;
+};
+/// Everything but the scene; throws InputError naming the flag.
+Prepared prepare_options(const FitArguments& args);
+/// prepare_options and the scene loaded from args.scene.
+Prepared prepare(const FitArguments& args);
+
+/// Registers the shared flags on a subcommand.
+void add_fit_options(CLI::App& command, FitArguments& args);
+
+}  // namespace layerjkr::cli

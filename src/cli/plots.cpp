@@ -1,0 +1,123 @@
+// The fit and fit-map pictures (plots.hpp), drawn by gnuplot from temporary data files.
+#include "plots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include "gnuplot.hpp"
+#include "layerjkr/error.hpp"
+
+namespace layerjkr::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The plot's data file goes whether gnuplot succeeds or not.
+struct RemoveOnExit {
+  std::string path;
+  ~RemoveOnExit() { std::remove(path.c_str()); }
+};
+
+std::string num(double v) { return std::isfinite(v) ? format_double(v) : ""; }
+
+}  // namespace
+
+// Data, fitted curve and residuals with gnuplot (pngcairo), through a temporary file.
+void plot_fit(const FitSummary& s, const std::string& path) {
+  const std::string dat = path + ".dat.tmp", png = path + ".tmp.png";
+  {
+    std::ofstream f(dat);
+    f.precision(17);
+    for (std::size_t i = 0; i < s.delta.size(); ++i)
+      f << s.delta[i] << " " << s.P[i] << " " << s.P_fit[i] << " " << s.P[i] - s.P_fit[i] << " "
+        << (!s.excluded.empty() && s.excluded[i] ? 1 : 0) << "\n";
+    if (!f) throw InputError(path + ": cannot write the plot data");
+  }
+  std::ostringstream g;
+  g << "set terminal pngcairo size 900,750 font ',10' noenhanced\n"
+    << "set output '" << png << "'\n"
+    << "set multiplot layout 2,1 title 'layerjkr fit: " << s.model << " (rms " << s.rms_residual << " N)'\n"
+    << "set format x '%.3s%c'\nset format y '%.1s%c'\nset grid\n"
+    << "set ylabel 'force P [N]'\nset key top left\n"
+    << "plot '" << dat << "' using 1:($5 == 0 ? $2 : 1/0) with points pt 7 ps 0.4 lc rgb '#777777' title 'data', "
+    << "'' using 1:($5 == 1 ? $2 : 1/0) with points pt 7 ps 0.4 lc rgb '#e67e22' title 'excluded (not JKR)', "
+    << "'' using 1:3 with points pt 7 ps 0.3 lc rgb '#c0392b' title 'fit'\n"
+    << "set xlabel 'delta [m]'\nset ylabel 'residual [N]'\nunset key\n"
+    << "plot '" << dat << "' using 1:4 with points pt 7 ps 0.3 lc rgb '#2c3e50', 0 lc rgb '#c0392b'\n"
+    << "unset multiplot\n";
+  const RemoveOnExit remove_dat{dat};
+  run_gnuplot(g.str(), png, "--plot");
+  fs::rename(png, path);
+}
+
+void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitParameter>& free,
+                     const std::string& dir) {
+  int nx = 0, ny = 0;
+  for (const auto& it : items) {
+    nx = std::max(nx, it.grid_x + 1);
+    ny = std::max(ny, it.grid_y + 1);
+  }
+  if (nx == 0 || ny == 0)
+    throw InputError("--plot-dir: no input carries map positions (instrument force maps and QI files do)");
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError("--plot-dir " + dir + ": cannot create the directory (" + ec.message() + ")");
+  struct Field {
+    std::string name, label;
+    std::function<double(const BatchItem&)> value;
+  };
+  std::vector<Field> fields;
+  for (FitParameter q : free) {
+    const std::string n = to_string(q);
+    const std::string label = q == FitParameter::delta0 ? "contact point delta0 [m]"
+                              : q == FitParameter::E    ? "E [Pa]"
+                              : q == FitParameter::K    ? "K [N/m^3]"
+                              : q == FitParameter::w    ? "w [J/m^2]"
+                              : q == FitParameter::P0   ? "baseline P0 [N]"
+                                                        : n;
+    fields.push_back({n, label, [q](const BatchItem& it) {
+                        for (const auto& e : it.summary.parameters)
+                          if (e.parameter == q) return e.value;
+                        return std::nan("");
+                      }});
+  }
+  fields.push_back({"pull_off", "measured pull-off force [N]", [](const BatchItem& it) { return it.summary.pull_off_force; }});
+  fields.push_back({"rms_residual", "rms residual [N]", [](const BatchItem& it) { return it.summary.rms_residual; }});
+  fields.push_back({"status", "status (1 fitted, 0 failed)", [](const BatchItem& it) { return it.ok ? 1.0 : 0.0; }});
+  for (const Field& f : fields) {
+    const std::string dat = (fs::path(dir) / (f.name + ".dat.tmp")).string();
+    const std::string png = (fs::path(dir) / (f.name + ".png")).string();
+    {
+      std::ofstream d(dat);
+      d.precision(17);
+      // gnuplot's image needs every pixel of the grid: NaN where there is no value.
+      std::vector<double> grid(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), std::nan(""));
+      for (const auto& it : items)
+        if (it.grid_x >= 0 && it.grid_y >= 0)
+          grid[static_cast<std::size_t>(it.grid_y) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(it.grid_x)] =
+              f.name == "status" || it.ok ? f.value(it) : std::nan("");
+      for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x) {
+          const double v = grid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(x)];
+          d << x << " " << y << " " << (std::isfinite(v) ? num(v) : std::string("NaN")) << "\n";
+        }
+      if (!d) throw InputError("--plot-dir: cannot write " + dat);
+    }
+    std::ostringstream g;
+    g << "set terminal pngcairo size 640,560 font ',10' noenhanced\nset output '" << png << "'\n"
+      << "set title 'fit-map: " << f.label << "'\nset xlabel 'grid x'\nset ylabel 'grid y'\n"
+      << "set xrange [-0.5:" << nx - 0.5 << "]\nset yrange [-0.5:" << ny - 0.5 << "]\n"
+      << "set size ratio -1\nset palette rgb 33,13,10\nset colorbox\n"
+      << (f.name == "status" ? "set cbrange [0:1]\n" : "")
+      << "plot '" << dat << "' using 1:2:3 with image notitle\n";
+    const RemoveOnExit remove_dat{dat};
+    run_gnuplot(g.str(), png, "--plot-dir");
+  }
+}
+
+}  // namespace layerjkr::cli

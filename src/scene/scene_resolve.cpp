@@ -1,0 +1,100 @@
+// resolve_model (scene.hpp): the one reading of a scene's medium and model.
+#include "layerjkr/scene.hpp"
+
+#include "layerjkr/error.hpp"
+#include "layerjkr/exact_layer.hpp"
+
+namespace layerjkr {
+namespace {
+
+ModelSpec exact_layer_spec(const ElasticLayer& layer) {
+  ModelSpec spec;
+  spec.kind = ModelKind::exact;
+  spec.layer = layer;
+  return spec;
+}
+
+// A foundation medium: its own constants; the asymptotic model with G > 0 approximates the
+// full one.
+void resolve_foundation(const Scene& s, ResolvedModel& r) {
+  const MediumSpec& m = s.medium;
+  ModelSpec& spec = r.spec;
+  spec.K = m.K;
+  if (m.type == MediumType::winkler) {
+    spec.kind = ModelKind::winkler;
+    r.G = 0.0;  // reported: a Winkler foundation is the two-term one with G = 0
+  } else {
+    spec.kind = s.model == SceneModel::full ? ModelKind::full_foundation : ModelKind::two_term;
+    spec.G = m.type == MediumType::pasternak ? m.G : m.T;
+    r.G = spec.G;
+    r.g_is_tension = m.type == MediumType::filonenko_borodich;
+    if (spec.kind == ModelKind::two_term && spec.G > 0.0) {
+      ModelSpec full = spec;
+      full.kind = ModelKind::full_foundation;
+      r.reference = full;
+    }
+  }
+  r.K = spec.K;
+}
+
+// A layer: the exact model needs no thin-layer constants (so nu may be 1/2), nor do the
+// incompressible and uniform laws; the others are thin-layer foundations of the layer.
+void resolve_layer(const Scene& s, ResolvedModel& r) {
+  const MediumSpec& m = s.medium;
+  const ElasticLayer layer{m.E, m.nu, m.h, m.base};
+  ModelSpec& spec = r.spec;
+  spec.layer = layer;
+  r.E_star = effective_modulus(m.E, m.nu);
+  const auto report_constants = [&](const ThinLayerConstants& c) {
+    r.K = c.K;
+    r.G = c.G;
+  };
+  switch (s.model) {
+    case SceneModel::automatic:
+      spec.kind = ModelKind::exact;
+      r.automatic = true;
+      r.tolerance = s.tolerance;
+      r.reference = exact_layer_spec(layer);
+      if (m.nu < 0.5) report_constants(thin_layer_constants(layer));  // where they exist
+      return;
+    case SceneModel::exact: spec.kind = ModelKind::exact; return;
+    case SceneModel::incompressible: spec.kind = ModelKind::incompressible; break;
+    case SceneModel::uniform: spec.kind = ModelKind::uniform; break;
+    default: {
+      const ThinLayerConstants c = thin_layer_constants(layer);
+      report_constants(c);
+      r.warnings = c.warnings;
+      if (s.model == SceneModel::edge_corrected) {
+        spec.kind = ModelKind::edge_corrected;
+      } else {  // leading, two_term: a foundation whose constants E scales
+        const bool leading = s.model == SceneModel::leading || c.G == 0.0;
+        spec.kind = leading ? ModelKind::winkler : ModelKind::two_term;
+        spec.K = c.K;
+        spec.G = s.model == SceneModel::leading ? 0.0 : c.G;
+        r.constants_from_layer = true;
+      }
+    }
+  }
+  r.reference = exact_layer_spec(layer);
+}
+
+}  // namespace
+
+ResolvedModel resolve_model(const Scene& s) {
+  ResolvedModel r;
+  r.spec.ode = s.solver == Solver::ode;
+  switch (s.medium.type) {
+    case MediumType::half_space:
+      r.spec.kind = ModelKind::half_space;
+      r.spec.layer = {s.medium.E, s.medium.nu, 0.0, Base::bonded};
+      r.E_star = effective_modulus(s.medium.E, s.medium.nu);
+      break;
+    case MediumType::winkler:
+    case MediumType::pasternak:
+    case MediumType::filonenko_borodich: resolve_foundation(s, r); break;
+    case MediumType::layer: resolve_layer(s, r); break;
+  }
+  return r;
+}
+
+}  // namespace layerjkr
