@@ -2,6 +2,7 @@
 #pragma once
 
 #include "layerjkr/contact.hpp"
+#include "layerjkr/context.hpp"
 #include "layerjkr/curve_data.hpp"
 #include "layerjkr/discrete.hpp"
 #include "layerjkr/error.hpp"

@@ -54,7 +54,10 @@ ExactLayerKernel::ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions 
   options_.validate();
   detail::require_positive("ExactLayerKernel", "h", layer.h);
   E_star_ = layerjkr::effective_modulus(layer.E, layer.nu);  // validates E, nu in (-1, 0.5]
-  kernel_ = detail::shared_layer_kernel(layer.nu, layer.base == Base::bonded);
+  kernel_ = detail::shared_layer_kernel(layer.nu, layer.base == Base::bonded, options_.context);
+  // Holding the Context would make a cycle for the power-law tables it caches, whose unit
+  // solver is an ExactLayerKernel: a private Context would never be freed.
+  options_.context.reset();
 }
 
 ExactLayerKernel::~ExactLayerKernel() = default;
