@@ -23,12 +23,13 @@
 #include <vector>
 
 #include "layerjkr/curve_data.hpp"
+#include "layerjkr/types.hpp"
 
 namespace layerjkr {
 
 /// One segment of a curve (approach, retract, pause), samples in acquisition order.
 struct InstrumentSegment {
-  std::string style;                 ///< "extend", "retract", "pause" (as the file says)
+  SegmentStyle style = SegmentStyle::extend;  ///< as the file says (an unknown style is an error)
   std::vector<double> force;         ///< [N], positive = repulsive (cantilever deflected up)
   std::vector<double> height;        ///< measured height [m] (the sensor; larger = farther away)
   std::vector<double> piezo_height;  ///< commanded piezo height [m] (empty if absent)
@@ -53,7 +54,7 @@ struct InstrumentCurve {
 /// A file's curves and what it says about itself.
 struct InstrumentFile {
   std::string path;
-  std::string format;      ///< "jpk-force", "jpk-force-map", "jpk-qi-data" or "ibw"
+  InstrumentFormat format = InstrumentFormat::jpk_force;
   std::string instrument;  ///< e.g. "JPK00758-CellHesion-200", "MFP3D"
   std::string software;    ///< e.g. "4.3.11"
   int grid_shape_x = 0, grid_shape_y = 0;  ///< map grid (0: not a map)

@@ -77,8 +77,9 @@ enum class Baseline { constant, tilt };
 /// "hertz" (half-space with a paraboloid), "tabulated" (a spline of any other model).
 enum class FitFamily { foundation, hertz, tabulated };
 
-/// A segment of an instrument curve (instrument.hpp): "extend", "retract", "pause".
-enum class SegmentStyle { extend, retract, pause };
+/// A segment of an instrument curve (instrument.hpp): "extend", "retract", "pause",
+/// "modulation" (JPK's oscillation segments).
+enum class SegmentStyle { extend, retract, pause, modulation };
 
 /// An instrument file's format (instrument.hpp): "jpk-force", "jpk-force-map",
 /// "jpk-qi-data", "ibw".

@@ -47,7 +47,7 @@ LAYERJKR_NAMES(Baseline, {Baseline::constant, "constant"}, {Baseline::tilt, "til
 LAYERJKR_NAMES(FitFamily, {FitFamily::foundation, "foundation"}, {FitFamily::hertz, "hertz"},
                {FitFamily::tabulated, "tabulated"})
 LAYERJKR_NAMES(SegmentStyle, {SegmentStyle::extend, "extend"}, {SegmentStyle::retract, "retract"},
-               {SegmentStyle::pause, "pause"})
+               {SegmentStyle::pause, "pause"}, {SegmentStyle::modulation, "modulation"})
 LAYERJKR_NAMES(InstrumentFormat, {InstrumentFormat::jpk_force, "jpk-force"},
                {InstrumentFormat::jpk_force_map, "jpk-force-map"}, {InstrumentFormat::jpk_qi_data, "jpk-qi-data"},
                {InstrumentFormat::ibw, "ibw"})

@@ -141,7 +141,7 @@ InstrumentFile read_ibw_bytes(std::string bytes, const std::string& path) {
 
   InstrumentFile file;
   file.path = path;
-  file.format = "ibw";
+  file.format = InstrumentFormat::ibw;
   file.software = note.count("Version") ? note.at("Version") : "";
   file.instrument = note.count("MicroscopeModel") ? note.at("MicroscopeModel") : "";
   InstrumentCurve curve;
@@ -161,7 +161,7 @@ InstrumentFile read_ibw_bytes(std::string bytes, const std::string& path) {
       b.fail("the note's Indexes (" + note.at("Indexes") + ") are not increasing");
     InstrumentSegment s;
     const double d = k < dir.size() ? dir[k] : NAN;
-    s.style = d > 0 ? "extend" : d < 0 ? "retract" : "pause";
+    s.style = d > 0 ? SegmentStyle::extend : d < 0 ? SegmentStyle::retract : SegmentStyle::pause;
     for (std::size_t r = first; r <= last; ++r) {
       s.force.push_back(value(r, column["Defl"]) * curve.spring_constant);
       s.height.push_back(-value(r, column["ZSnsr"]));

@@ -2,6 +2,8 @@
 #include "layerjkr/instrument.hpp"
 
 #include <cmath>
+#include <optional>
+#include <string_view>
 
 #include "io/instrument_readers.hpp"
 #include "layerjkr/error.hpp"
@@ -9,24 +11,22 @@
 namespace layerjkr {
 namespace {
 
-std::string format_of(const std::string& path) {
-  for (const char* ext : {"jpk-force", "jpk-force-map", "jpk-qi-data", "ibw"}) {
-    const std::string suffix = std::string(".") + ext;
-    if (path.size() > suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0)
-      return ext;
-  }
-  return "";
+// The format an extension names (the registry's spellings are the extensions).
+std::optional<InstrumentFormat> format_of(const std::string& path) {
+  const auto dot = path.rfind('.');
+  if (dot == std::string::npos) return std::nullopt;
+  return from_string<InstrumentFormat>(std::string_view(path).substr(dot + 1));
 }
 
 }  // namespace
 
-bool is_instrument_file(const std::string& path) { return !format_of(path).empty(); }
+bool is_instrument_file(const std::string& path) { return format_of(path).has_value(); }
 
 InstrumentFile read_instrument_file(const std::string& path) {
-  const std::string format = format_of(path);
-  if (format.empty())
+  const std::optional<InstrumentFormat> format = format_of(path);
+  if (!format)
     throw InputError(path + ": not an instrument file (known: .jpk-force, .jpk-force-map, .jpk-qi-data, .ibw)");
-  InstrumentFile file = format == "ibw" ? detail::read_ibw(path) : detail::read_jpk(path, format);
+  InstrumentFile file = *format == InstrumentFormat::ibw ? detail::read_ibw(path) : detail::read_jpk(path, *format);
   for (const InstrumentCurve& c : file.curves)
     if (!(c.spring_constant > 0.0) || !std::isfinite(c.spring_constant))
       throw InputError(path + ": curve " + std::to_string(c.index) + " has spring constant " +
@@ -50,7 +50,7 @@ CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source,
   d.spring_constant = k;
   bool retracting = false;
   for (const InstrumentSegment& seg : curve.segments) {
-    retracting = retracting || seg.style == "retract";
+    retracting = retracting || seg.style == SegmentStyle::retract;
     for (std::size_t i = 0; i < seg.force.size(); ++i) {
       const double force = seg.force[i] * scale;
       d.delta.push_back(-(seg.height[i] + force / k));

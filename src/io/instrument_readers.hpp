@@ -7,8 +7,8 @@
 
 namespace layerjkr::detail {
 
-/// JPK archive; `format` is "jpk-force", "jpk-force-map" or "jpk-qi-data".
-InstrumentFile read_jpk(const std::string& path, const std::string& format);
+/// JPK archive of one of the three JPK formats.
+InstrumentFile read_jpk(const std::string& path, InstrumentFormat format);
 /// Igor binary wave v5 (Asylum force curve).
 InstrumentFile read_ibw(const std::string& path);
 /// The same from the file's bytes; `path` names it in errors.

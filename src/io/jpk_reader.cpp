@@ -193,6 +193,12 @@ int to_int(double v, int fallback) {
   return v >= -1.0 && v <= 1e9 && v == std::floor(v) ? static_cast<int>(v) : fallback;
 }
 
+// A segment's style, spelled as the registry knows it; any other is an error, not a guess.
+SegmentStyle read_style(const Reader& in, const std::string& text, const std::string& where) {
+  if (const std::optional<SegmentStyle> style = from_string<SegmentStyle>(text)) return *style;
+  in.fail(where, "segment style '" + text + "' is unknown (known: " + known_names<SegmentStyle>() + ")");
+}
+
 InstrumentSegment read_segment(const Reader& in, const Properties& shared, const std::string& dir,
                                InstrumentCurve& curve) {
   const std::string where = dir + "segment-header.properties";
@@ -200,7 +206,7 @@ InstrumentSegment read_segment(const Reader& in, const Properties& shared, const
   resolve_shared(seg, shared);
   const ChannelReader ch{in, seg, dir, where};
   InstrumentSegment s;
-  s.style = in.value(seg, "force-segment-header.settings.style", where);
+  s.style = read_style(in, in.value(seg, "force-segment-header.settings.style", where), where);
   s.duration = in.number(seg, "force-segment-header.duration", where);
   if (!ch.has("vDeflection")) in.fail(where, "no vDeflection channel (force)");
   s.force = ch.values("vDeflection", "force");
@@ -226,7 +232,7 @@ InstrumentSegment read_segment(const Reader& in, const Properties& shared, const
 
 }  // namespace
 
-InstrumentFile read_jpk(const std::string& path, const std::string& format) {
+InstrumentFile read_jpk(const std::string& path, InstrumentFormat format) {
   const ZipArchive zip(path);
   const Reader in(path, zip);
   InstrumentFile file;

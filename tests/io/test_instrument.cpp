@@ -75,7 +75,7 @@ TEST_CASE("JPK archives: every reference value (single, shared-data, force map, 
         const InstrumentSegment& seg = curve.segments[s];
         const auto& rs = rc["segments"][s];
         INFO("segment " << s);
-        CHECK(seg.style == rs["style"].get<std::string>());
+        CHECK(to_string(seg.style) == rs["style"].get<std::string>());
         REQUIRE(seg.force.size() == rs["n_points"].get<std::size_t>());
         CHECK(seg.duration == rs["duration_s"].get<double>());
         CHECK(curve.spring_constant == rs["spring_constant_N_per_m"].get<double>());
@@ -132,7 +132,7 @@ TEST_CASE("Igor waves: calibration from the note, columns by label, segments fro
       CHECK(c.segments[s].force.size() == segs[s]["n_points"].get<std::size_t>());
       CHECK(rel_err(sum(c.segments[s].force), segs[s]["force_N_sum"].get<double>()) < 1e-12);
       CHECK(c.segments[s].height.back() == segs[s]["height_measured_m_last"].get<double>());
-      CHECK(c.segments[s].style == (s == 0 ? "extend" : "retract"));
+      CHECK(c.segments[s].style == (s == 0 ? SegmentStyle::extend : SegmentStyle::retract));
       CHECK(c.segments[s].duration == Approx(c.segments[s].force.size() * r["row_delta_s"].get<double>()));
     }
   }
