@@ -158,7 +158,7 @@ Layout read_layout(std::vector<std::string> header, const CsvOptions& options, c
     if (!l.has(Column::deflection)) fail("column z needs a deflection column");
     if (l.has(Column::force)) fail("give either z,deflection or a force column, not both");
     if (!(options.spring_constant > 0.0))
-      fail("z,deflection data need the cantilever spring constant (--spring-constant k [N/m])");
+      fail("z,deflection data need the cantilever spring constant k [N/m] (spring_constant)");
   } else {
     if (l.has(Column::deflection)) fail("column deflection is only used with z");
     if (!l.has(Column::force)) fail("needs a force column (P or force)");
@@ -167,7 +167,7 @@ Layout read_layout(std::vector<std::string> header, const CsvOptions& options, c
   if (l.has(Column::height) && !l.has(Column::tip_position))
     fail("column height (layerjkr export) is only accepted with tip_position");
   if (options.curve >= 0 && !l.has(Column::curve))
-    fail("a curve was selected (--curve " + std::to_string(options.curve) + ") but the file has no curve column");
+    fail("curve " + std::to_string(options.curve) + " was selected but the file has no curve column");
   l.header = std::move(header);
   return l;
 }
@@ -255,7 +255,7 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
     append_row(values, layout, options, line_no, fail, d, curves);
   }
   if (options.curve < 0 && curves.size() > 1)
-    fail("holds " + std::to_string(curves.size()) + " curves (column curve); select one (--curve N)");
+    fail("holds " + std::to_string(curves.size()) + " curves (column curve); select one (option curve = N)");
   if (options.curve >= 0 && d.delta.empty())
     fail("has no rows of curve " + std::to_string(options.curve));
   if (d.delta.empty()) fail("has a header but no data rows");

@@ -110,7 +110,7 @@ TEST_CASE("fit and fit-map reject bad data and options with exit 2 and no output
       {"fit " + nan + " --scene " + kScene + " --free E", "'nan' is not a finite number"},
       {"fit " + few + " --scene " + kScene + " --free E,w,delta0 --branch all", "more samples than parameters"},
       {"fit " + falling + " --scene " + kScene + " --free E,delta0 --branch all", "no contact region"},
-      {"fit " + raw + " --scene " + kScene + " --free E", "--spring-constant"},
+      {"fit " + raw + " --scene " + kScene + " --free E", "spring constant k [N/m]"},
       {"fit " + header + " --scene " + kScene + " --free E", "'depth' is unknown"},
       {"fit " + empty + " --scene " + kScene + " --free E", "is empty"},
       {"fit " + binary + " --scene " + kScene + " --free E", "not a text file"},

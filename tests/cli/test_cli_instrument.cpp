@@ -61,7 +61,7 @@ TEST_CASE("a map: fit needs --curve, fit-map gives every curve its row with inde
   CHECK(need.err.find("holds 4 curves; select one with --curve N") != std::string::npos);
   const std::string exported = unique("map.csv");
   REQUIRE(run("export " + map + " --out " + exported).code == 0);
-  CHECK(run("fit " + exported + " --scene " + hertz_scene() + " --free E,delta0,P0").err.find("--curve") !=
+  CHECK(run("fit " + exported + " --scene " + hertz_scene() + " --free E,delta0,P0").err.find("select one") !=
         std::string::npos);
   const Run one = run("fit " + exported + " --curve 2 --scene " + hertz_scene() + " --free E,delta0,P0");
   INFO(one.err);

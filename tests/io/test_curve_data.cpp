@@ -42,7 +42,7 @@ TEST_CASE("JPK tip_position,force and raw z,deflection forms", "[csv]") {
   const CurveData f = parse_curve_csv("z,deflection\n1e-6,2e-8\n", "t", o);
   CHECK(f.delta[0] == Approx(-1e-6 + 2e-8).epsilon(1e-15));
   CHECK(f.P[0] == Approx(-0.05 * 2e-8).epsilon(1e-15));
-  CHECK_THROWS_WITH(parse_curve_csv("z,deflection\n1,2\n", "t"), Catch::Contains("--spring-constant"));
+  CHECK_THROWS_WITH(parse_curve_csv("z,deflection\n1,2\n", "t"), Catch::Contains("spring constant k [N/m]"));
 }
 
 TEST_CASE("branches: segment column or a split at the deepest point", "[csv]") {
