@@ -1,5 +1,5 @@
 # Installs the build tree BUILD_DIR into a temporary prefix, configures, builds and runs
-# the consumer project against it, and removes everything it wrote.
+# the consumer project against it with the scene SCENE, and removes everything it wrote.
 set(scratch "${SCRATCH_DIR}")
 file(REMOVE_RECURSE "${scratch}")
 file(MAKE_DIRECTORY "${scratch}")
@@ -16,5 +16,5 @@ step(${CMAKE_COMMAND} -S "${CONSUMER_DIR}" -B "${scratch}/build" -G Ninja
      -DCMAKE_PREFIX_PATH=${scratch}/prefix -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
      -DCMAKE_BUILD_TYPE=Release)
 step(${CMAKE_COMMAND} --build "${scratch}/build")
-step("${scratch}/build/consumer")
+step("${scratch}/build/consumer" "${SCENE}")
 file(REMOVE_RECURSE "${scratch}")
