@@ -3,6 +3,7 @@
 // validity_table prints them as docs/validity.md.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -16,7 +17,20 @@ struct ExtremeCheck {
   bool ok = false;
 };
 
-/// Runs the whole matrix (a few seconds).
+/// A group of the matrix: one cell (or a short sequence whose checks compare each cell with
+/// the previous one), named and tagged by area without running anything.
+struct ExtremeGroup {
+  std::string tag;   ///< the area, e.g. "poisson"
+  std::string name;  ///< the cell, e.g. "nu = 0.4999, exact layer"
+};
+
+/// Every group, in the matrix's order (cheap: nothing is computed).
+std::vector<ExtremeGroup> extreme_groups();
+
+/// The cells of group `index` of extreme_groups(), run alone.
+std::vector<ExtremeCheck> run_extreme_group(std::size_t index);
+
+/// Runs the whole matrix, every group in order (a few seconds).
 std::vector<ExtremeCheck> run_extreme_matrix();
 
 }  // namespace test
