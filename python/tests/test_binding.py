@@ -45,11 +45,15 @@ def test_curve_equals_cli_bit_for_bit(cli, source):
     assert len(c.warnings) == 1 and len(c) == 200 and c.seconds > 0
 
 
-def test_summary_equals_cli(cli, source):
-    for scene in ["data/scenes/hydrogel_film_two_term.json", "data/scenes/sphere_pdms_film_two_term.json"]:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", layerjkr.ModelWarning)
-            s = layerjkr.summary(str(source / scene))
+def test_summary_equals_cli(cli, source, tmp_path):
+    # Every bundled scene (auto's model_choice among them) and a Filonenko-Borodich medium (T).
+    membrane = tmp_path / "membrane.json"
+    membrane.write_text(json.dumps({"indenter": {"shape": "paraboloid", "R": 1e-5},
+                                    "medium": {"type": "filonenko_borodich", "K": 1e12, "T": 0.1},
+                                    "model": "asymptotic", "w": 0.01}))
+    scenes = sorted(str(p.relative_to(source)) for p in (source / "data/scenes").glob("*.json")) + [str(membrane)]
+    for scene in scenes:
+        s = layerjkr.summary(str(source / scene))
         ref = json.loads(run_cli(cli, source, "summary", scene))
         assert s.as_dict() == ref, scene
         assert list(s.as_dict()) == list(ref), scene  # the same keys in the same order
@@ -58,6 +62,11 @@ def test_summary_equals_cli(cli, source):
         assert s.pull_off_force == ref["pull_off_force"] and s.zero_load_radius == ref["zero_load_radius"]
         assert s.model_error.reference == ref["model_error_estimate"]["reference"]
         assert s.K == ref.get("K") and s.E_star == ref.get("E_star")
+        assert (s.T if "T" in ref else s.G) == ref.get("T", ref.get("G"))
+        assert (s.choice is None) == ("model_choice" not in ref)
+        if s.choice is not None:
+            assert s.choice.model == ref["model_choice"]["model"] and s.choice.note.startswith("auto chose model")
+    assert "T" in ref and s.T == 0.1 and s.G is None  # the membrane, last
     with pytest.raises(KeyError, match="pull_off"):
         s["pull_off"]
 
@@ -75,6 +84,30 @@ def test_summary_warns_through_model_warning(source):
         warnings.simplefilter("error")  # no warning below the threshold
         assert layerjkr.summary(str(source / "data/scenes/sphere_pdms_film_two_term.json"),
                                 warning_threshold=0.99).warnings == []
+
+
+def test_auto_curve_reports_its_choice(source):
+    c = layerjkr.curve(str(source / "data/scenes/hydrogel_film_auto.json"), [2e-7, 1e-6])
+    assert c.choice is not None and c.model == c.choice.model
+    assert c.choice.estimated_error <= c.choice.tolerance and "curve" in c.choice.judged_at
+    assert c.choice.note.startswith("auto chose model '%s'" % c.model)
+
+
+def test_stub_and_docstrings(source):
+    # _core.pyi names what the compiled module has; every public name has a numpydoc docstring.
+    import ast
+    stub = ast.parse((source / "python/layerjkr/_core.pyi").read_text())
+    stubbed = {n.name for n in stub.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+    stubbed |= {n.target.id for n in stub.body if isinstance(n, ast.AnnAssign)}
+    compiled = {n for n in dir(layerjkr._core) if not n.startswith("_")} | {"__version__"}
+    assert stubbed == compiled
+    for name in layerjkr.__all__:
+        obj = getattr(layerjkr, name)
+        if callable(obj) and not isinstance(obj, type):
+            assert "Parameters\n    ----------" in obj.__doc__ and "Returns\n    -------" in obj.__doc__, name
+            assert "Raises\n    ------" in obj.__doc__, name
+        elif isinstance(obj, type):
+            assert obj.__doc__ and len(obj.__doc__) > 20, name
 
 
 def test_scene_from_dict_equals_file(source):
@@ -228,7 +261,9 @@ def test_threaded_batch_equals_serial(source):
     assert [s.result.as_dict() for s in serial] == [t.result.as_dict() for t in threaded]
     assert all(s.ok and s.error is None and s.curve is None for s in serial)
     assert [s.source for s in serial] == ["curve %d" % k for k in range(4)]
-    single = layerjkr.fit(delta, P * (1 + 1e-3), scene, free="E,w,delta0")
+    with pytest.warns(layerjkr.ModelWarning, match="on approach the model snaps in at zero load") as record:
+        single = layerjkr.fit(delta, P * (1 + 1e-3), scene, free="E,w,delta0")
+    assert [str(w.message) for w in record] == single.warnings == serial[1].result.warnings  # the batch: not emitted
     assert single.values.to_dict() == serial[1].result.values.to_dict()
     failed = layerjkr.fit_batch([(delta[:2], P[:2])], scene)
     assert not failed[0].ok and failed[0].result is None and "curve 0" in failed[0].error
