@@ -3,7 +3,8 @@
 //
 // Data flow: ContactModel (non-adhesive state at a) -> jkr_transform -> JkrSolution.
 // Everything is computed on demand: a curve costs one model evaluation per radius;
-// critical points cost a log-grid scan plus a bracketed refinement.
+// critical points cost a log-grid scan plus a bracketed refinement, once per solution (see
+// JkrSolution).
 //
 // Accuracy (measured against the closed-form half-space and Winkler oracles in
 // tests/test_contact.cpp): critical points are the roots of a 6th-order finite-difference
@@ -11,6 +12,7 @@
 // roots of P(a) = P* and delta(a) = delta* to ~1e-15 relative in a (TOMS 748).
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +42,20 @@ struct CriticalPoint {
   double delta = 0.0;  ///< approach [m]
 };
 
+namespace detail {
+struct JkrCriticalPoints;
+}
+
+/// The adhesive solution of one model and work of adhesion. The critical points (zero-load
+/// radius, pull-off, fixed-grips point) are searched once, on first use, and kept: later
+/// calls of zero_load_radius(), pull_off(), fixed_grips_critical() and of the lookups that
+/// start from them (contact_radius_at_force, contact_radius_at_delta, force_at_delta,
+/// summarize) cost no search. A search that throws keeps nothing, and the next call
+/// searches again. Copies share what was found, so copying stays cheap.
+///
+/// Thread safety: a JkrSolution (and its copies) may be used from several threads at once,
+/// if its model's state() may (every model in this library); concurrent first requests for a
+/// critical point run its search once, the others wait for it.
 class JkrSolution {
  public:
   /// w [J/m^2] >= 0. Throws DomainError for invalid w or options.
@@ -81,9 +97,14 @@ class JkrSolution {
   std::optional<double> minimise(bool force, double a_hi) const;
   std::optional<double> first_root(bool force, double target, double a_lo) const;
 
+  std::optional<double> search_zero_load_radius() const;
+  std::optional<CriticalPoint> search_pull_off() const;
+  std::optional<CriticalPoint> search_fixed_grips_critical() const;
+
   ContactModelPtr model_;
   double w_;
   JkrOptions options_;
+  std::shared_ptr<detail::JkrCriticalPoints> critical_;  // found once, shared by copies
 };
 
 /// Summary of a scene's adhesive behaviour.

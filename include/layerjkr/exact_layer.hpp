@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "layerjkr/context.hpp"
 #include "layerjkr/model.hpp"
 
 namespace layerjkr {
@@ -55,6 +56,10 @@ struct ExactLayerOptions {
   /// Solve a second time with 3/4 of the nodes per panel to estimate the error (about +45 %
   /// cost). The estimate is that of the coarser solve, so it bounds the returned error.
   bool estimate_error = true;
+  /// Where the kernel functions and power-law tables come from and are cached; null (the
+  /// default): Context::global(). Read when a solver or model is built: they keep what they
+  /// took from it, not the Context itself (ExactLayerKernel::options() returns this null).
+  std::shared_ptr<Context> context;
   /// Throws DomainError naming the first invalid field.
   void validate() const;
 };
@@ -69,7 +74,8 @@ struct ExactLayerState {
 };
 
 /// The exact-layer solver for one layer (E, nu, h, base). The kernel function depends only
-/// on nu and the base; it is built once per process (~16 ms) and shared. nu in (-1, 0.5]
+/// on nu and the base; it is built once per Context (~16 ms; ExactLayerOptions::context) and
+/// shared. nu in (-1, 0.5]
 /// (0.5: incompressible, bonded or frictionless), E > 0, h > 0.
 class ExactLayerKernel {
  public:
@@ -112,7 +118,7 @@ class ExactLayerKernel {
   ElasticLayer layer_;
   ExactLayerOptions options_;
   double E_star_;
-  std::shared_ptr<const detail::LayerKernelFunction> kernel_;  // shared per (nu, base)
+  std::shared_ptr<const detail::LayerKernelFunction> kernel_;  // shared per (nu, base) and Context
 };
 
 /// Edge-correction length of a thin layer in units of h: the exact layer behaves like a

@@ -25,6 +25,8 @@
 
 namespace layerjkr {
 
+class Context;  // layerjkr/context.hpp
+
 /// Non-adhesive state at one contact radius (SI units).
 struct NonAdhesiveState {
   double a = 0.0;        ///< contact radius [m]
@@ -155,13 +157,16 @@ UniformLayerConstants uniform_layer_constants(const ElasticLayer& layer);
 /// coefficient up to 8.6 (nu = 0.5); with it at most 6 (h/a)^2 for nu <= 0.49 (0.7 % at
 /// a/h = 10 for nu = 0.45), and 0.5 h/a at nu = 0.5. Tanh-sinh quadrature (1e-13) for every
 /// profile, 6-50 us a state; the first use of a nu costs one exact solve (~20 ms).
+/// beta comes from uniform_layer_beta(layer, context).
 ContactModelPtr make_uniform_layer(ProfilePtr profile, const ElasticLayer& layer,
-                                   bool edge_correction = true);
+                                   bool edge_correction = true,
+                                   const std::shared_ptr<Context>& context = nullptr);
 
-/// Edge-correction length of the uniform model in units of h, fitted once per nu (and cached)
-/// so that a paraboloid's approach matches the exact layer's at a/h = 50.
-/// Measured: 0.18 (nu = 0), 0.39 (0.3), 0.93 (0.45), 1.23 (0.49), 1.39 (0.5).
-double uniform_layer_beta(const ElasticLayer& layer);
+/// Edge-correction length of the uniform model in units of h, fitted once per nu and cached
+/// in `context` (null: Context::global(), which make_contact_model uses), with the exact
+/// kernel from the same Context, so that a paraboloid's approach matches the exact layer's
+/// at a/h = 50. Measured: 0.18 (nu = 0), 0.39 (0.3), 0.93 (0.45), 1.23 (0.49), 1.39 (0.5).
+double uniform_layer_beta(const ElasticLayer& layer, const std::shared_ptr<Context>& context = nullptr);
 
 /// Foundation constants of a thin layer, with warnings about validity.
 struct ThinLayerConstants {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <mutex>
 #include <sstream>
 
 #include <boost/math/differentiation/finite_difference.hpp>
@@ -15,7 +16,34 @@
 namespace layerjkr {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
-}
+
+// A value computed at most once by its first successful request; concurrent requests wait
+// for it. A mutex rather than std::call_once: libstdc++'s call_once is not reliable when
+// the callable throws (GCC PR 66146), and a search may throw (the model's NumericalError).
+template <class T>
+class Once {
+ public:
+  template <class Compute>
+  T get(Compute compute) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (!value_) value_ = compute();
+    return *value_;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::optional<T> value_;
+};
+}  // namespace
+
+// One mutex per point: pull-off's search asks for the zero-load radius and the fixed-grips
+// search for the pull-off, always in that order, so holding one while waiting for the next
+// cannot deadlock.
+struct detail::JkrCriticalPoints {
+  Once<std::optional<double>> zero_load_radius;
+  Once<std::optional<CriticalPoint>> pull_off;
+  Once<std::optional<CriticalPoint>> fixed_grips;
+};
 
 void JkrOptions::validate() const {
   const char* fn = "JkrOptions::validate";
@@ -28,7 +56,8 @@ void JkrOptions::validate() const {
 }
 
 JkrSolution::JkrSolution(ContactModelPtr model, double w, JkrOptions options)
-    : model_(std::move(model)), w_(w), options_(options) {
+    : model_(std::move(model)), w_(w), options_(options),
+      critical_(std::make_shared<detail::JkrCriticalPoints>()) {
   if (!model_) throw Error("layerjkr::JkrSolution: the model is null");
   detail::require_non_negative("JkrSolution", "w", w);
   options_.validate();
@@ -163,11 +192,23 @@ std::optional<double> JkrSolution::first_root(bool force, double target, double 
 }
 
 std::optional<double> JkrSolution::zero_load_radius() const {
+  return critical_->zero_load_radius.get([this] { return search_zero_load_radius(); });
+}
+
+std::optional<CriticalPoint> JkrSolution::pull_off() const {
+  return critical_->pull_off.get([this] { return search_pull_off(); });
+}
+
+std::optional<CriticalPoint> JkrSolution::fixed_grips_critical() const {
+  return critical_->fixed_grips.get([this] { return search_fixed_grips_critical(); });
+}
+
+std::optional<double> JkrSolution::search_zero_load_radius() const {
   if (w_ == 0.0) return 0.0;
   return first_root(true, 0.0, 0.0);
 }
 
-std::optional<CriticalPoint> JkrSolution::pull_off() const {
+std::optional<CriticalPoint> JkrSolution::search_pull_off() const {
   if (w_ == 0.0) return std::nullopt;
   const std::optional<double> a0 = zero_load_radius();
   const double a_hi = a0 ? *a0 : upper_radius();
@@ -178,7 +219,7 @@ std::optional<CriticalPoint> JkrSolution::pull_off() const {
   return CriticalPoint{s.a, s.P, s.delta};
 }
 
-std::optional<CriticalPoint> JkrSolution::fixed_grips_critical() const {
+std::optional<CriticalPoint> JkrSolution::search_fixed_grips_critical() const {
   if (w_ == 0.0) return std::nullopt;
   // On the fixed-grips critical point dP/da = -S' sqrt(4 pi w a / S') < 0, so it lies
   // below the pull-off radius.

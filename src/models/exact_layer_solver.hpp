@@ -1,12 +1,12 @@
 // Internal: what the exact layer's Nystrom solve yields, shared by the solver
-// (exact_layer.cpp) and the per-(nu, base, d) power-law tables (exact_power_law_table.cpp).
+// (exact_layer_solver.cpp), the ContactModel "exact" (exact_layer_model.cpp) and the
+// per-(nu, base, d) power-law tables (exact_power_law_table.cpp).
 #pragma once
 
 #include <vector>
 
 #include <Eigen/Dense>
 
-#include "layerjkr/contact.hpp"
 #include "layerjkr/exact_layer.hpp"
 #include "layerjkr/profile.hpp"
 
@@ -51,5 +51,20 @@ KernelBlocks kernel_blocks(const ExactLayerKernel& kernel, const Grid& grid);
 
 // One Nystrom solve at a/h = rho with the kernel's options (no range checks).
 ExactMoments exact_moments(const ExactLayerKernel& kernel, const Profile& profile, double rho);
+
+// a/h for a query at contact radius a, after checking a against the profile and the
+// kernel table's range (ExactLayerOptions::max_a_over_h); `function` names the caller.
+double checked_a_over_h(const ExactLayerKernel& kernel, const char* function, const Profile& profile,
+                        double a);
+
+// The grid of one radius rho = a/h: `panels` panels of `nodes` Gauss-Legendre nodes.
+struct Discretisation {
+  int panels, nodes;
+};
+Discretisation discretise(const ExactLayerOptions& options, double rho);
+
+// A sweep over count steps of [0, rho] uses a whole number of panels per step, each at most
+// panel_width h wide, and at least min_panels in all.
+int sweep_panels_per_step(const ExactLayerOptions& options, double rho, int count);
 
 }  // namespace layerjkr::detail

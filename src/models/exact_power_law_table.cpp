@@ -9,14 +9,13 @@
 #include <cmath>
 #include <limits>
 #include <string>
-#include <utility>
-#include <map>
 #include <mutex>
-#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <boost/math/constants/constants.hpp>
 
+#include "core/context_caches.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {
@@ -118,15 +117,9 @@ ExactMoments ExactPowerLawTable::at(double rho) const {
 
 std::shared_ptr<const ExactPowerLawTable> shared_power_law_table(double nu, Base base, double d,
                                                                  const ExactLayerOptions& o) {
-  using Key = std::tuple<double, bool, double, int, double, int>;
-  static std::mutex mutex;
-  static std::map<Key, std::shared_ptr<const ExactPowerLawTable>> cache;
-  constexpr std::size_t kMaxTables = 64;
-  const std::lock_guard<std::mutex> lock(mutex);
-  const Key key{nu, base == Base::bonded, d, o.points_per_panel, o.panel_width, o.min_panels};
-  if (const auto it = cache.find(key); it != cache.end()) return it->second;
-  if (cache.size() >= kMaxTables) cache.clear();
-  return cache[key] = std::make_shared<const ExactPowerLawTable>(nu, base, d, o);
+  const PowerLawTableKey key{nu, base == Base::bonded, d, o.points_per_panel, o.panel_width, o.min_panels};
+  return context_caches(o.context).power_law_tables.get(
+      key, [&] { return std::make_shared<const ExactPowerLawTable>(nu, base, d, o); });
 }
 
 }  // namespace layerjkr::detail

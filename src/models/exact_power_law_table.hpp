@@ -46,7 +46,8 @@ class ExactPowerLawTable {
   std::unique_ptr<Pieces> pieces_;
 };
 
-/// The shared table for (nu, base, d, discretisation): one per process, thread-safely.
+/// The table for (nu, base, d, discretisation) from the cache of options.context (null:
+/// Context::global()), built on first request, once, thread-safely.
 std::shared_ptr<const ExactPowerLawTable> shared_power_law_table(double nu, Base base, double d,
                                                                  const ExactLayerOptions& options);
 

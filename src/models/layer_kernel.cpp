@@ -11,11 +11,10 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
-#include <map>
-#include <mutex>
 #include <string>
 #include <utility>
 
+#include "core/context_caches.hpp"
 #include "core/gsl_support.hpp"
 #include "layerjkr/error.hpp"
 
@@ -248,15 +247,10 @@ double LayerKernelFunction::derivative(double sigma) const {
   return sigma < 0.0 ? -value : value;
 }
 
-std::shared_ptr<const LayerKernelFunction> shared_layer_kernel(double nu, bool bonded) {
-  static std::mutex mutex;
-  static std::map<std::pair<double, bool>, std::shared_ptr<const LayerKernelFunction>> cache;
-  constexpr std::size_t kMaxKernels = 64;  // ~50 kB each; a session rarely needs more layers
-  const std::lock_guard<std::mutex> lock(mutex);  // concurrent requests wait, not rebuild
-  const std::pair<double, bool> key{nu, bonded};
-  if (const auto it = cache.find(key); it != cache.end()) return it->second;
-  if (cache.size() >= kMaxKernels) cache.clear();
-  return cache[key] = std::make_shared<const LayerKernelFunction>(nu, bonded);
+std::shared_ptr<const LayerKernelFunction> shared_layer_kernel(double nu, bool bonded,
+                                                               const std::shared_ptr<Context>& context) {
+  return context_caches(context).kernels.get(
+      {nu, bonded}, [&] { return std::make_shared<const LayerKernelFunction>(nu, bonded); });
 }
 
 }  // namespace layerjkr::detail

@@ -21,6 +21,10 @@
 #include <memory>
 #include <vector>
 
+namespace layerjkr {
+class Context;
+}
+
 namespace layerjkr::detail {
 
 class LayerKernelFunction {
@@ -52,7 +56,9 @@ class LayerKernelFunction {
   std::unique_ptr<Pieces> pieces_;
 };
 
-/// The shared kernel function for (nu, base): built once per process, thread-safely.
-std::shared_ptr<const LayerKernelFunction> shared_layer_kernel(double nu, bool bonded);
+/// The kernel function for (nu, base) from `context`'s cache (null: Context::global()),
+/// built on first request, once, thread-safely.
+std::shared_ptr<const LayerKernelFunction> shared_layer_kernel(double nu, bool bonded,
+                                                               const std::shared_ptr<Context>& context);
 
 }  // namespace layerjkr::detail

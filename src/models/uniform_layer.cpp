@@ -5,8 +5,7 @@
 // where D = 0 both are Winkler. Either is evaluated at the edge-corrected radius a + beta h.
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <mutex>
+#include <memory>
 #include <vector>
 
 #include <boost/math/constants/constants.hpp>
@@ -14,6 +13,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_sf_bessel.h>
 
+#include "core/context_caches.hpp"
 #include "core/gsl_support.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/exact_layer.hpp"
@@ -161,11 +161,12 @@ ContactModelPtr two_term_form(ProfilePtr profile, const UniformLayerConstants& c
 }
 
 // beta at which a paraboloid's approach matches the exact layer's at a/h = 50 (unit layer).
-double fit_beta(double nu) {
+double fit_beta(double nu, const std::shared_ptr<Context>& context) {
   const ElasticLayer unit{1.0, nu, 1.0, Base::bonded};
   ExactLayerOptions o;
   o.max_a_over_h = 50.0;
   o.estimate_error = false;
+  o.context = context;
   const ExactLayerKernel kernel(unit, o);
   const double R = 1e4, a = 50.0;
   const auto paraboloid = make_paraboloid(R);
@@ -197,22 +198,16 @@ UniformLayerConstants uniform_layer_constants(const ElasticLayer& layer) {
   return c;
 }
 
-double uniform_layer_beta(const ElasticLayer& layer) {
+double uniform_layer_beta(const ElasticLayer& layer, const std::shared_ptr<Context>& context) {
   (void)uniform_layer_constants(layer);  // validates
-  static std::mutex mutex;
-  static std::map<double, double> cache;  // nu -> beta; a handful of entries per process
-  {
-    const std::lock_guard<std::mutex> lock(mutex);
-    if (const auto it = cache.find(layer.nu); it != cache.end()) return it->second;
-  }
-  const double beta = fit_beta(layer.nu);  // ~0.1 s, outside the lock
-  const std::lock_guard<std::mutex> lock(mutex);
-  return cache.emplace(layer.nu, beta).first->second;
+  return *detail::context_caches(context).uniform_betas.get(
+      layer.nu, [&] { return std::make_shared<const double>(fit_beta(layer.nu, context)); });  // ~0.1 s
 }
 
-ContactModelPtr make_uniform_layer(ProfilePtr profile, const ElasticLayer& layer, bool edge_correction) {
+ContactModelPtr make_uniform_layer(ProfilePtr profile, const ElasticLayer& layer, bool edge_correction,
+                                   const std::shared_ptr<Context>& context) {
   const UniformLayerConstants c = uniform_layer_constants(layer);
-  const double shift = edge_correction ? uniform_layer_beta(layer) * layer.h : 0.0;
+  const double shift = edge_correction ? uniform_layer_beta(layer, context) * layer.h : 0.0;
   return std::make_shared<EdgeShifted>(two_term_form(std::move(profile), c), shift);
 }
 

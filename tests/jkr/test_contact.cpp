@@ -1,7 +1,10 @@
 // Critical points and lookups of JkrSolution against closed-form oracles.
 #include <catch2/catch.hpp>
 
+#include <atomic>
 #include <cmath>
+#include <thread>
+#include <vector>
 
 #include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
@@ -108,4 +111,85 @@ TEST_CASE("JkrSolution validates its arguments", "[contact][errors]") {
   bad = JkrOptions{};
   bad.scan_decades = NAN;
   CHECK_THROWS_WITH(bad.validate(), Catch::Contains("scan_decades"));
+}
+
+namespace {
+
+// Forwards to a model and counts its state evaluations (states() falls back to state()).
+class CountingModel final : public ContactModel {
+ public:
+  explicit CountingModel(ContactModelPtr inner) : ContactModel(inner->profile_ptr()), inner_(std::move(inner)) {}
+  NonAdhesiveState state(double a) const override {
+    ++evaluations;
+    return inner_->state(a);
+  }
+  std::string name() const override { return inner_->name(); }
+  double min_radius() const override { return inner_->min_radius(); }
+  double max_radius() const override { return inner_->max_radius(); }
+  double typical_radius() const override { return inner_->typical_radius(); }
+  mutable std::atomic<long> evaluations{0};
+
+ private:
+  ContactModelPtr inner_;
+};
+
+bool identical(const std::optional<CriticalPoint>& x, const std::optional<CriticalPoint>& y) {
+  if (!x || !y) return !x && !y;
+  return x->a == y->a && x->P == y->P && x->delta == y->delta;
+}
+
+}  // namespace
+
+TEST_CASE("critical points are searched once per solution and shared by its copies", "[contact]") {
+  const double w = 0.03;
+  const auto model = [] { return make_half_space(make_sphere(5e-3), 2e6, 0.4); };
+  const auto counting = std::make_shared<CountingModel>(model());
+  const JkrSolution jkr(counting, w);
+
+  const auto po = jkr.pull_off();
+  const long after_pull_off = counting->evaluations;
+  CHECK(after_pull_off > 0);
+  CHECK(identical(jkr.pull_off(), po));
+  const auto a0 = jkr.zero_load_radius();  // found on the way to the pull-off
+  CHECK(jkr.zero_load_radius() == a0);
+  CHECK(counting->evaluations == after_pull_off);
+
+  const auto fg = jkr.fixed_grips_critical();
+  const long after_fixed_grips = counting->evaluations;
+  CHECK(after_fixed_grips > after_pull_off);
+  CHECK(identical(jkr.fixed_grips_critical(), fg));
+  CHECK(counting->evaluations == after_fixed_grips);
+
+  // A lookup costs its root search only, the same every time: no critical point again.
+  const double a1 = jkr.contact_radius_at_force(0.5 * po->P);
+  const long first_lookup = counting->evaluations - after_fixed_grips;
+  CHECK(jkr.contact_radius_at_force(0.5 * po->P) == a1);
+  CHECK(counting->evaluations - after_fixed_grips == 2 * first_lookup);
+
+  const JkrSolution copy = jkr;  // NOLINT(performance-unnecessary-copy-initialization): shares the points
+  const long before_copy = counting->evaluations;
+  CHECK(identical(copy.pull_off(), po));
+  CHECK(identical(copy.fixed_grips_critical(), fg));
+  CHECK(counting->evaluations == before_copy);
+
+  // Bit for bit what a fresh solution finds, in any order of first calls.
+  const JkrSolution fresh(model(), w);
+  CHECK(identical(fresh.fixed_grips_critical(), fg));
+  CHECK(fresh.zero_load_radius() == a0);
+  CHECK(identical(fresh.pull_off(), po));
+  const JkrSolution uncounted(model(), w);
+  CHECK(uncounted.contact_radius_at_force(0.5 * po->P) == a1);
+}
+
+TEST_CASE("critical points: concurrent first requests search once", "[contact]") {
+  const auto counting = std::make_shared<CountingModel>(make_two_term(make_sphere(5e-3), 4e10, -28.0));
+  const JkrSolution jkr(counting, 0.03);
+  std::vector<std::optional<CriticalPoint>> got(4);
+  std::vector<std::thread> threads;
+  for (std::size_t i = 0; i < got.size(); ++i) threads.emplace_back([&, i] { got[i] = jkr.pull_off(); });
+  for (std::thread& t : threads) t.join();
+  const auto serial = std::make_shared<CountingModel>(make_two_term(make_sphere(5e-3), 4e10, -28.0));
+  const auto once = JkrSolution(serial, 0.03).pull_off();
+  CHECK(counting->evaluations == serial->evaluations);
+  for (const auto& p : got) CHECK(identical(p, once));
 }

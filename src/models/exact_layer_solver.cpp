@@ -1,17 +1,12 @@
-// Exact elastic layer: the Nystrom solve (Eigen) on the kernel of models/layer_kernel.hpp.
+// Exact elastic layer: the Nystrom solver (Eigen) on the kernel of models/layer_kernel.hpp -
+// grids, the dense and iterative solves, sweeps and the contact pressure.
 #include "layerjkr/exact_layer.hpp"
-#include "layerjkr/model_spec.hpp"
 
-#include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <map>
-#include <mutex>
-#include <tuple>
 
 #include <Eigen/Dense>
 #include <boost/math/differentiation/finite_difference.hpp>
@@ -21,7 +16,6 @@
 #include "core/gsl_support.hpp"
 #include "models/exact_layer_iterative.hpp"
 #include "models/exact_layer_solver.hpp"
-#include "models/exact_power_law_table.hpp"
 #include "models/layer_kernel.hpp"
 #include "layerjkr/error.hpp"
 
@@ -54,7 +48,10 @@ ExactLayerKernel::ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions 
   options_.validate();
   detail::require_positive("ExactLayerKernel", "h", layer.h);
   E_star_ = layerjkr::effective_modulus(layer.E, layer.nu);  // validates E, nu in (-1, 0.5]
-  kernel_ = detail::shared_layer_kernel(layer.nu, layer.base == Base::bonded);
+  kernel_ = detail::shared_layer_kernel(layer.nu, layer.base == Base::bonded, options_.context);
+  // Holding the Context would make a cycle for the power-law tables it caches, whose unit
+  // solver is an ExactLayerKernel: a private Context would never be freed.
+  options_.context.reset();
 }
 
 ExactLayerKernel::~ExactLayerKernel() = default;
@@ -70,6 +67,9 @@ double ExactLayerKernel::kernel_derivative(double sigma) const {
   return kernel_->derivative(sigma);
 }
 
+using detail::checked_a_over_h;
+using detail::discretise;
+using detail::Discretisation;
 using detail::Grid;
 using detail::make_grid;
 
@@ -215,18 +215,14 @@ int panel_count(const ExactLayerOptions& o, double rho) {
   return std::max(o.min_panels, static_cast<int>(std::ceil(rho / o.panel_width)));
 }
 
-// The grid for one radius. Every panel keeps points_per_panel nodes, however narrow: fewer
-// on narrow panels cut small-a/h states 3x but cost non-smooth profiles (r^1.5, tables) an
-// order of accuracy (measured: 2e-9 against 2e-10).
-struct Discretisation {
-  int panels, nodes;
-};
+}  // namespace
 
-Discretisation discretise(const ExactLayerOptions& o, double rho) {
+// Every panel keeps points_per_panel nodes, however narrow: fewer on narrow panels cut
+// small-a/h states 3x but cost non-smooth profiles (r^1.5, tables) an order of accuracy
+// (measured: 2e-9 against 2e-10).
+detail::Discretisation detail::discretise(const ExactLayerOptions& o, double rho) {
   return {panel_count(o, rho), o.points_per_panel};
 }
-
-}  // namespace
 
 detail::ExactMoments detail::exact_moments(const ExactLayerKernel& k, const Profile& profile, double rho) {
   const Discretisation d = discretise(k.options(), rho);
@@ -271,10 +267,15 @@ std::vector<Moments> nystrom_sweep(const ExactLayerKernel& k, const Profile& pro
   return out;
 }
 
-// a/h for a query at contact radius a, after checking a against the profile and the
-// kernel table's range (ExactLayerOptions::max_a_over_h).
-double checked_a_over_h(const ExactLayerKernel& k, const char* function, const Profile& profile,
-                        double a) {
+}  // namespace
+
+int detail::sweep_panels_per_step(const ExactLayerOptions& o, double rho, int count) {
+  return std::max({1, static_cast<int>(std::ceil(rho / count / o.panel_width)),
+                   (o.min_panels + count - 1) / count});
+}
+
+double detail::checked_a_over_h(const ExactLayerKernel& k, const char* function, const Profile& profile,
+                                double a) {
   profile.require_contact_radius(function, a);
   const double rho = a / k.layer().h;
   // A few ulps of slack: a = 1 mm on h = 1 um gives a/h = 1000.0000000000001.
@@ -284,31 +285,6 @@ double checked_a_over_h(const ExactLayerKernel& k, const char* function, const P
                           "] (ExactLayerOptions::max_a_over_h)");
   return rho;
 }
-
-// A sweep over count steps of [0, rho] uses a whole number of panels per step, each at most
-// panel_width h wide, and at least min_panels in all.
-int sweep_panels_per_step(const ExactLayerOptions& o, double rho, int count) {
-  return std::max({1, static_cast<int>(std::ceil(rho / count / o.panel_width)),
-                   (o.min_panels + count - 1) / count});
-}
-
-// Flops of a sweep (one Cholesky of the largest grid, one triangular solve per radius)
-// against solving each radius on its own grid (a Cholesky each): the sweep forces a panel
-// boundary at every step, which over-resolves small radii, so it is not always cheaper.
-bool sweep_is_cheaper(const ExactLayerOptions& o, double rho, int count) {
-  const double per_step = sweep_panels_per_step(o, rho, count), p = o.points_per_panel;
-  const double n = per_step * count * p;
-  double sweep = n * n * n / 3.0, single = 0.0;
-  for (int j = 1; j <= count; ++j) {
-    const Discretisation d = discretise(o, rho * j / count);
-    const double nj = static_cast<double>(d.panels) * d.nodes;
-    sweep += (j * per_step * p) * (j * per_step * p);
-    single += nj * nj * nj / 3.0;
-  }
-  return sweep < single;
-}
-
-}  // namespace
 
 NonAdhesiveState ExactLayerKernel::state(const Profile& profile, double a) const {
   const double rho = checked_a_over_h(*this, "exact_layer", profile, a);
@@ -339,7 +315,7 @@ ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const 
 std::vector<NonAdhesiveState> ExactLayerKernel::sweep(const Profile& profile, double a_max, int count) const {
   if (count < 1) throw DomainError("ExactLayerKernel::sweep", "count", count, ">= 1");
   const double rho = checked_a_over_h(*this, "ExactLayerKernel::sweep", profile, a_max);
-  const int per_step = sweep_panels_per_step(options_, rho, count);
+  const int per_step = detail::sweep_panels_per_step(options_, rho, count);
   const std::vector<Moments> all =
       nystrom_sweep(*this, profile, rho, per_step * count, options_.points_per_panel);
   std::vector<NonAdhesiveState> out;
@@ -406,126 +382,6 @@ double ExactLayerKernel::flat_punch_factor(double a_over_h) const {
   const auto flat = make_paraboloid(1.0);  // any profile: only phi0 enters S
   const double a = a_over_h * layer_.h;
   return solve(*flat, a).state.S / (2.0 * E_star_ * a);
-}
-
-namespace {
-
-// The power-law tables' interpolation error, as the tests bound it against direct solves
-// (tests/models/test_exact_power_law_table.cpp).
-constexpr double kTableAccuracy = 1e-9;
-
-// True for radii a_max j / n, j = 1..n, to rounding.
-bool evenly_spaced(const std::vector<double>& radii) {
-  const double a_max = radii.back(), n = static_cast<double>(radii.size());
-  if (!(a_max > 0.0) || !std::isfinite(a_max)) return false;
-  for (std::size_t j = 0; j < radii.size(); ++j)
-    if (std::abs(radii[j] - a_max * static_cast<double>(j + 1) / n) > 1e-12 * a_max) return false;
-  return true;
-}
-
-class ExactLayerModel final : public ContactModel {
- public:
-  ExactLayerModel(ProfilePtr p, const ElasticLayer& layer, ExactLayerOptions o)
-      : ContactModel(std::move(p)), kernel_(layer, o) {
-    if (o.tabulate_power_laws)
-      if (const auto form = profile().power_law_form()) {
-        form_ = *form;
-        table_ = detail::shared_power_law_table(layer.nu, layer.base, form->d, o);
-      }
-  }
-  // A ContactModel returns no error estimate, so none is computed (solve() has it).
-  NonAdhesiveState state(double a) const override {
-    if (table_) {
-      const double h = kernel_.layer().h, rho = checked_a_over_h(kernel_, "exact_layer", profile(), a);
-      if (table_->covers(rho)) {  // the unit profile's moments, scaled to B r^d on this layer
-        detail::ExactMoments m = table_->at(rho);
-        const double scale = form_.B * std::pow(h, form_.d);
-        m.intf *= scale;
-        m.endf *= scale;
-        return exact_state_from(m, a, h, kernel_.effective_modulus());
-      }
-    }
-    return kernel_.state(profile(), a);
-  }
-  // A tabulated power law is cheapest radius by radius. Otherwise an evenly spaced grid a_max j / n (as `layerjkr curve --a-max A --points N` asks for)
-  // comes from one factorisation; any other set of radii is solved radius by radius.
-  std::vector<NonAdhesiveState> states(const std::vector<double>& radii) const override {
-    const std::size_t n = radii.size();
-    if (table_ || n < 2 || !evenly_spaced(radii) || !(radii.back() <= max_radius()) ||
-        !sweep_is_cheaper(kernel_.options(), radii.back() / kernel_.layer().h, static_cast<int>(n)))
-      return ContactModel::states(radii);
-    std::vector<NonAdhesiveState> out = kernel_.sweep(profile(), radii.back(), static_cast<int>(n));
-    for (std::size_t j = 0; j < n; ++j) out[j].a = radii[j];
-    return out;
-  }
-  std::string name() const override { return to_string(ModelKind::exact); }
-  double numerical_error(double a) const override {
-    const ExactLayerState s = kernel_.solve(profile(), a);
-    const double solve_error = std::max(s.P_H_error, s.delta_H_error);
-    const double estimate = std::isfinite(solve_error) ? solve_error : kTableAccuracy;
-    return table_ ? std::max(estimate, kTableAccuracy) : std::max(estimate, 1e-13);
-  }
-  double max_radius() const override {
-    return std::min(profile().max_radius(),
-                    kernel_.options().max_a_over_h * kernel_.layer().h);
-  }
-  // Searches seeded at a/h <= 1 meet the cheap small-a/h states (and table pieces) first and
-  // double outwards only as far as the root, instead of halving down from a/h = 500.
-  double typical_radius() const override { return std::min(profile().length_scale(), kernel_.layer().h); }
-
- private:
-  ExactLayerKernel kernel_;
-  PowerLawForm form_;
-  std::shared_ptr<const detail::ExactPowerLawTable> table_;  // null: solve every radius
-};
-
-class EdgeCorrected final : public ContactModel {
- public:
-  EdgeCorrected(ProfilePtr p, double K, double shift)
-      : ContactModel(p), winkler_(make_winkler(std::move(p), K)), shift_(shift) {}
-  NonAdhesiveState state(double a) const override {
-    if (!(a + shift_ > 0.0))
-      throw DomainError("edge_corrected", "contact radius a", a,
-                        "> -beta h = " + format_double(-shift_) +
-                            " (the effective radius a + beta h must be positive)");
-    NonAdhesiveState s = winkler_->state(a + shift_);
-    s.a = a;  // the JKR energy term uses the true contact radius
-    return s;
-  }
-  std::string name() const override { return to_string(ModelKind::edge_corrected); }
-  double min_radius() const override { return std::max(0.0, -shift_); }
-
- private:
-  ContactModelPtr winkler_;
-  double shift_;
-};
-
-}  // namespace
-
-double edge_correction_beta(const ElasticLayer& layer) {
-  if (!(layer.nu < 0.5))
-    throw DomainError("edge_correction_beta", "nu", layer.nu,
-                      "(-1, 0.5): the Winkler constant of an incompressible bonded layer is infinite");
-  ExactLayerOptions o;
-  o.max_a_over_h = 50.0;
-  o.estimate_error = false;
-  const ExactLayerKernel kernel({1.0, layer.nu, 1.0, layer.base}, o);  // dimensionless
-  const double R = 1e4, a = 50.0;
-  const auto paraboloid = make_paraboloid(R);
-  // Winkler on a paraboloid: delta = (a + beta h)^2 / (2R).
-  const double delta = kernel.solve(*paraboloid, a).state.delta_H;
-  return std::sqrt(2.0 * R * delta) - a;
-}
-
-ContactModelPtr make_edge_corrected(ProfilePtr profile, const ElasticLayer& layer) {
-  const ThinLayerConstants c = thin_layer_constants(layer);  // validates the layer
-  return std::make_shared<EdgeCorrected>(std::move(profile), c.K,
-                                         edge_correction_beta(layer) * layer.h);
-}
-
-ContactModelPtr make_exact_layer(ProfilePtr profile, const ElasticLayer& layer,
-                                 ExactLayerOptions options) {
-  return std::make_shared<ExactLayerModel>(std::move(profile), layer, options);
 }
 
 }  // namespace layerjkr
