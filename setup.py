@@ -3,6 +3,7 @@ and puts it into the package. LAYERJKR_CMAKE_BUILD_DIR reuses a configured build
 (e.g. build/ of `cmake --preset default`) instead of configuring a fresh one."""
 import os
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
@@ -11,6 +12,15 @@ from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
 
 ROOT = pathlib.Path(__file__).resolve().parent
+
+
+def project_version():
+    """The one version number: CMakeLists.txt's project(layerjkr VERSION x.y.z)."""
+    text = (ROOT / "CMakeLists.txt").read_text()
+    match = re.search(r"project\(\s*layerjkr\s+VERSION\s+([0-9][0-9.]*)", text)
+    if not match:
+        raise RuntimeError("CMakeLists.txt: no project(layerjkr VERSION ...)")
+    return match.group(1)
 
 
 class CMakeBuild(build_ext):
@@ -35,4 +45,4 @@ class CMakeBuild(build_ext):
         shutil.copyfile(built[0], target)
 
 
-setup(ext_modules=[Extension("layerjkr._core", sources=[])], cmdclass={"build_ext": CMakeBuild})
+setup(version=project_version(), ext_modules=[Extension("layerjkr._core", sources=[])], cmdclass={"build_ext": CMakeBuild})

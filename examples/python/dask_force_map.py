@@ -25,7 +25,10 @@ import sys
 import layerjkr
 
 INSTRUMENT = (".jpk-force", ".jpk-force-map", ".jpk-qi-data", ".ibw")
-OPTION_FLAGS = ("branch", "loss", "control", "baseline", "window", "units")
+# layerjkr.fit_files' keywords this script passes on: name -> type.
+OPTIONS = {"branch": str, "control": str, "spring_constant": float, "baseline": str, "window": str,
+           "window_fraction": float, "loss": str, "loss_scale": float, "starts": int, "max_iterations": int,
+           "units": str}
 
 
 def expand(inputs):
@@ -43,8 +46,8 @@ def expand(inputs):
 
 
 def fit_partition(paths, scene, free, options):
-    """One task: fit a partition of files; plain Python rows (picklable) for the gather."""
-    return layerjkr.fit_files(paths, scene, free, jobs=1, **options)
+    """One task: fit a partition of files; layerjkr.BatchResult items (picklable) for the gather."""
+    return layerjkr.fit_files(paths, scene, free=free, jobs=1, **options)
 
 
 def rows_for(items, free):
@@ -54,16 +57,16 @@ def rows_for(items, free):
     for p in free:
         header += [p, p + "_stderr"]
     rows = []
+    num = lambda v: "" if v is None or (isinstance(v, float) and not math.isfinite(v)) else repr(float(v))
+    index = lambda v: "" if v is None else str(v)
     for it in items:
-        num = lambda v: "" if v is None or (isinstance(v, float) and not math.isfinite(v)) else repr(v)
-        index = lambda v: str(v) if v >= 0 else ""
-        row = [it["source"], index(it["curve"]), num(it["x"]), num(it["y"]), index(it["grid_x"]), index(it["grid_y"]),
-               "ok" if it["ok"] else "error", it["error"]]
-        if it["ok"]:
-            r = it["report"]
-            row += [r["model"], int(r["converged"]), r["iterations"], repr(r["rms_residual"]), int(r["identifiable"])]
+        row = [it.source, index(it.curve), num(it.x), num(it.y), index(it.grid_x), index(it.grid_y),
+               "ok" if it.ok else "error", it.error or ""]
+        if it.ok:
+            r = it.result
+            row += [r.model, int(r.converged), r.iterations, repr(r.rms_residual), int(r.identifiable)]
             for p in free:
-                row += [num(r["parameters"][p]["value"]), num(r["parameters"][p]["stderr"])]
+                row += [num(r.values[p]), num(r.errors[p])]
         else:
             row += [""] * (5 + 2 * len(free))
         rows.append(row)
@@ -76,15 +79,15 @@ def plot_map(items, parameter, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import numpy as np
-    on_grid = all(it["grid_x"] >= 0 for it in items)
+    on_grid = all(it.grid_x is not None for it in items)
     side = max(1, math.ceil(math.sqrt(len(items))))
-    nx = max(it["grid_x"] for it in items) + 1 if on_grid else side
-    ny = max(it["grid_y"] for it in items) + 1 if on_grid else math.ceil(len(items) / side)
+    nx = max(it.grid_x for it in items) + 1 if on_grid else side
+    ny = max(it.grid_y for it in items) + 1 if on_grid else math.ceil(len(items) / side)
     image = np.full((ny, nx), np.nan)
     for k, it in enumerate(items):
-        gx, gy = (it["grid_x"], it["grid_y"]) if on_grid else (k % side, k // side)
-        if it["ok"]:
-            image[gy, gx] = it["report"]["parameters"][parameter]["value"]
+        gx, gy = (it.grid_x, it.grid_y) if on_grid else (k % side, k // side)
+        if it.ok:
+            image[gy, gx] = it.result.values[parameter]
     fig, ax = plt.subplots(figsize=(5, 4))
     shown = ax.imshow(image, origin="lower", cmap="viridis")
     fig.colorbar(shown, ax=ax, label=parameter + " (SI)")
@@ -111,11 +114,12 @@ def main(argv=None, client=None):
     ap.add_argument("--scheduler", help="address of a running Dask scheduler (default: a LocalCluster)")
     ap.add_argument("--workers", type=int, default=2, help="LocalCluster workers, one thread each (default 2)")
     ap.add_argument("--partition-size", type=int, default=16, help="files per task (default 16)")
-    for flag in OPTION_FLAGS:
-        ap.add_argument("--" + flag)
+    for name, kind in OPTIONS.items():
+        ap.add_argument("--" + name.replace("_", "-"), dest=name, type=kind,
+                        help="layerjkr.fit_files(%s=...) (default: its default)" % name)
     a = ap.parse_args(argv)
     free = a.free.split(",")
-    options = {k: getattr(a, k) for k in OPTION_FLAGS if getattr(a, k) is not None}
+    options = {k: getattr(a, k) for k in OPTIONS if getattr(a, k) is not None}
     files = expand(a.inputs)
     if not files:
         ap.error("no curve files in " + " ".join(a.inputs))
@@ -141,7 +145,7 @@ def main(argv=None, client=None):
         w.writerows(rows)
     if a.plot:
         plot_map(items, free[0], a.plot)
-    failed = sum(not it["ok"] for it in items)
+    failed = sum(not it.ok for it in items)
     print("fitted %d curves from %d files, %d failed; wrote %s" % (len(items), len(files), failed, a.out))
     return 0
 

@@ -32,25 +32,26 @@ def load_curve(path):
 def main(plot_path="fit_and_plot.png"):
     delta, P, segment = load_curve(ROOT / "data/curves/hydrogel_film_two_term.csv")
     scene = layerjkr.scene(ROOT / "data/scenes/hydrogel_film_two_term.json")
-    result = layerjkr.fit(delta, P, scene=scene, free=["E", "w", "delta0", "P0"], segment=segment, branch="all")
+    result = layerjkr.fit(delta, P, scene, free=["E", "w", "delta0", "P0"], segment=segment, branch="all")
     print(result.report())
 
     fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(6, 6), gridspec_kw={"height_ratios": [3, 1]})
     nm, nN = 1e9, 1e9
     top.plot(result.delta * nm, result.P * nN, ".", ms=2, color="0.6", label="data")
     # In acquisition order: the approach, then the retract with its jump at pull-off.
-    top.plot(result.delta * nm, result.P_fit * nN, "-", color="C3", lw=1, label="fit (%s)" % result.as_dict()["model"])
+    top.plot(result.delta * nm, result.P_fit * nN, "-", color="C3", lw=1, label="fit (%s)" % result.model)
     top.set_ylabel("force P [nN]")
     top.legend()
     bottom.plot(result.delta * nm, result.residuals * nN, ".", ms=2, color="C0")
     bottom.axhline(0, color="k", lw=0.8)
     bottom.set_xlabel("approach delta [nm]")
     bottom.set_ylabel("residual [nN]")
-    values, errors = result.values, result.stderr
+    values, errors = result.values, result.errors  # indexed by parameter name
     top.set_title("E = %.2f +- %.2f kPa, w = %.4g +- %.2g mJ/m^2"
                   % (values["E"] / 1e3, errors["E"] / 1e3, values["w"] * 1e3, errors["w"] * 1e3))
     fig.tight_layout()
     fig.savefig(plot_path, dpi=110)
+    print("correlation of E and w: %.3f" % result.correlation["E", "w"])
     print("wrote", plot_path)
     return result
 

@@ -2,8 +2,9 @@
 """The Python layer's cost, measured against the C++ it wraps; prints a table (docs/python.md).
 
 1. Binding overhead of layerjkr.curve(scene, 200 radii): per call, the wall time seen from
-   Python minus the time the C++ curve took inside that same call (_core._curve_timed), median
-   over 600 calls; beside it the C++ call alone (bench_models BM_CurveTable200_Hydrogel).
+   Python minus the time the C++ answer took inside that same call (Curve.seconds, the
+   library's CurveAnswer::seconds), median over 600 calls; beside it the C++ call alone
+   (bench_models BM_CurveTable200_Hydrogel).
 2. A fit of the bundled sample from Python against bench_fit BM_FitBundledSample.
 3. A 512-curve map (partitions of 32) on a LocalCluster of 2 single-thread workers (examples/python/
    dask_force_map.py, cluster already started) against `layerjkr fit-map --jobs 2`.
@@ -62,7 +63,7 @@ def main():
     overheads, totals = [], []
     for _ in range(600):
         t = time.perf_counter()
-        _, inner = layerjkr._core._curve_timed(scene, a)
+        inner = layerjkr.curve(scene, a).seconds
         total = time.perf_counter() - t
         overheads.append(total - inner)
         totals.append(total)
@@ -71,7 +72,7 @@ def main():
                  "binding overhead %.1f us" % (statistics.median(overheads) * 1e6)))
 
     body, data = sample()
-    fit = lambda: layerjkr.fit(data[:, 0], data[:, 1], scene=scene, free=["E", "w", "delta0", "P0"],
+    fit = lambda: layerjkr.fit(data[:, 0], data[:, 1], scene, free=["E", "w", "delta0", "P0"],
                                segment=data[:, 2], branch="all")
     py = py_median(fit, 15, 20)
     cpp = cpp_median("bench_fit", "BM_FitBundledSample", 15)

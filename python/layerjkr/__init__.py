@@ -2,38 +2,88 @@
 
 The same library as the ``layerjkr`` command line, with numpy in and out::
 
-    import layerjkr
-    s = layerjkr.scene("data/scenes/hydrogel_film_two_term.json")   # or a dict, same schema
-    c = layerjkr.curve(s, np.linspace(1e-7, 2e-6, 200))           # dict of arrays, SI units
-    layerjkr.summary(s)["pull_off_force"]                          # the CLI's summary keys
-    r = layerjkr.fit(delta, P, scene=s, free=["E", "w", "delta0"], branch="retract")
+    import numpy as np, layerjkr
+    s = layerjkr.scene("data/scenes/hydrogel_film_two_term.json")  # or a dict, same schema
+    c = layerjkr.curve(s, np.linspace(1e-7, 2e-6, 200))           # Curve: c.P, c.delta, ...
+    layerjkr.summary(s).pull_off_force                             # or ["pull_off_force"]
+    r = layerjkr.fit(delta, P, s, free=["E", "w", "delta0"], branch="retract")
+    r.values["E"], r.errors["E"], r.correlation["E", "w"]
     print(r.report())
 
-Fit options are named as the CLI's flags (``branch``, ``loss``, ``control``, ``baseline``,
-``window``, ``units``, ``starts``, ``max_iterations``, ``spring_constant``, ``curve``). Long
-calls release the GIL, so threads run fits in parallel. Errors raise :class:`Error` and its
-subclasses with the C++ library's messages.
+Every option is a keyword with its default in the signature; a misspelt keyword is a
+``TypeError``, a misspelt choice an :class:`InputError` naming the parameter. Long calls
+release the GIL, so threads run fits in parallel. Errors raise :class:`Error` and its
+subclasses with the C++ library's messages; an answer the library warns about also emits a
+:class:`ModelWarning` through :mod:`warnings`.
 """
+from __future__ import annotations
+
 import json
 import os
+import warnings as _warnings
+from typing import (Any, Callable, Dict, List, Literal, NamedTuple, Optional, Sequence, Tuple,
+                    Union)
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _core
 from ._core import DomainError, Error, InputError, NumericalError, Scene
 
-__all__ = ["Error", "DomainError", "InputError", "NumericalError", "Scene", "FitResult", "scene", "curve",
-           "summary", "fit", "fit_batch", "fit_files", "read_instrument"]
+__version__: str = _core.__version__
+
+__all__ = ["__version__", "Error", "DomainError", "InputError", "NumericalError", "ModelWarning", "Scene",
+           "AutoChoice", "FixedGrips", "ModelError", "Curve", "Summary", "NamedArray", "FitResult", "BatchResult",
+           "scene", "curve", "summary", "fit", "fit_batch", "fit_files", "read_instrument"]
+
+SceneLike = Union[Scene, Dict[str, Any], str, "os.PathLike[str]"]
+Branch = Literal["approach", "retract", "all"]
+Control = Literal["auto", "load", "cantilever", "grips"]
+BaselineKind = Literal["constant", "tilt"]
+Window = Literal["all", "pull_off", "fraction"]
+Loss = Literal["none", "huber", "cauchy"]
 
 
-def scene(spec, profile=None, r_max=None, samples=501):
-    """A scene from a dict (the CLI's JSON schema), a JSON file path or a Scene.
+class ModelWarning(UserWarning):
+    """An answer the library warns about: a model estimated to be off its reference by more
+    than the warning threshold, or constants outside a model's validity. The same text is in
+    the answer's ``warnings`` list."""
 
-    ``profile``: a Python callable f(r) -> height [m] (vectorised over a numpy array or not)
-    that replaces the scene's indenter. It is sampled at ``samples`` radii on [0, r_max] and
-    interpolated as a measured tip table (a C2 cubic spline, mirrored at r = 0): contact radii
-    up to r_max are admissible. Accuracy: that of the spline, about (r_max / samples)^2 relative
-    in f''; test your r_max and samples against a known profile (docs/python.md).
+
+def _warn(messages: Sequence[str], stacklevel: int) -> None:
+    for message in messages:
+        _warnings.warn(message, ModelWarning, stacklevel=stacklevel + 1)
+
+
+def scene(spec: SceneLike, profile: Optional[Callable[[Any], Any]] = None, r_max: Optional[float] = None,
+          samples: int = 501) -> Scene:
+    """A scene: indenter, medium, model and work of adhesion.
+
+    Parameters
+    ----------
+    spec : dict, str, os.PathLike or Scene
+        A dict with the keys of the CLI's scene JSON, the path of a scene file, or a Scene
+        (returned as is unless ``profile`` is given).
+    profile : callable, optional
+        ``f(r) -> height`` [m], vectorised over a numpy array or not, replacing the scene's
+        indenter. It is sampled at ``samples`` radii on [0, r_max] and interpolated as a
+        measured tip table (a C2 cubic spline, mirrored at r = 0): contact radii up to
+        ``r_max`` are admissible. Accuracy is the spline's, about (r_max / samples)^2 relative
+        in f''; test r_max and samples against a known profile (docs/python.md).
+    r_max : float, optional
+        The largest contact radius [m]; required with ``profile``.
+    samples : int, default 501
+        Radii at which ``profile`` is sampled, >= 3.
+
+    Returns
+    -------
+    Scene
+
+    Raises
+    ------
+    InputError
+        An unknown key, a wrong type or an invalid value in the scene (the message names
+        it), a file that cannot be read, or an invalid ``profile``, ``r_max`` or ``samples``.
     """
     if isinstance(spec, Scene):
         s = spec
@@ -68,105 +118,893 @@ def scene(spec, profile=None, r_max=None, samples=501):
 _as_scene = scene
 
 
-def curve(scene_spec, a):
-    """The adhesive curve at contact radii ``a`` [m]: a dict of float64 arrays a, P, delta, P_H,
-    delta_H, S, dS_da, error_est (as ``layerjkr curve``), plus 'warnings' and 'note'."""
-    return _core.curve(scene(scene_spec), np.asarray(a, dtype=np.float64))
+class AutoChoice(NamedTuple):
+    """What model ``"auto"`` chose, and how well the choice was judged to do."""
+
+    model: str
+    """The chosen model."""
+    estimated_error: float
+    """The chosen model's worst estimated relative error where it was judged."""
+    tolerance: float
+    """The scene's target."""
+    judged_at: str
+    """Where it was judged, e.g. "over the curve's radii"."""
+    note: str
+    """One line: "auto chose model 'uniform' (estimated error 0.003 over the curve's radii)"."""
 
 
-def summary(scene_spec):
-    """The keys of ``layerjkr summary``: pull-off, zero-load radius, fixed grips, model error."""
-    return json.loads(_core.summary(scene(scene_spec)))
+def _choice(c: Any) -> Optional[AutoChoice]:
+    if c is None:
+        return None
+    return AutoChoice(c.model, c.estimated_error, c.tolerance, c.judged_at, c.brief_report())
+
+
+class FixedGrips(NamedTuple):
+    """The fixed-grips (displacement-controlled) critical point."""
+
+    force: float
+    """P [N]."""
+    radius: float
+    """a [m]."""
+    delta: float
+    """Approach [m]."""
+
+
+class ModelError(NamedTuple):
+    """Estimated relative model errors of a summary, against its reference model."""
+
+    pull_off_force: float
+    """|P* - P*_ref| / |P*_ref| (inf where the model misses a point its reference has)."""
+    zero_load_radius: float
+    """|a0 - a0_ref| / a0_ref."""
+    reference: str
+    """The reference model's name, or "none"."""
+
+
+_CURVE_ROWS = ("a", "P", "delta", "P_H", "delta_H", "S", "dS_da", "error_estimate")
+
+
+class Curve:
+    """A scene's adhesive curve at given contact radii (the library's CurveAnswer).
+
+    Every array is float64, one value per radius in the order given, SI units. Index by name
+    as well: ``c["P"]`` is ``c.P``.
+    """
+
+    __slots__ = ("_block", "_warnings", "_model", "_reference", "_choice", "_seconds")
+
+    def __init__(self, block: npt.NDArray[np.float64], warnings: List[str], model: str, reference: str,
+                 choice: Optional[AutoChoice], seconds: float) -> None:
+        self._block, self._warnings, self._model = block, warnings, model
+        self._reference, self._choice, self._seconds = reference, choice, seconds
+
+    @property
+    def a(self) -> npt.NDArray[np.float64]:
+        """Contact radius [m]."""
+        return self._block[0]
+
+    @property
+    def P(self) -> npt.NDArray[np.float64]:
+        """Adhesive force [N], negative = tensile."""
+        return self._block[1]
+
+    @property
+    def delta(self) -> npt.NDArray[np.float64]:
+        """Adhesive approach [m]."""
+        return self._block[2]
+
+    @property
+    def P_H(self) -> npt.NDArray[np.float64]:
+        """Non-adhesive (Hertz-like) force at the same radius [N]."""
+        return self._block[3]
+
+    @property
+    def delta_H(self) -> npt.NDArray[np.float64]:
+        """Non-adhesive approach at the same radius [m]."""
+        return self._block[4]
+
+    @property
+    def S(self) -> npt.NDArray[np.float64]:
+        """Contact stiffness dP_H/d delta_H [N/m]."""
+        return self._block[5]
+
+    @property
+    def dS_da(self) -> npt.NDArray[np.float64]:
+        """dS/da [N/m^2]."""
+        return self._block[6]
+
+    @property
+    def error_estimate(self) -> npt.NDArray[np.float64]:
+        """Estimated relative model error at each radius (0 where the model is exact)."""
+        return self._block[7]
+
+    @property
+    def error_est(self) -> npt.NDArray[np.float64]:
+        """Alias of :attr:`error_estimate` (the CLI's column name)."""
+        return self._block[7]
+
+    @property
+    def warnings(self) -> List[str]:
+        """The library's warnings (also emitted as :class:`ModelWarning`)."""
+        return list(self._warnings)
+
+    @property
+    def model(self) -> str:
+        """The model that answered."""
+        return self._model
+
+    @property
+    def reference(self) -> str:
+        """The model it was judged against, or "none"."""
+        return self._reference
+
+    @property
+    def choice(self) -> Optional[AutoChoice]:
+        """Model "auto": what it chose; else None."""
+        return self._choice
+
+    @property
+    def seconds(self) -> float:
+        """Wall time of the C++ answer [s]."""
+        return self._seconds
+
+    def __getitem__(self, name: str) -> Any:
+        if name not in _CURVE_KEYS:
+            raise KeyError("%r is not a key of a Curve (keys: %s)" % (name, ", ".join(_CURVE_KEYS)))
+        return getattr(self, name)
+
+    def keys(self) -> Tuple[str, ...]:
+        """The names ``c[name]`` accepts."""
+        return _CURVE_KEYS
+
+    def as_dict(self) -> Dict[str, Any]:
+        """The arrays and the metadata as a dict (keys as :meth:`keys`)."""
+        return {k: getattr(self, k) for k in _CURVE_KEYS}
+
+    def __len__(self) -> int:
+        return int(self._block.shape[1])
+
+    def __repr__(self) -> str:
+        return "layerjkr.Curve(model=%r, %d radii, %d warnings)" % (self._model, len(self), len(self._warnings))
+
+
+_CURVE_KEYS = _CURVE_ROWS + ("error_est", "warnings", "model", "reference", "choice")
+
+
+def curve(scene: SceneLike, a: npt.ArrayLike, *, warning_threshold: float = 0.05) -> Curve:
+    """The adhesive curve of a scene at contact radii ``a``.
+
+    Parameters
+    ----------
+    scene : Scene, dict or path
+        The scene (see :func:`scene`).
+    a : array_like
+        Contact radii [m], 1-D, each finite and > 0 (converted to float64).
+    warning_threshold : float, default 0.05
+        A curve whose estimated relative model error exceeds this, in (0, 1), carries a
+        warning.
+
+    Returns
+    -------
+    Curve
+        a, P, delta, P_H, delta_H, S, dS_da, error_estimate as float64 arrays, with the
+        warnings, the model, its reference and model "auto"'s choice. ``layerjkr curve``
+        prints the same numbers.
+
+    Raises
+    ------
+    InputError
+        ``a`` not 1-D, or a radius not finite and > 0 (the message names it); an invalid scene.
+    DomainError
+        ``warning_threshold`` outside (0, 1).
+    NumericalError
+        A computation that could not reach its accuracy.
+
+    Warns
+    -----
+    ModelWarning
+        Each of the curve's warnings.
+    """
+    block, warnings, model, reference, choice, seconds = _core.curve(
+        _as_scene(scene), np.asarray(a, dtype=np.float64), float(warning_threshold))
+    result = Curve(block, warnings, model, reference, _choice(choice), seconds)
+    _warn(warnings, 2)
+    return result
+
+
+class _SummaryFields(NamedTuple):  # the bound SummaryAnswer as plain (picklable) values
+    model: str
+    profile: str
+    w: float
+    pull_off: Optional[Tuple[float, float, float]]
+    zero_load_radius: Optional[float]
+    fixed_grips: Optional[Tuple[float, float, float]]
+    error: Tuple[float, float, str]
+    K: Optional[float]
+    G: Optional[float]
+    g_is_tension: bool
+    E_star: Optional[float]
+    warnings: List[str]
+    seconds: float
+
+
+class Summary:
+    """A scene's summary (the library's SummaryAnswer): critical points, their estimated
+    errors and the medium's constants, SI units.
+
+    ``s[key]`` and :meth:`as_dict` use the keys of ``layerjkr summary``'s JSON, with the same
+    values (None for a point the model does not have and for an unbounded error).
+    """
+
+    __slots__ = ("_a", "_choice")
+
+    def __init__(self, answer: Any) -> None:
+        self._a = _SummaryFields(*(getattr(answer, k) for k in _SummaryFields._fields))
+        self._choice = _choice(answer.choice)
+
+    @property
+    def model(self) -> str:
+        """The model that answered."""
+        return self._a.model
+
+    @property
+    def profile(self) -> str:
+        """The indenter, described."""
+        return self._a.profile
+
+    @property
+    def w(self) -> float:
+        """Work of adhesion [J/m^2]."""
+        return self._a.w
+
+    def _pull_off(self, k: int) -> Optional[float]:
+        p = self._a.pull_off
+        return None if p is None else p[k]
+
+    @property
+    def pull_off_force(self) -> Optional[float]:
+        """Pull-off force under load control [N] (negative), or None."""
+        return self._pull_off(1)
+
+    @property
+    def pull_off_radius(self) -> Optional[float]:
+        """Contact radius at pull-off [m], or None."""
+        return self._pull_off(0)
+
+    @property
+    def pull_off_delta(self) -> Optional[float]:
+        """Approach at pull-off [m], or None."""
+        return self._pull_off(2)
+
+    @property
+    def zero_load_radius(self) -> Optional[float]:
+        """Contact radius at zero load [m], or None."""
+        return self._a.zero_load_radius
+
+    @property
+    def fixed_grips(self) -> Optional[FixedGrips]:
+        """The fixed-grips critical point, or None."""
+        p = self._a.fixed_grips
+        return None if p is None else FixedGrips(force=p[1], radius=p[0], delta=p[2])
+
+    @property
+    def model_error(self) -> ModelError:
+        """Estimated relative errors of the pull-off force and the zero-load radius."""
+        return ModelError(*self._a.error)
+
+    @property
+    def K(self) -> Optional[float]:
+        """Foundation modulus [N/m^3] (a foundation's, or a layer's thin-layer constant), or None."""
+        return self._a.K
+
+    @property
+    def G(self) -> Optional[float]:
+        """Shear foundation constant [N/m], or None (also for a Filonenko-Borodich tension: see :attr:`T`)."""
+        return None if self._a.g_is_tension else self._a.G
+
+    @property
+    def T(self) -> Optional[float]:
+        """Filonenko-Borodich membrane tension [N/m], or None."""
+        return self._a.G if self._a.g_is_tension else None
+
+    @property
+    def E_star(self) -> Optional[float]:
+        """Plane-strain modulus [Pa] of a layer or the half-space, or None."""
+        return self._a.E_star
+
+    @property
+    def choice(self) -> Optional[AutoChoice]:
+        """Model "auto": what it chose; else None."""
+        return self._choice
+
+    @property
+    def warnings(self) -> List[str]:
+        """The library's warnings (also emitted as :class:`ModelWarning`)."""
+        return list(self._a.warnings)
+
+    @property
+    def seconds(self) -> float:
+        """Wall time of the C++ answer [s]."""
+        return self._a.seconds
+
+    def as_dict(self) -> Dict[str, Any]:
+        """The keys and values of ``layerjkr summary``'s JSON, in its order.
+
+        Returns
+        -------
+        dict
+            model, profile, w, pull_off_force, pull_off_radius, pull_off_delta,
+            zero_load_radius, fixed_grips_critical ({force, radius, delta} or None),
+            model_error_estimate ({pull_off_force, zero_load_radius, reference}), K and G (or
+            T) where known, E_star where known, model_choice for model "auto", warnings.
+        """
+        fg = self.fixed_grips
+        err = self.model_error
+        d: Dict[str, Any] = {
+            "model": self.model, "profile": self.profile, "w": self.w,
+            "pull_off_force": self.pull_off_force, "pull_off_radius": self.pull_off_radius,
+            "pull_off_delta": self.pull_off_delta, "zero_load_radius": self.zero_load_radius,
+            "fixed_grips_critical": None if fg is None else fg._asdict(),
+            "model_error_estimate": {"pull_off_force": _finite_or_none(err.pull_off_force),
+                                     "zero_load_radius": _finite_or_none(err.zero_load_radius),
+                                     "reference": err.reference},
+        }
+        if self._a.K is not None:
+            d["K"] = self._a.K
+            d["T" if self._a.g_is_tension else "G"] = self._a.G if self._a.G is not None else 0.0
+        if self._a.E_star is not None:
+            d["E_star"] = self._a.E_star
+        if self._choice is not None:
+            d["model_choice"] = {"model": self._choice.model, "estimated_error": self._choice.estimated_error,
+                                 "tolerance": self._choice.tolerance}
+        d["warnings"] = self.warnings
+        return d
+
+    def __getitem__(self, key: str) -> Any:
+        d = self.as_dict()
+        if key not in d:
+            raise KeyError("%r is not a key of this summary (keys: %s)" % (key, ", ".join(d)))
+        return d[key]
+
+    def keys(self) -> List[str]:
+        """The keys of :meth:`as_dict`."""
+        return list(self.as_dict())
+
+    def __repr__(self) -> str:
+        return "layerjkr.Summary(model=%r, pull_off_force=%r, zero_load_radius=%r)" % (
+            self.model, self.pull_off_force, self.zero_load_radius)
+
+
+def _finite_or_none(x: Optional[float]) -> Optional[float]:
+    return x if x is not None and np.isfinite(x) else None
+
+
+def summary(scene: SceneLike, *, warning_threshold: float = 0.05) -> Summary:
+    """The summary of a scene: pull-off, zero-load radius, fixed grips, model error, constants.
+
+    Parameters
+    ----------
+    scene : Scene, dict or path
+        The scene (see :func:`scene`).
+    warning_threshold : float, default 0.05
+        A summary whose estimated relative model error exceeds this, in (0, 1), carries a
+        warning.
+
+    Returns
+    -------
+    Summary
+        Its :meth:`Summary.as_dict` is ``layerjkr summary``'s JSON.
+
+    Raises
+    ------
+    InputError
+        An invalid scene.
+    DomainError
+        ``warning_threshold`` outside (0, 1).
+    NumericalError
+        A critical-point search that fails.
+
+    Warns
+    -----
+    ModelWarning
+        Each of the summary's warnings.
+    """
+    result = Summary(_core.summary(_as_scene(scene), float(warning_threshold)))
+    _warn(result._a.warnings, 2)
+    return result
+
+
+class NamedArray(np.ndarray):
+    """A read-only float64 array of fit quantities indexed by parameter name as well as by
+    position (iminuit's util pattern): ``values["E"]``, ``correlation["E", "w"]``,
+    ``correlation["E"]`` (a row). Arithmetic gives plain arrays of the same shape."""
+
+    _names: Tuple[str, ...]
+
+    def __new__(cls, data: npt.ArrayLike, names: Sequence[str]) -> "NamedArray":
+        obj = np.array(data, dtype=np.float64).view(cls)
+        obj._names = tuple(names)
+        obj.flags.writeable = False
+        return obj
+
+    def __array_finalize__(self, obj: Any) -> None:
+        self._names = getattr(obj, "_names", ())
+
+    @property
+    def names(self) -> Tuple[str, ...]:
+        """The parameter names, in index order."""
+        return self._names
+
+    def _index(self, key: Any) -> Any:
+        if isinstance(key, str):
+            try:
+                return self._names.index(key)
+            except ValueError:
+                raise KeyError("%r is not a fitted parameter (fitted: %s)" % (key, ", ".join(self._names))) from None
+        if isinstance(key, tuple):
+            return tuple(self._index(k) for k in key)
+        return key
+
+    def __getitem__(self, key: Any) -> Any:
+        out = super().__getitem__(self._index(key))
+        return out.view(np.ndarray) if isinstance(out, np.ndarray) else out
+
+    def to_dict(self) -> Dict[str, Any]:
+        """{name: value} (1-D) or {name: {name: value}} (2-D), as Python floats."""
+        if self.ndim == 1:
+            return {n: float(v) for n, v in zip(self._names, self.view(np.ndarray))}
+        m = self.view(np.ndarray)
+        return {a: {b: float(m[i, k]) for k, b in enumerate(self._names)} for i, a in enumerate(self._names)}
+
+    def __array_wrap__(self, out: Any, context: Any = None, *args: Any) -> Any:
+        return np.asarray(out).view(np.ndarray) if out.ndim else out[()]
+
+    def __reduce__(self) -> Any:
+        return (NamedArray, (self.view(np.ndarray), self._names))
+
+    def __repr__(self) -> str:
+        if self.ndim == 1:
+            return "NamedArray({%s})" % ", ".join("%r: %r" % (n, float(v)) for n, v in zip(self._names, self.view(np.ndarray)))
+        return "NamedArray(%s, names=%r)" % (np.array2string(self.view(np.ndarray), separator=", "), self._names)
+
+
+class _Parameter(NamedTuple):
+    value: float
+    standard_error: float
+    initial: float
+    at_bound: bool
+    identifiable: bool
 
 
 class FitResult:
-    """A fit: estimates with standard errors, correlation, identifiability, warnings, and the
-    data with the fitted curve (``delta``, ``P``, ``P_fit``, ``excluded``)."""
+    """A fitted curve (the library's FitSummary): estimates with standard errors, their
+    covariance and correlation, identifiability, warnings, and the data with the fitted curve.
 
-    def __init__(self, output):
-        self._report = json.loads(output.report)
-        self._brief = output.brief
-        self.delta, self.P, self.P_fit, self.excluded = output.delta, output.P, output.P_fit, output.excluded
+    ``values``, ``errors``, ``covariance`` and ``correlation`` are :class:`NamedArray`
+    indexed by the names in ``parameters``. Picklable (plain Python and numpy values).
+    """
 
-    @property
-    def values(self):
-        """{name: value} in SI units."""
-        return {k: v["value"] for k, v in self._report["parameters"].items()}
+    __slots__ = ("_fields", "_params", "_corr", "_delta", "_P", "_P_fit", "_excluded", "_brief", "_branch")
 
-    @property
-    def stderr(self):
-        """{name: standard error} (None where not identifiable)."""
-        return {k: v["stderr"] for k, v in self._report["parameters"].items()}
+    def __init__(self, s: Any, branch: str) -> None:
+        self._fields = {k: getattr(s, k) for k in ("converged", "termination", "iterations", "model", "family",
+                                                     "rms_residual", "excluded_count", "pull_off_force",
+                                                     "baseline_slope", "baseline_slope_stderr", "points",
+                                                     "points_in_contact", "identifiable", "unidentifiable",
+                                                     "warnings", "initial_cost", "final_cost", "solve_seconds")}
+        self._params = {p.name: _Parameter(p.value, p.standard_error, p.initial, p.at_bound, p.identifiable)
+                        for p in s.parameters}
+        self._corr = s.correlation
+        self._delta, self._P, self._P_fit, self._excluded = s.delta, s.P, s.P_fit, s.excluded
+        self._brief = s.brief_report()
+        self._branch = branch
 
-    @property
-    def correlation(self):
-        return self._report["correlation"]
+    def __getstate__(self) -> Any:
+        return {k: getattr(self, k) for k in self.__slots__}
 
-    @property
-    def identifiable(self):
-        return self._report["identifiable"]
-
-    @property
-    def warnings(self):
-        return self._report["warnings"]
-
-    @property
-    def converged(self):
-        return self._report["converged"]
+    def __setstate__(self, state: Any) -> None:
+        for k, v in state.items():
+            object.__setattr__(self, k, v)
 
     @property
-    def residuals(self):
+    def delta(self) -> npt.NDArray[np.float64]:
+        """The fitted branch's approach samples [m], in acquisition order (empty in a batch)."""
+        return self._delta
+
+    @property
+    def P(self) -> npt.NDArray[np.float64]:
+        """The fitted branch's force samples [N] (empty in a batch)."""
+        return self._P
+
+    @property
+    def P_fit(self) -> npt.NDArray[np.float64]:
+        """The fitted model at the same samples [N] (empty in a batch)."""
+        return self._P_fit
+
+    @property
+    def excluded(self) -> npt.NDArray[np.bool_]:
+        """Per sample: a retract sample after the model's jump that is not JKR, excluded from
+        the fit (empty in a batch)."""
+        return self._excluded
+
+    @property
+    def parameters(self) -> Tuple[str, ...]:
+        """The free parameters' names, in the order of ``free``."""
+        return tuple(self._params)
+
+    @property
+    def values(self) -> NamedArray:
+        """Fitted values, SI units."""
+        return NamedArray([p.value for p in self._params.values()], self.parameters)
+
+    @property
+    def errors(self) -> NamedArray:
+        """Standard errors scaled by the residual variance; NaN where not identifiable, at a
+        bound or not computed."""
+        return NamedArray([p.standard_error for p in self._params.values()], self.parameters)
+
+    @property
+    def correlation(self) -> NamedArray:
+        """Correlation matrix of the estimates (symmetric; NaN where not computed)."""
+        return NamedArray(self._corr, self.parameters)
+
+    @property
+    def covariance(self) -> NamedArray:
+        """Covariance matrix of the estimates, SI units: ``correlation * outer(errors, errors)``
+        (the library reports standard errors and correlations; as every map from the fit's
+        internal parameters to SI is increasing, this is the linearised covariance exactly).
+        Its diagonal is ``errors ** 2``; NaN where an error is."""
+        e = np.array([p.standard_error for p in self._params.values()])
+        c = np.array(self._corr) * np.outer(e, e)
+        np.fill_diagonal(c, e * e)
+        return NamedArray(c, self.parameters)
+
+    @property
+    def initial(self) -> NamedArray:
+        """The data-driven starting values."""
+        return NamedArray([p.initial for p in self._params.values()], self.parameters)
+
+    @property
+    def at_bound(self) -> Dict[str, bool]:
+        """Per parameter: ended at its bound (w = 0; its error bar is one-sided)."""
+        return {k: p.at_bound for k, p in self._params.items()}
+
+    @property
+    def identifiable(self) -> bool:
+        """False if the data cannot separate some parameters (see :attr:`unidentifiable`)."""
+        return self._fields["identifiable"]
+
+    @property
+    def unidentifiable(self) -> List[str]:
+        """The groups of parameters the data cannot separate."""
+        return list(self._fields["unidentifiable"])
+
+    @property
+    def converged(self) -> bool:
+        """Whether the solver converged."""
+        return self._fields["converged"]
+
+    @property
+    def warnings(self) -> List[str]:
+        """The fit's warnings (also emitted as :class:`ModelWarning` by :func:`fit`)."""
+        return list(self._fields["warnings"])
+
+    @property
+    def model(self) -> str:
+        """The contact model that was fitted."""
+        return self._fields["model"]
+
+    @property
+    def iterations(self) -> int:
+        """Solver iterations."""
+        return self._fields["iterations"]
+
+    @property
+    def termination(self) -> str:
+        """The solver's termination message."""
+        return self._fields["termination"]
+
+    @property
+    def rms_residual(self) -> float:
+        """Root-mean-square force residual [N]."""
+        return self._fields["rms_residual"]
+
+    @property
+    def residuals(self) -> npt.NDArray[np.float64]:
+        """``P - P_fit`` [N]."""
         return self.P - self.P_fit
 
-    def as_dict(self):
-        """The JSON keys of ``layerjkr fit --out``."""
-        return dict(self._report)
-
-    def report(self):
-        """The brief report the CLI prints."""
+    def report(self) -> str:
+        """The brief report the CLI prints (FitSummary::brief_report)."""
         return self._brief
 
-    def __repr__(self):
-        return "FitResult(%s)" % ", ".join("%s=%.6g" % kv for kv in self.values.items())
+    def as_dict(self) -> Dict[str, Any]:
+        """The keys and values of ``layerjkr fit --out``'s JSON report, in its order (None for
+        NaN)."""
+        f = self._fields
+        names = self.parameters
+        corr = np.asarray(self._corr)
+        return {
+            "converged": f["converged"], "termination": f["termination"], "iterations": f["iterations"],
+            "model": f["model"], "family": f["family"], "branch": self._branch,
+            "parameters": {k: {"value": p.value, "stderr": _finite_or_none(p.standard_error), "initial": p.initial,
+                               "at_bound": p.at_bound, "identifiable": p.identifiable}
+                           for k, p in self._params.items()},
+            "correlation": {a: {b: _finite_or_none(float(corr[i, k])) for k, b in enumerate(names)}
+                            for i, a in enumerate(names)},
+            "rms_residual": f["rms_residual"], "excluded": f["excluded_count"],
+            "pull_off_force": _finite_or_none(f["pull_off_force"]), "baseline_slope": f["baseline_slope"],
+            "baseline_slope_stderr": f["baseline_slope_stderr"], "points": f["points"],
+            "points_in_contact": f["points_in_contact"], "identifiable": f["identifiable"],
+            "unidentifiable": list(f["unidentifiable"]), "warnings": list(f["warnings"]),
+        }
+
+    def __repr__(self) -> str:
+        return "layerjkr.FitResult(%s)" % ", ".join(
+            "%s=%.6g+-%.2g" % (k, p.value, p.standard_error) for k, p in self._params.items())
 
 
-def _free(free):
+class BatchResult(NamedTuple):
+    """One curve of :func:`fit_batch` or :func:`fit_files`: its fit, or why it failed."""
+
+    source: str
+    """The file name, or "curve N" in a batch of arrays."""
+    curve: Optional[int]
+    """The curve's number in an instrument file, else None."""
+    x: float
+    """Map position [m] (NaN where the file has none)."""
+    y: float
+    """Map position [m] (NaN where the file has none)."""
+    grid_x: Optional[int]
+    """Grid pixel (None where the file has none)."""
+    grid_y: Optional[int]
+    """Grid pixel (None where the file has none)."""
+    result: Optional[FitResult]
+    """The fit (without the per-sample arrays), or None if it failed."""
+    error: Optional[str]
+    """The library's message if the curve could not be read or fitted, else None."""
+
+    @property
+    def ok(self) -> bool:
+        """True if the curve was fitted."""
+        return self.result is not None
+
+
+def _free(free: Union[str, Sequence[str]]) -> List[str]:
     if isinstance(free, str):
         free = free.split(",")
     return [str(f) for f in free]
 
 
-def fit(delta, P, scene, free, segment=None, **options):
-    """Fit one curve: ``delta`` [m] and ``P`` [N] 1-D arrays, ``segment`` optional 0/1 labels
-    (approach/retract). Options as the CLI's flags. Returns a :class:`FitResult`."""
+def _options(free: Union[str, Sequence[str]], branch: str, control: str, spring_constant: Optional[float],
+             baseline: str, window: str, window_fraction: float, loss: str, loss_scale: Optional[float], starts: int,
+             max_iterations: int) -> Any:
+    return _core.fit_options(free=_free(free), branch=branch, control=control,
+                             spring_constant=None if spring_constant is None else float(spring_constant),
+                             baseline=baseline, window=window, window_fraction=float(window_fraction), loss=loss,
+                             loss_scale=None if loss_scale is None else float(loss_scale), starts=int(starts),
+                             max_iterations=int(max_iterations))
+
+
+_FIT_PARAMETERS_DOC = """
+    free : sequence of str or str, default ("E", "w", "delta0")
+        Parameters to identify: K, G (or T), w, delta0, P0, E, R; a comma-separated string is
+        accepted too. The others come from the scene (delta0 = P0 = 0 unless freed).
+    branch : {"approach", "retract", "all"}, default "approach"
+        Which part of the curve to fit.
+    control : {"auto", "load", "cantilever", "grips"}, default "auto"
+        What controls the retract: a cantilever where its stiffness is known (auto), load
+        control, a cantilever of known stiffness, or fixed grips.
+    spring_constant : float, optional
+        The cantilever's stiffness [N/m], finite and > 0; None: the curve's own (instrument
+        files), else unknown.
+    baseline : {"constant", "tilt"}, default "constant"
+        Subtract P0, or also a linear tilt fitted to the samples off contact.
+    window : {"all", "pull_off", "fraction"}, default "all"
+        Which unloading samples a retract fit uses: all, down to the observed pull-off, or
+        the top ``window_fraction`` of the unloading force range.
+    window_fraction : float, default 0.5
+        In (0, 1], for ``window="fraction"``.
+    loss : {"none", "huber", "cauchy"}, default "none"
+        Robust loss on the force residuals.
+    loss_scale : float, optional
+        Where the robust loss departs from least squares [N], > 0; required for huber and
+        cauchy.
+    starts : int, default 0
+        Extra starts around the data-driven guess (0 .. 100); the lowest cost wins.
+    max_iterations : int, default 200
+        Trust-region iteration limit, >= 1."""
+
+
+def _with_fit_parameters(function: Callable[..., Any]) -> None:
+    if function.__doc__:  # None under python -OO
+        function.__doc__ = function.__doc__ % _FIT_PARAMETERS_DOC.strip("\n").lstrip()
+
+
+def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
+        free: Union[str, Sequence[str]] = ("E", "w", "delta0"), segment: Optional[npt.ArrayLike] = None,
+        branch: Branch = "approach", control: Control = "auto", spring_constant: Optional[float] = None,
+        baseline: BaselineKind = "constant", window: Window = "all", window_fraction: float = 0.5,
+        loss: Loss = "none", loss_scale: Optional[float] = None, starts: int = 0,
+        max_iterations: int = 200) -> FitResult:
+    """Fit one measured curve with the model of a scene.
+
+    Parameters
+    ----------
+    delta : array_like
+        Approach [m] (any offset; the fit's delta0 maps it), 1-D.
+    P : array_like
+        Force [N], positive when repulsive, 1-D, as long as ``delta``.
+    scene : Scene, dict or path
+        Indenter, medium, model and the starting values (see :func:`scene`).
+    segment : array_like of int, optional
+        Per sample 0 (approach) or 1 (retract); None splits the curve at its largest delta.
+    %s
+
+    Returns
+    -------
+    FitResult
+
+    Raises
+    ------
+    InputError
+        Data that cannot be fitted (too few samples, no sample in contact, a parameter the
+        model does not have), an unknown choice (the message names the parameter, e.g.
+        ``branch``), control "cantilever" without a stiffness.
+    DomainError
+        An option outside its range (the message names it).
+    TypeError
+        An unknown keyword.
+
+    Warns
+    -----
+    ModelWarning
+        Each of the fit's warnings (a convergence failure is reported, not raised).
+    """
+    options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
+                       starts, max_iterations)
     seg = None if segment is None else [int(s) for s in np.asarray(segment).ravel()]
-    out = _core.fit(np.asarray(delta, dtype=np.float64), np.asarray(P, dtype=np.float64), seg,
-                    _as_scene(scene), _free(free), options)
-    return FitResult(out)
+    s = _core.fit(np.asarray(delta, dtype=np.float64), np.asarray(P, dtype=np.float64), seg, _as_scene(scene), options)
+    result = FitResult(s, options.branch)
+    _warn(result.warnings, 2)
+    return result
 
 
-def _items(items):
+_with_fit_parameters(fit)
+
+
+def _batch(items: Sequence[Any], branch: str) -> List[BatchResult]:
+    out = []
     for it in items:
-        it["report"] = json.loads(it["report"]) if it["ok"] else None
-    return items
+        out.append(BatchResult(source=it.source, curve=it.curve if it.curve >= 0 else None, x=it.x, y=it.y,
+                               grid_x=it.grid_x if it.grid_x >= 0 else None, grid_y=it.grid_y if it.grid_y >= 0 else None,
+                               result=FitResult(it.summary, branch) if it.ok else None,
+                               error=None if it.ok else it.error))
+    return out
 
 
-def fit_batch(curves, scene, free, jobs=1, **options):
-    """Fit many (delta, P) pairs on ``jobs`` threads; one dict per curve (ok, error, report)."""
+def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: SceneLike, *,
+              free: Union[str, Sequence[str]] = ("E", "w", "delta0"), jobs: int = 1, branch: Branch = "approach",
+              control: Control = "auto", spring_constant: Optional[float] = None,
+              baseline: BaselineKind = "constant", window: Window = "all", window_fraction: float = 0.5,
+              loss: Loss = "none", loss_scale: Optional[float] = None, starts: int = 0,
+              max_iterations: int = 200) -> List[BatchResult]:
+    """Fit many curves with the same scene and options on ``jobs`` threads.
+
+    Parameters
+    ----------
+    curves : sequence of (delta, P)
+        Each a pair of 1-D arrays [m], [N] (split at their largest delta).
+    scene : Scene, dict or path
+        See :func:`scene`.
+    jobs : int, default 1
+        Worker threads, >= 1 (the GIL is released).
+    %s
+
+    Returns
+    -------
+    list of BatchResult
+        One per curve, in order: its FitResult (without the per-sample arrays) or the error
+        message. A curve that cannot be fitted never stops the batch. The fits' warnings are
+        in each result, not emitted.
+
+    Raises
+    ------
+    InputError
+        An invalid option (named), ``jobs`` < 1, an array not 1-D.
+    DomainError
+        An option outside its range.
+    TypeError
+        An unknown keyword.
+    """
+    options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
+                       starts, max_iterations)
     pairs = [(np.asarray(d, dtype=np.float64), np.asarray(p, dtype=np.float64)) for d, p in curves]
-    return _items(_core.fit_batch(pairs, _as_scene(scene), _free(free), options, int(jobs)))
+    return _batch(_core.fit_batch(pairs, _as_scene(scene), options, int(jobs)), options.branch)
 
 
-def fit_files(paths, scene, free, jobs=1, **options):
-    """Fit CSV and instrument files (maps give one item per curve) on ``jobs`` threads, as
-    ``layerjkr fit-map``; one dict per curve: source, curve, x, y, grid_x, grid_y, ok, error, report."""
+_with_fit_parameters(fit_batch)
+
+
+def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.PathLike[str]"]]], scene: SceneLike, *,
+              free: Union[str, Sequence[str]] = ("E", "w", "delta0"), jobs: int = 1, branch: Branch = "approach",
+              control: Control = "auto", spring_constant: Optional[float] = None,
+              baseline: BaselineKind = "constant", window: Window = "all", window_fraction: float = 0.5,
+              loss: Loss = "none", loss_scale: Optional[float] = None, starts: int = 0, max_iterations: int = 200,
+              units: str = "m,N", z_sign: float = 1.0, deflection_sign: float = 1.0,
+              curve: Optional[int] = None) -> List[BatchResult]:
+    """Fit CSV and instrument files on ``jobs`` threads, as ``layerjkr fit-map``.
+
+    Parameters
+    ----------
+    paths : path or sequence of paths
+        CSV files and instrument files (.jpk-force, .jpk-force-map, .jpk-qi-data, .ibw); every
+        curve of a map is its own item.
+    scene : Scene, dict or path
+        See :func:`scene`.
+    jobs : int, default 1
+        Worker threads, >= 1 (the GIL is released).
+    %s
+    units : str, default "m,N"
+        Units of the CSV files, "LENGTH,FORCE", e.g. "nm,nN".
+    z_sign : float, default 1.0
+        Raw z,deflection CSV: +1 if z grows towards the sample, -1 if it decreases.
+    deflection_sign : float, default 1.0
+        Raw z,deflection CSV: +1 if a deflection > 0 means repulsion, else -1.
+    curve : int, optional
+        Which curve of a CSV export holding several.
+
+    ``spring_constant`` is also the one the CSV reader uses for z,deflection data and that
+    replaces an instrument file's own.
+
+    Returns
+    -------
+    list of BatchResult
+        One per curve, in file order, with its map position and pixel: its FitResult
+        (without the per-sample arrays) or the error message. A file that cannot be read is
+        one failed item. The fits' warnings are in each result, not emitted.
+
+    Raises
+    ------
+    InputError
+        An invalid option (named), unknown units, ``jobs`` < 1.
+    DomainError
+        An option outside its range.
+    TypeError
+        An unknown keyword.
+    """
+    options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
+                       starts, max_iterations)
+    csv = _core.csv_options(units=units, spring_constant=None if spring_constant is None else float(spring_constant),
+                            z_sign=float(z_sign), deflection_sign=float(deflection_sign),
+                            curve=None if curve is None else int(curve))
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]
-    return _items(_core.fit_files([os.fspath(p) for p in paths], _as_scene(scene), _free(free), options,
-                                  int(jobs)))
+    items = _core.fit_files([os.fspath(p) for p in paths], _as_scene(scene), options, csv, int(jobs))
+    return _batch(items, options.branch)
 
 
-def read_instrument(path):
-    """The curves of a JPK (.jpk-force, -force-map, -qi-data) or Igor (.ibw) file: a list of
-    dicts with delta (= -tip position) [m], P [N], segment, spring_constant, x, y, grid_x, grid_y."""
+_with_fit_parameters(fit_files)
+
+
+def read_instrument(path: Union[str, "os.PathLike[str]"]) -> List[Dict[str, Any]]:
+    """The curves of an instrument file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A JPK (.jpk-force, .jpk-force-map, .jpk-qi-data) or Igor (.ibw) file.
+
+    Returns
+    -------
+    list of dict
+        Per curve: delta (= -tip position) [m] and P [N] as float64 arrays, segment (0
+        approach, 1 retract), index, spring_constant [N/m], sensitivity, x, y [m], grid_x,
+        grid_y.
+
+    Raises
+    ------
+    InputError
+        A file that cannot be read or parsed (the message names it).
+    """
     return _core.read_instrument(os.fspath(path))

@@ -1,19 +1,23 @@
 // layerjkr._core: the pybind11 layer under the Python package (python/layerjkr/__init__.py).
-// It exposes the C++ public API and the front-end reports the CLI prints (src/cli/reports.hpp,
-// fit_commands.hpp), so Python gets the CLI's numbers from the same code. Every long call
-// releases the GIL; arrays come in as float64 (converted if needed) and go out as new arrays.
+// It binds the library's public API and its answers (answer.hpp, fit.hpp) as they are: no
+// front-end code, no JSON. Options arrive typed; their strings go through the library's one
+// spelling registry (types.hpp, parse_enum) named as the Python parameter they came from.
+// Every long call releases the GIL; arrays come in as float64 (converted if needed) and go
+// out as new arrays. python/layerjkr/_core.pyi describes this module.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "fit_commands.hpp"
 #include "layerjkr/layerjkr.hpp"
-#include "reports.hpp"
+
+#ifndef LAYERJKR_VERSION
+#error "LAYERJKR_VERSION (the CMake project version) must be defined"
+#endif
 
 namespace py = pybind11;
 using namespace layerjkr;
@@ -52,154 +56,131 @@ py::array_t<double> to_array(const std::vector<double>& v) {
   return out;
 }
 
-// `inner_seconds` (the benchmark's hook): the time spent in the C++ curve itself.
-// The output - one (8, n) block whose rows the dict views - is made and touched before the
-// GIL is released, while the interpreter's caches are warm; the computation then fills it and
-// frees its own data without the GIL, so little Python work is left for after it.
-py::dict curve_impl(const Scene& scene, const Array& radii, double* inner_seconds) {
-  const std::vector<double> a = to_vector(radii, "a");
+py::array_t<bool> to_bool_array(const std::vector<bool>& v) {
+  py::array_t<bool> out(static_cast<py::ssize_t>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) out.mutable_data()[i] = v[i];
+  return out;
+}
+
+py::object point_or_none(const std::optional<CriticalPoint>& p) {
+  if (!p) return py::none();
+  return py::make_tuple(p->a, p->P, p->delta);
+}
+
+AnswerOptions answer_options(double warning_threshold) {
+  AnswerOptions o;
+  o.warning_threshold = warning_threshold;
+  o.validate();
+  return o;
+}
+
+// The curve as (block, warnings, model, reference, choice, seconds): block is one (8, n) array
+// with the rows a, P, delta, P_H, delta_H, S, dS_da, error_estimate. It is made and touched
+// before the GIL is released, while the interpreter's caches are warm; the computation then
+// fills it and frees its own data without the GIL, so little Python work is left after it.
+py::tuple curve(const Scene& scene, const Array& radii, double warning_threshold) {
+  const AnswerOptions options = answer_options(warning_threshold);
+  std::vector<double> a = to_vector(radii, "a");
   const auto n = static_cast<py::ssize_t>(a.size());
   py::array_t<double> block({py::ssize_t{8}, n});
   std::fill_n(block.mutable_data(), 8 * n, 0.0);
-  static const char* const names[] = {"a", "P", "delta", "P_H", "delta_H", "S", "dS_da", "error_est"};
-  py::dict d;
-  for (py::ssize_t k = 0; k < 8; ++k)
-    d[names[k]] = py::array_t<double>({n}, {static_cast<py::ssize_t>(sizeof(double))}, block.data(k, 0), block);
   double* out = block.mutable_data();
-  std::vector<std::string> warnings;
-  std::string note;
+  CurveAnswer c;
   {
     py::gil_scoped_release release;
-    const auto start = std::chrono::steady_clock::now();
-    cli::CurveTable t = cli::curve_table(scene, a);
-    if (inner_seconds) *inner_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    c = solve_curve(scene, a, options);
     for (py::ssize_t i = 0; i < n; ++i) {
       const auto k = static_cast<std::size_t>(i);
-      const AdhesiveState& s = t.states[k];
-      const double row[8] = {a[k], s.P, s.delta, s.hertz.P_H, s.hertz.delta_H, s.hertz.S, s.hertz.dS_da, t.error_est[k]};
+      const AdhesiveState& s = c.states[k];
+      const double row[8] = {s.a, s.P, s.delta, s.hertz.P_H, s.hertz.delta_H, s.hertz.S, s.hertz.dS_da, c.error_estimate[k]};
       for (py::ssize_t r = 0; r < 8; ++r) out[r * n + i] = row[r];
     }
-    warnings = std::move(t.warnings);
-    note = std::move(t.choice_note);
+    c.states = {};
+    c.error_estimate = {};
+    a = {};
   }
-  d["warnings"] = warnings;
-  d["note"] = note;
-  return d;
+  py::object choice = c.choice ? py::cast(*c.choice) : py::none();
+  return py::make_tuple(block, c.warnings, c.model, c.reference, choice, c.seconds);
 }
 
-py::dict curve(const Scene& scene, const Array& radii) { return curve_impl(scene, radii, nullptr); }
-
-// The binding's overhead without the C++ curve's own time (python/bench/bench_python.py).
-py::tuple curve_timed(const Scene& scene, const Array& radii) {
-  double inner = 0.0;
-  py::dict d = curve_impl(scene, radii, &inner);
-  return py::make_tuple(d, inner);
-}
-
-std::string summary(const Scene& scene) {
+SummaryAnswer summary(const Scene& scene, double warning_threshold) {
+  const AnswerOptions options = answer_options(warning_threshold);
   py::gil_scoped_release release;
-  return cli::summary_report(scene).json.dump();
+  return solve_summary(scene, options);
 }
 
-// The fit options from the CLI's flag names (fit_commands.hpp), as strings and numbers.
-cli::Prepared prepared_options(const std::vector<std::string>& free, const py::dict& options) {
-  cli::FitArguments a;
-  std::string list;
-  for (const std::string& f : free) list += (list.empty() ? "" : ",") + f;
-  a.free = list;
-  for (const auto& [key_handle, value] : options) {
-    const std::string key = py::str(key_handle);
-    if (key == "branch") a.branch = value.cast<std::string>();
-    else if (key == "loss") a.loss = value.cast<std::string>();
-    else if (key == "control") a.control = value.cast<std::string>();
-    else if (key == "baseline") a.baseline = value.cast<std::string>();
-    else if (key == "window") a.window = value.cast<std::string>();
-    else if (key == "units") a.units = value.cast<std::string>();
-    else if (key == "starts") a.extra_starts = value.cast<int>();
-    else if (key == "max_iterations") a.max_iterations = value.cast<int>();
-    else if (key == "spring_constant") a.spring_constant = value.cast<double>();
-    else if (key == "curve") a.curve = value.cast<int>();
-    else
-      throw InputError("fit: unknown option '" + key +
-                       "' (known: branch, loss, control, baseline, window, units, starts, max_iterations, spring_constant, curve)");
-  }
-  return cli::prepare_options(a);
+// The typed keywords of layerjkr.fit as the library's FitOptions; every string through the
+// registry under the Python parameter's name.
+FitOptions fit_options(const std::vector<std::string>& free, const std::string& branch, const std::string& control,
+                       std::optional<double> spring_constant, const std::string& baseline, const std::string& window,
+                       double window_fraction, const std::string& loss, std::optional<double> loss_scale, int starts,
+                       int max_iterations) {
+  FitOptions o;
+  for (const std::string& f : free) o.free.push_back(parse_enum<FitParameter>(f, "free"));
+  o.branch = parse_enum<Branch>(branch, "branch");
+  o.retract_control = parse_enum<RetractControl>(control, "control");
+  o.cantilever_stiffness = spring_constant;
+  o.baseline = parse_enum<Baseline>(baseline, "baseline");
+  o.retract_window = parse_enum<RetractWindow>(window, "window");
+  o.window_fraction = window_fraction;
+  o.loss = parse_enum<LossType>(loss, "loss");
+  o.loss_scale = loss_scale.value_or(0.0);
+  o.extra_starts = starts;
+  o.max_iterations = max_iterations;
+  o.validate();
+  return o;
 }
 
-struct FitOutput {
-  std::string report;  // the JSON keys of `layerjkr fit --out`
-  std::string brief;
-  std::vector<double> delta, P, P_fit;
-  std::vector<bool> excluded;
-};
+CsvOptions csv_options(const std::string& units, std::optional<double> spring_constant, double z_sign,
+                       double deflection_sign, std::optional<int> curve) {
+  CsvOptions c;
+  parse_units(units, c);
+  c.spring_constant = spring_constant.value_or(0.0);
+  c.z_sign = z_sign;
+  c.deflection_sign = deflection_sign;
+  c.curve = curve.value_or(-1);
+  c.validate();
+  return c;
+}
 
-FitOutput fit_arrays(const Array& delta, const Array& P, const py::object& segment, const Scene& scene,
-                     const std::vector<std::string>& free, const py::dict& options) {
-  cli::Prepared p = prepared_options(free, options);
+FitSummary fit_arrays(const Array& delta, const Array& P, const std::optional<std::vector<int>>& segment,
+                      const Scene& scene, const FitOptions& options) {
   CurveData c;
   c.delta = to_vector(delta, "delta");
   c.P = to_vector(P, "P");
   c.source = "array";
-  c.spring_constant = p.csv.spring_constant;
-  if (!segment.is_none()) c.segment = segment.cast<std::vector<int>>();
-  FitOutput out;
+  if (segment) c.segment = *segment;
   py::gil_scoped_release release;
-  if (p.cantilever_required && !(c.spring_constant > 0.0))
-    throw InputError("control 'cantilever' needs the spring constant: spring_constant=k [N/m]");
-  const FitSummary s = fit(c, scene, p.options);
-  out.report = cli::report_json(s, p.options.branch).dump();
-  out.brief = s.brief_report();
-  out.delta = s.delta, out.P = s.P, out.P_fit = s.P_fit, out.excluded = s.excluded;
-  return out;
+  return fit(c, scene, options);
 }
 
-py::list batch_items(const std::vector<BatchItem>& items, Branch branch) {
-  py::list out;
-  for (const BatchItem& it : items) {
-    py::dict d;
-    d["source"] = it.source, d["ok"] = it.ok, d["error"] = it.error, d["curve"] = it.curve;
-    d["x"] = it.x, d["y"] = it.y, d["grid_x"] = it.grid_x, d["grid_y"] = it.grid_y;
-    d["report"] = it.ok ? cli::report_json(it.summary, branch).dump() : std::string();
-    out.append(d);
-  }
-  return out;
-}
-
-py::list fit_files_py(const std::vector<std::string>& paths, const Scene& scene, const std::vector<std::string>& free,
-                      const py::dict& options, int jobs) {
+BatchOptions batch_options(int jobs) {
   if (jobs < 1) throw InputError("jobs = " + std::to_string(jobs) + " must be >= 1");
-  const cli::Prepared p = prepared_options(free, options);
-  std::vector<BatchItem> items;
-  {
-    py::gil_scoped_release release;
-    BatchOptions b;
-    b.jobs = jobs;
-    items = fit_files(paths, scene, p.options, p.csv, b);
-  }
-  return batch_items(items, p.options.branch);
+  BatchOptions b;
+  b.jobs = jobs;
+  return b;
 }
 
-py::list fit_batch_py(const std::vector<std::pair<Array, Array>>& curves, const Scene& scene,
-                      const std::vector<std::string>& free, const py::dict& options, int jobs) {
-  if (jobs < 1) throw InputError("jobs = " + std::to_string(jobs) + " must be >= 1");
-  const cli::Prepared p = prepared_options(free, options);
+std::vector<BatchItem> fit_batch_py(const std::vector<std::pair<Array, Array>>& curves, const Scene& scene,
+                                    const FitOptions& options, int jobs) {
+  const BatchOptions b = batch_options(jobs);
   std::vector<CurveData> data;
   for (std::size_t i = 0; i < curves.size(); ++i) {
     CurveData c;
     c.delta = to_vector(curves[i].first, "delta");
     c.P = to_vector(curves[i].second, "P");
     c.source = "curve " + std::to_string(i);
-    c.spring_constant = p.csv.spring_constant;
     data.push_back(std::move(c));
   }
-  std::vector<BatchItem> items;
-  {
-    py::gil_scoped_release release;
-    BatchOptions b;
-    b.jobs = jobs;
-    items = fit_batch(data, scene, p.options, b);
-  }
-  return batch_items(items, p.options.branch);
+  py::gil_scoped_release release;
+  return fit_batch(data, scene, options, b);
+}
+
+std::vector<BatchItem> fit_files_py(const std::vector<std::string>& paths, const Scene& scene, const FitOptions& options,
+                                    const CsvOptions& csv, int jobs) {
+  const BatchOptions b = batch_options(jobs);
+  py::gil_scoped_release release;
+  return fit_files(paths, scene, options, csv, b);
 }
 
 py::list read_instrument(const std::string& path) {
@@ -225,6 +206,7 @@ py::list read_instrument(const std::string& path) {
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "layerjkr C++ core (use the layerjkr package, not this module)";
+  m.attr("__version__") = LAYERJKR_VERSION;
   Exceptions& e = exceptions();
   e.error = new_exception(m, "Error", py::handle(PyExc_Exception), "Base class of everything layerjkr raises.");
   e.domain = new_exception(m, "DomainError", py::make_tuple(e.error, py::handle(PyExc_ValueError)).release(),
@@ -248,9 +230,13 @@ PYBIND11_MODULE(_core, m) {
   });
 
   py::class_<Scene>(m, "Scene", "A parsed scene (the CLI's JSON schema); make one with layerjkr.scene().")
-      .def_property_readonly("w", [](const Scene& s) { return s.w; })
-      .def_property_readonly("profile", [](const Scene& s) { return s.profile->describe(); })
-      .def_property_readonly("model", [](const Scene& s) { return std::string(to_string(s.model)); });
+      .def_property_readonly("w", [](const Scene& s) { return s.w; }, "Work of adhesion [J/m^2].")
+      .def_property_readonly("profile", [](const Scene& s) { return s.profile->describe(); }, "The indenter, described.")
+      .def_property_readonly("model", [](const Scene& s) { return std::string(to_string(s.model)); },
+                             "The scene's model key.")
+      .def("__repr__", [](const Scene& s) {
+        return "layerjkr.Scene(model='" + std::string(to_string(s.model)) + "', profile='" + s.profile->describe() + "')";
+      });
   m.def("parse_scene", &parse_scene, py::arg("json_text"), py::arg("source") = "scene");
   m.def("with_table_profile", [](Scene s, std::vector<double> r, std::vector<double> z) {
         s.profile = make_table_profile(std::move(r), std::move(z));
@@ -258,23 +244,106 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("scene"), py::arg("r"), py::arg("z"));
   m.def("load_scene", &load_scene, py::arg("path"));
-  m.def("curve", &curve, py::arg("scene"), py::arg("a"));
-  m.def("_curve_timed", &curve_timed, py::arg("scene"), py::arg("a"));
-  m.def("summary", &summary, py::arg("scene"));
-  py::class_<FitOutput>(m, "FitOutput")
-      .def_readonly("report", &FitOutput::report)
-      .def_readonly("brief", &FitOutput::brief)
-      .def_property_readonly("delta", [](const FitOutput& o) { return to_array(o.delta); })
-      .def_property_readonly("P", [](const FitOutput& o) { return to_array(o.P); })
-      .def_property_readonly("P_fit", [](const FitOutput& o) { return to_array(o.P_fit); })
-      .def_property_readonly("excluded", [](const FitOutput& o) {
-        py::array_t<bool> a(static_cast<py::ssize_t>(o.excluded.size()));
-        for (std::size_t i = 0; i < o.excluded.size(); ++i) a.mutable_data()[i] = o.excluded[i];
-        return a;
+
+  py::class_<AutoChoice>(m, "AutoChoice", "What model 'auto' chose (AutoChoice).")
+      .def_property_readonly("model", [](const AutoChoice& c) { return std::string(to_string(c.model)); })
+      .def_readonly("estimated_error", &AutoChoice::estimated_error)
+      .def_readonly("tolerance", &AutoChoice::tolerance)
+      .def_readonly("judged_at", &AutoChoice::judged_at)
+      .def("brief_report", &AutoChoice::brief_report);
+
+  py::class_<SummaryAnswer>(m, "SummaryAnswer", "A scene's summary (SummaryAnswer).")
+      .def_property_readonly("model", [](const SummaryAnswer& s) { return s.contact.model; })
+      .def_property_readonly("w", [](const SummaryAnswer& s) { return s.contact.w; })
+      .def_property_readonly("zero_load_radius", [](const SummaryAnswer& s) { return s.contact.zero_load_radius; })
+      .def_property_readonly("pull_off", [](const SummaryAnswer& s) { return point_or_none(s.contact.pull_off); })
+      .def_property_readonly("fixed_grips", [](const SummaryAnswer& s) { return point_or_none(s.contact.fixed_grips); })
+      .def_property_readonly("error", [](const SummaryAnswer& s) {
+        return py::make_tuple(s.error.pull_off_force, s.error.zero_load_radius, s.error.reference);
+      })
+      .def_readonly("profile", &SummaryAnswer::profile)
+      .def_readonly("K", &SummaryAnswer::K)
+      .def_readonly("G", &SummaryAnswer::G)
+      .def_readonly("g_is_tension", &SummaryAnswer::g_is_tension)
+      .def_readonly("E_star", &SummaryAnswer::E_star)
+      .def_readonly("choice", &SummaryAnswer::choice)
+      .def_readonly("warnings", &SummaryAnswer::warnings)
+      .def_readonly("seconds", &SummaryAnswer::seconds);
+
+  m.def("curve", &curve, py::arg("scene"), py::arg("a"), py::arg("warning_threshold"));
+  m.def("summary", &summary, py::arg("scene"), py::arg("warning_threshold"));
+
+  py::class_<FitOptions>(m, "FitOptions", "The library's FitOptions; make them with fit_options().")
+      .def_property_readonly("branch", [](const FitOptions& o) { return std::string(to_string(o.branch)); })
+      .def_property_readonly("free", [](const FitOptions& o) {
+        std::vector<std::string> names;
+        for (FitParameter p : o.free) names.emplace_back(to_string(p));
+        return names;
       });
-  m.def("fit", &fit_arrays, py::arg("delta"), py::arg("P"), py::arg("segment"), py::arg("scene"), py::arg("free"),
-        py::arg("options"));
-  m.def("fit_files", &fit_files_py, py::arg("paths"), py::arg("scene"), py::arg("free"), py::arg("options"), py::arg("jobs"));
-  m.def("fit_batch", &fit_batch_py, py::arg("curves"), py::arg("scene"), py::arg("free"), py::arg("options"), py::arg("jobs"));
+  m.def("fit_options", &fit_options, py::kw_only(), py::arg("free"), py::arg("branch"), py::arg("control"),
+        py::arg("spring_constant"), py::arg("baseline"), py::arg("window"), py::arg("window_fraction"), py::arg("loss"),
+        py::arg("loss_scale"), py::arg("starts"), py::arg("max_iterations"));
+  py::class_<CsvOptions>(m, "CsvOptions", "The library's CsvOptions; make them with csv_options().");
+  m.def("csv_options", &csv_options, py::kw_only(), py::arg("units"), py::arg("spring_constant"), py::arg("z_sign"),
+        py::arg("deflection_sign"), py::arg("curve"));
+
+  py::class_<ParameterEstimate>(m, "ParameterEstimate", "One fitted parameter (ParameterEstimate), SI units.")
+      .def_property_readonly("name", [](const ParameterEstimate& p) { return std::string(to_string(p.parameter)); })
+      .def_readonly("value", &ParameterEstimate::value)
+      .def_readonly("standard_error", &ParameterEstimate::standard_error)
+      .def_readonly("initial", &ParameterEstimate::initial)
+      .def_readonly("at_bound", &ParameterEstimate::at_bound)
+      .def_readonly("identifiable", &ParameterEstimate::identifiable);
+
+  py::class_<FitSummary>(m, "FitSummary", "A fit's summary (FitSummary).")
+      .def_readonly("converged", &FitSummary::converged)
+      .def_readonly("termination", &FitSummary::termination)
+      .def_readonly("iterations", &FitSummary::iterations)
+      .def_readonly("model", &FitSummary::model)
+      .def_property_readonly("family", [](const FitSummary& s) { return std::string(to_string(s.family)); })
+      .def_readonly("parameters", &FitSummary::parameters)
+      .def_property_readonly("correlation", [](const FitSummary& s) {
+        const auto n = static_cast<py::ssize_t>(s.parameters.size());
+        py::array_t<double> c({n, n});
+        for (py::ssize_t i = 0; i < n; ++i)
+          for (py::ssize_t k = 0; k < n; ++k)
+            *c.mutable_data(i, k) = s.correlation.empty() ? std::nan("")
+                                                          : s.correlation[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)];
+        return c;
+      })
+      .def_readonly("rms_residual", &FitSummary::rms_residual)
+      .def_readonly("initial_cost", &FitSummary::initial_cost)
+      .def_readonly("final_cost", &FitSummary::final_cost)
+      .def_readonly("points", &FitSummary::points)
+      .def_readonly("points_in_contact", &FitSummary::points_in_contact)
+      .def_readonly("identifiable", &FitSummary::identifiable)
+      .def_readonly("unidentifiable", &FitSummary::unidentifiable)
+      .def_readonly("warnings", &FitSummary::warnings)
+      .def_property_readonly("delta", [](const FitSummary& s) { return to_array(s.delta); })
+      .def_property_readonly("P", [](const FitSummary& s) { return to_array(s.P); })
+      .def_property_readonly("P_fit", [](const FitSummary& s) { return to_array(s.P_fit); })
+      .def_property_readonly("excluded", [](const FitSummary& s) { return to_bool_array(s.excluded); })
+      .def_readonly("excluded_count", &FitSummary::excluded_count)
+      .def_readonly("baseline_slope", &FitSummary::baseline_slope)
+      .def_readonly("baseline_slope_stderr", &FitSummary::baseline_slope_stderr)
+      .def_readonly("pull_off_force", &FitSummary::pull_off_force)
+      .def_readonly("solve_seconds", &FitSummary::solve_seconds)
+      .def("brief_report", &FitSummary::brief_report);
+
+  py::class_<BatchItem>(m, "BatchItem", "One curve of a batch (BatchItem).")
+      .def_readonly("source", &BatchItem::source)
+      .def_readonly("ok", &BatchItem::ok)
+      .def_readonly("error", &BatchItem::error)
+      .def_readonly("summary", &BatchItem::summary)
+      .def_readonly("curve", &BatchItem::curve)
+      .def_readonly("x", &BatchItem::x)
+      .def_readonly("y", &BatchItem::y)
+      .def_readonly("grid_x", &BatchItem::grid_x)
+      .def_readonly("grid_y", &BatchItem::grid_y);
+
+  m.def("fit", &fit_arrays, py::arg("delta"), py::arg("P"), py::arg("segment"), py::arg("scene"), py::arg("options"));
+  m.def("fit_batch", &fit_batch_py, py::arg("curves"), py::arg("scene"), py::arg("options"), py::arg("jobs"));
+  m.def("fit_files", &fit_files_py, py::arg("paths"), py::arg("scene"), py::arg("options"), py::arg("csv"),
+        py::arg("jobs"));
   m.def("read_instrument", &read_instrument, py::arg("path"));
 }

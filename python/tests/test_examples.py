@@ -9,6 +9,6 @@ def test_fit_and_plot(source, tmp_path):
     plot = tmp_path / "fit.png"
     result = example.main(str(plot))
     # The sample's truth (tools/make_sample_curve.cpp): E = 50 kPa, w = 1 mJ/m^2.
-    assert abs(result.values["E"] - 50e3) < 4 * result.stderr["E"]
-    assert abs(result.values["w"] - 1e-3) < 4 * result.stderr["w"]
+    assert abs(result.values["E"] - 50e3) < 4 * result.errors["E"]
+    assert abs(result.values["w"] - 1e-3) < 4 * result.errors["w"]
     assert plot.stat().st_size > 10000

@@ -22,7 +22,7 @@ def test_fit_files_on_an_archive_equals_the_cli_map(instrument_dir, source, cli,
     import subprocess
     archive = instrument_dir / "fmt-jpk-fd_spot3-0192.jpk-force"
     scene = str(source / "data/scenes/hydrogel_film_two_term.json")
-    items = layerjkr.fit_files([archive], scene, ["E", "delta0", "P0"], jobs=1)
+    items = layerjkr.fit_files([archive], scene, free=["E", "delta0", "P0"], jobs=1)
     assert len(items) == 1
     out = tmp_path / "map.csv"
     r = subprocess.run([cli, "fit-map", str(archive), "--scene", scene, "--free", "E,delta0,P0", "--jobs", "1", "--out",
@@ -30,6 +30,8 @@ def test_fit_files_on_an_archive_equals_the_cli_map(instrument_dir, source, cli,
     assert r.returncode == 0, r.stderr
     header, row = out.read_text().splitlines()[:2]
     cells = dict(zip(header.split(","), row.split(",")))
-    assert items[0]["ok"] == (cells["status"] == "ok")
-    if items[0]["ok"]:
-        assert items[0]["report"]["parameters"]["E"]["value"] == float(cells["E"])
+    assert items[0].ok == (cells["status"] == "ok")
+    assert items[0].curve == (int(cells["curve"]) if cells["curve"] else None)
+    if items[0].ok:
+        assert items[0].result.values["E"] == float(cells["E"])
+        assert items[0].result.errors["E"] == float(cells["E_stderr"])
