@@ -1,0 +1,53 @@
+// Internal: one fit's Ceres solves and the steps that refine them - extra starts, the
+// exclusion of non-JKR retract samples, the baseline detilt - over one shared state (the
+// evaluator, the parameter map, the options, the data and the current solution), so no step
+// passes that state around.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <ceres/ceres.h>
+
+#include "curve_evaluator.hpp"
+#include "layerjkr/fit.hpp"
+
+namespace layerjkr::detail {
+
+class FitRun {
+ public:
+  /// Borrows everything (ownership stays with the caller, which outlives the run); `x` is
+  /// the start on entry and the solution after each step.
+  FitRun(CurveEvaluator& ev, const ParameterMap& map, const FitOptions& options, FitData& data,
+         std::vector<double>& x);
+
+  /// The first trust-region solve from x.
+  void solve();
+  /// Solves again from options.extra_starts perturbed starts; keeps the lowest cost.
+  void try_extra_starts();
+  /// The rule of FitOptions::exclusion_sigmas: marks the retract samples the model has let go
+  /// of that have not returned to the baseline, and refits without them (weight 0).
+  std::vector<bool> exclude_non_jkr();
+  /// Baseline::tilt: the baseline's slope from the samples off contact, removed from the data,
+  /// then one more solve; the slope and its error go into `out`.
+  void detilt_baseline(FitSummary* out);
+  /// The solution, the fitted curve and its rms into `out` (errors: NaN until assessed).
+  void record(FitSummary* out);
+
+  ceres::Problem* problem() { return problem_.get(); }
+  double final_cost() const { return summary_.final_cost; }
+
+ private:
+  std::unique_ptr<ceres::Problem> solve_from(std::vector<double>& xs, ceres::Solver::Summary* summary) const;
+  bool resolve_in_place();
+
+  CurveEvaluator& ev_;
+  const ParameterMap& map_;
+  const FitOptions& options_;
+  FitData& data_;
+  std::vector<double>& x_;
+  ceres::Solver::Summary summary_;
+  std::unique_ptr<ceres::Problem> problem_;
+};
+
+}  // namespace layerjkr::detail
