@@ -139,6 +139,6 @@ ContactModelPtr make_edge_corrected(ProfilePtr profile, const ElasticLayer& laye
 /// ContactModel "exact": the exact layer for a profile. The shared kernel is fetched in
 /// the constructor; state(a) costs one Nystrom solve pair (ms to s, docs/benchmarks.md).
 ContactModelPtr make_exact_layer(ProfilePtr profile, const ElasticLayer& layer,
-                                 ExactLayerOptions options = {});
+                                 const ExactLayerOptions& options = {});
 
 }  // namespace layerjkr

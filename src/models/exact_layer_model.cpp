@@ -47,7 +47,7 @@ bool sweep_is_cheaper(const ExactLayerOptions& o, double rho, int count) {
 
 class ExactLayerModel final : public ContactModel {
  public:
-  ExactLayerModel(ProfilePtr p, const ElasticLayer& layer, ExactLayerOptions o)
+  ExactLayerModel(ProfilePtr p, const ElasticLayer& layer, const ExactLayerOptions& o)
       : ContactModel(std::move(p)), kernel_(layer, o) {
     if (o.tabulate_power_laws)
       if (const auto form = profile().power_law_form()) {
@@ -104,7 +104,7 @@ class ExactLayerModel final : public ContactModel {
 }  // namespace
 
 ContactModelPtr make_exact_layer(ProfilePtr profile, const ElasticLayer& layer,
-                                 ExactLayerOptions options) {
+                                 const ExactLayerOptions& options) {
   return std::make_shared<ExactLayerModel>(std::move(profile), layer, options);
 }
 

@@ -5,6 +5,7 @@
 #include <gsl/gsl_integration.h>
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <limits>
 
@@ -43,7 +44,7 @@ void ExactLayerOptions::validate() const {
 }
 
 ExactLayerKernel::ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions options)
-    : layer_(layer), options_(options) {
+    : layer_(layer), options_(std::move(options)) {
   detail::silence_gsl_errors();
   options_.validate();
   detail::require_positive("ExactLayerKernel", "h", layer.h);
