@@ -130,7 +130,7 @@ struct FitSummary {
   /// Per sample (aligned with delta, P): excluded by the rule of FitOptions::exclusion_sigmas.
   std::vector<bool> excluded;
   std::size_t excluded_count = 0;
-  /// FitOptions::baseline_tilt: the baseline's slope [N/m] and its standard error (0 without).
+  /// Baseline::tilt: the baseline's slope [N/m] and its standard error (0 without).
   double baseline_slope = 0.0, baseline_slope_stderr = 0.0;
   /// The measured pull-off force [N]: the lowest retract force minus the fitted baseline P0
   /// (NaN without retract samples).
