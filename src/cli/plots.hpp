@@ -9,7 +9,7 @@
 namespace layerjkr::cli {
 
 /// Data, fitted curve and residuals of one fit as a PNG at `path`.
-void plot_fit(const FitSummary& summary, const std::string& path);
+void plot_fit(const FitSummary& s, const std::string& path);
 
 /// One PNG per free parameter, the measured pull-off, the rms residual and the status over
 /// the map grid, in directory `dir` (created). A pixel with no curve or a failed fit is blank.

@@ -22,12 +22,12 @@ nlohmann::ordered_json contact_json(const ContactSummary& s, const std::string& 
 
 /// `layerjkr summary`: contact_json plus model_error_estimate, K, G (T), E_star,
 /// model_choice and warnings.
-nlohmann::ordered_json summary_json(const SummaryAnswer& answer);
+nlohmann::ordered_json summary_json(const SummaryAnswer& a);
 
 /// `layerjkr fit --out`: the fit report's JSON keys (docs/fitting.md).
-nlohmann::ordered_json report_json(const FitSummary& summary, Branch branch);
+nlohmann::ordered_json report_json(const FitSummary& s, Branch branch);
 
 /// `layerjkr curve`: CSV a,P,delta,P_H,delta_H,S,error_est with 17 significant digits.
-std::string curve_csv(const CurveAnswer& answer);
+std::string curve_csv(const CurveAnswer& c);
 
 }  // namespace layerjkr::cli
