@@ -18,37 +18,10 @@
 #include "layerjkr/layerjkr.hpp"
 #include "limits.hpp"
 #include "plots.hpp"
+#include "results_table.hpp"
 
 namespace layerjkr::cli {
 namespace {
-
-std::string csv_cell(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
-  return q + "\"";
-}
-
-// The cells of one line (csv_cell's quoting); nullopt if a quote is left open.
-std::optional<std::vector<std::string>> csv_cells(const std::string& line) {
-  std::vector<std::string> cells(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      cells.back() += '"';
-      ++i;
-    } else if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      cells.emplace_back();
-    } else {
-      cells.back() += c;
-    }
-  }
-  if (quoted) return std::nullopt;
-  return cells;
-}
 
 std::string num(double v) { return std::isfinite(v) ? format_double(v) : ""; }
 std::string index(int v) { return v >= 0 ? std::to_string(v) : std::string(); }
@@ -87,30 +60,17 @@ struct Earlier {
   std::mutex lock;
 };
 
-// Reads `out` for --resume: the same header, whole lines of as many cells. A last line without
-// its newline was cut off mid-write: its curve is fitted again.
+// Reads `out` for --resume (results_table.hpp); a missing table is a fresh start.
 void read_earlier(const std::string& out, const std::string& head, Earlier& e) {
   std::error_code ec;
-  if (!std::filesystem::exists(out, ec)) return;  // nothing to resume: a fresh table
+  if (!std::filesystem::exists(out, ec)) return;
   std::ifstream f(out, std::ios::binary);
   std::stringstream text;
   text << f.rdbuf();
   if (!f) throw InputError("--resume: cannot read " + out);
-  const std::string all = text.str();
-  const std::size_t columns = csv_cells(head.substr(0, head.size() - 1))->size();
-  std::size_t pos = all.find('\n');
-  if (pos == std::string::npos || all.substr(0, pos + 1) != head)
-    throw InputError("--resume: the header of " + out + " differs from this run's (other --free?); it is not resumed");
-  for (std::size_t line = 2; all.find('\n', pos + 1) != std::string::npos; ++line) {
-    const std::size_t end = all.find('\n', pos + 1);
-    const std::string r = all.substr(pos + 1, end - pos - 1);
-    pos = end;
-    const auto cells = csv_cells(r);
-    if (!cells || cells->size() != columns)
-      throw InputError("--resume: " + out + " line " + std::to_string(line) + " is not a row of " +
-                       std::to_string(columns) + " cells; the table is damaged");
-    e.waiting[{(*cells)[0], (*cells)[1]}].push_back(e.rows.size());
-    e.rows.push_back(r + "\n");
+  for (ResultsRow& r : parse_results_table(text.str(), head, out)) {
+    e.waiting[{r.file, r.curve}].push_back(e.rows.size());
+    e.rows.push_back(std::move(r.line));
   }
   e.written.assign(e.rows.size(), 0);
 }
