@@ -164,24 +164,47 @@ struct BatchItem {
   int curve = -1;
   double x = std::numeric_limits<double>::quiet_NaN(), y = std::numeric_limits<double>::quiet_NaN();
   int grid_x = -1, grid_y = -1;
+  /// BatchOptions::skip returned true: neither read nor fitted (ok = false, error empty).
+  bool skipped = false;
+  /// BatchOptions::cancelled stopped the batch before this item started (ok = false).
+  bool cancelled = false;
 };
 
+/// How a batch runs, and the hooks that let a caller keep what it finished. Every hook may be
+/// empty. The hooks are called from the worker threads: `cancelled` and `skip` concurrently
+/// (they must be thread-safe, e.g. read an atomic or immutable data); `progress` and `on_item`
+/// one call at a time, under the batch's lock (they need no lock of their own, and should be
+/// quick: workers wait for them).
 struct BatchOptions {
   int jobs = 1;  ///< worker threads, >= 1
-  /// Called from one thread at a time after each curve (done, total); may be empty.
+  /// Called after each curve (done, total).
   std::function<void(std::size_t, std::size_t)> progress;
+  /// Polled before each curve starts; once true, no further curve starts. Running fits finish
+  /// (a fit cannot be interrupted), so the items that ran are always a prefix of the input,
+  /// every one of them passed to on_item; the rest are returned with `cancelled` set.
+  std::function<bool()> cancelled;
+  /// Called with each item's identity (source, curve, map position; nothing read yet) before it
+  /// is read: true skips it (`skipped` set), e.g. because an earlier run already fitted it.
+  std::function<bool(const BatchItem&)> skip;
+  /// Called with each finished item (fitted, failed or skipped) and its index, in input order:
+  /// as soon as it and every earlier item are finished, so a caller can write results as they
+  /// come and keep a deterministic order. If on_item or progress throws, no further curve starts
+  /// and the batch rethrows the first such exception once the running fits finish.
+  std::function<void(std::size_t, const BatchItem&)> on_item;
 };
 
 /// Fits many curves in parallel with the same scene and options. A curve that cannot be
 /// read or fitted is reported in its BatchItem and never stops the batch. Results keep
-/// the input order.
+/// the input order, one per curve (cancelled and skipped ones included, marked).
 std::vector<BatchItem> fit_batch(const std::vector<CurveData>& curves, const Scene& scene,
                                  const FitOptions& options, const BatchOptions& batch = {});
 
 /// The same for files: CSV files, each read with `csv`, and instrument files
 /// (instrument.hpp), of which every curve is its own item, with its number, map position and
 /// pixel, its tip position from the file's spring constant (or csv.spring_constant when > 0).
-/// A file that cannot be read is one failed item; it never stops the batch.
+/// A file that cannot be read is one failed item; it never stops the batch. Only regular files
+/// (links followed) are opened: a FIFO, a directory, a dangling or looping link is a failed item
+/// naming what it is, checked before anything opens it (a FIFO would block).
 std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Scene& scene,
                                  const FitOptions& options, const CsvOptions& csv,
                                  const BatchOptions& batch = {});

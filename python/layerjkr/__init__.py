@@ -18,11 +18,12 @@ subclasses with the C++ library's messages; an answer the library warns about al
 """
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import warnings as _warnings
-from typing import (Any, Callable, Dict, List, Literal, NamedTuple, Optional, Sequence, Tuple,
-                    Union)
+from typing import (Any, Callable, Dict, Iterator, List, Literal, NamedTuple, Optional, Sequence,
+                    Tuple, Union)
 
 import numpy as np
 import numpy.typing as npt
@@ -883,6 +884,19 @@ def _batch(items: Sequence[Any], branch: str) -> List[BatchResult]:
     return out
 
 
+@contextlib.contextmanager
+def _keep_finished(branch: str) -> Iterator[None]:
+    # _core attaches the finished items to the exception that a signal handler raised.
+    try:
+        yield
+    except BaseException as e:
+        items = getattr(e, "batch_items", None)
+        if items is not None:
+            e.results = _batch(items, branch)  # type: ignore[attr-defined]
+            del e.batch_items  # type: ignore[attr-defined]
+        raise
+
+
 def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: SceneLike, *,
               free: Union[str, Sequence[str]] = ("E", "w", "delta0"), jobs: int = 1, branch: Branch = "approach",
               control: Control = "auto", spring_constant: Optional[float] = None,
@@ -910,6 +924,10 @@ def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: Scen
 
     Raises
     ------
+    KeyboardInterrupt
+        On Ctrl-C (checked every 0.1 s): no further curve starts, the running fits finish,
+        and the exception's ``results`` holds the finished curves (a prefix of the input, as
+        BatchResults). The same for any exception a signal handler raises.
     InputError
         An invalid option (named), ``jobs`` < 1, an array not 1-D.
     DomainError
@@ -920,7 +938,8 @@ def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: Scen
     options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
                        starts, max_iterations)
     pairs = [(np.asarray(d, dtype=np.float64), np.asarray(p, dtype=np.float64)) for d, p in curves]
-    return _batch(_core.fit_batch(pairs, _as_scene(scene), options, int(jobs)), options.branch)
+    with _keep_finished(options.branch):
+        return _batch(_core.fit_batch(pairs, _as_scene(scene), options, int(jobs)), options.branch)
 
 
 _with_fit_parameters(fit_batch)
@@ -962,10 +981,16 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
     list of BatchResult
         One per curve, in file order, with its map position and pixel: its FitResult
         (without the per-sample arrays) or the error message. A file that cannot be read is
-        one failed item. The fits' warnings are in each result, not emitted.
+        one failed item (so is a path that is not a regular file: a directory, a FIFO, a
+        dangling or looping link, never opened). The fits' warnings are in each result, not
+        emitted.
 
     Raises
     ------
+    KeyboardInterrupt
+        On Ctrl-C (checked every 0.1 s): no further curve starts, the running fits finish,
+        and the exception's ``results`` holds the finished curves (a prefix of the input, as
+        BatchResults). The same for any exception a signal handler raises.
     InputError
         An invalid option (named), unknown units, ``jobs`` < 1.
     DomainError
@@ -980,7 +1005,8 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
                             curve=None if curve is None else int(curve))
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]
-    items = _core.fit_files([os.fspath(p) for p in paths], _as_scene(scene), options, csv, int(jobs))
+    with _keep_finished(options.branch):
+        items = _core.fit_files([os.fspath(p) for p in paths], _as_scene(scene), options, csv, int(jobs))
     return _batch(items, options.branch)
 
 

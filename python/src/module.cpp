@@ -8,8 +8,14 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
 #include <optional>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -161,6 +167,58 @@ BatchOptions batch_options(int jobs) {
   return b;
 }
 
+// Runs a batch on a helper thread while the calling thread, every 100 ms, takes the GIL for
+// PyErr_CheckSignals: Ctrl-C cancels the batch (no new curve starts; running fits finish) and
+// raises KeyboardInterrupt (or whatever the signal handler raised) within a fit's time, with the
+// finished BatchItems attached as the exception's `batch_items`.
+template <class Run>
+std::vector<BatchItem> run_interruptible(BatchOptions b, Run run) {
+  std::atomic<bool> cancel{false};
+  b.cancelled = [&cancel] { return cancel.load(); };
+  std::vector<BatchItem> items;
+  std::exception_ptr error;
+  bool interrupted = false;
+  {
+    py::gil_scoped_release release;
+    std::mutex m;
+    std::condition_variable cv;
+    bool finished = false;
+    std::thread batch([&] {
+      try {
+        items = run(b);
+      } catch (...) {
+        error = std::current_exception();
+      }
+      const std::lock_guard<std::mutex> guard(m);
+      finished = true;
+      cv.notify_all();
+    });
+    std::unique_lock<std::mutex> lock(m);
+    while (!cv.wait_for(lock, std::chrono::milliseconds(100), [&] { return finished; })) {
+      if (interrupted) continue;
+      lock.unlock();
+      {
+        py::gil_scoped_acquire gil;
+        interrupted = PyErr_CheckSignals() != 0;  // the error stays set for below
+      }
+      if (interrupted) cancel = true;
+      lock.lock();
+    }
+    lock.unlock();
+    batch.join();
+  }
+  if (interrupted) {
+    py::error_already_set raised;
+    py::list done;
+    for (const BatchItem& it : items)
+      if (!it.cancelled) done.append(py::cast(it));
+    if (raised.value()) py::setattr(raised.value(), "batch_items", done);
+    throw raised;
+  }
+  if (error) std::rethrow_exception(error);
+  return items;
+}
+
 std::vector<BatchItem> fit_batch_py(const std::vector<std::pair<Array, Array>>& curves, const Scene& scene,
                                     const FitOptions& options, int jobs) {
   const BatchOptions b = batch_options(jobs);
@@ -172,15 +230,13 @@ std::vector<BatchItem> fit_batch_py(const std::vector<std::pair<Array, Array>>& 
     c.source = "curve " + std::to_string(i);
     data.push_back(std::move(c));
   }
-  py::gil_scoped_release release;
-  return fit_batch(data, scene, options, b);
+  return run_interruptible(b, [&](const BatchOptions& o) { return fit_batch(data, scene, options, o); });
 }
 
 std::vector<BatchItem> fit_files_py(const std::vector<std::string>& paths, const Scene& scene, const FitOptions& options,
                                     const CsvOptions& csv, int jobs) {
   const BatchOptions b = batch_options(jobs);
-  py::gil_scoped_release release;
-  return fit_files(paths, scene, options, csv, b);
+  return run_interruptible(b, [&](const BatchOptions& o) { return fit_files(paths, scene, options, csv, o); });
 }
 
 py::list read_instrument(const std::string& path) {

@@ -318,3 +318,45 @@ def test_callable_profile_against_the_closed_form_sphere(source):
         layerjkr.scene(spec, profile=lambda r: np.log(r), r_max=1e-6)
     with pytest.raises(layerjkr.Error):
         layerjkr.scene(spec, profile=lambda r: -r, r_max=1e-6)  # not an indenter: falls away
+
+
+_LONG_BATCH = r"""
+import sys, time, layerjkr
+curve, scene, kind = sys.argv[1:4]
+paths = [curve] * 400  # 400 fits with 20 extra starts each: several seconds of work
+print("started", flush=True)
+try:
+    if kind == "files":
+        layerjkr.fit_files(paths, scene, free="E,w,delta0,P0", branch="all", starts=20, jobs=2)
+    else:
+        import numpy as np
+        body = [line for line in open(curve).read().splitlines() if not line.startswith("#")][1:]
+        data = np.array([[float(v) for v in line.split(",")] for line in body])
+        layerjkr.fit_batch([(data[:, 0], data[:, 1])] * 400, scene, free="E,w,delta0,P0", branch="all",
+                           starts=20, jobs=2)
+    print("finished uninterrupted", flush=True)
+except KeyboardInterrupt as e:
+    caught = time.monotonic()
+    print("interrupted", len(e.results), all(r.ok for r in e.results), caught, flush=True)
+"""
+
+
+@pytest.mark.parametrize("kind", ["files", "arrays"])
+def test_ctrl_c_stops_a_batch_and_keeps_its_results(source, kind):
+    # SIGINT to a process running a long batch: KeyboardInterrupt soon after, not after the
+    # batch, with the finished fits (a prefix) attached. The delay is printed, not asserted.
+    import signal
+    import sys
+    import time
+    p = subprocess.Popen([sys.executable, "-c", _LONG_BATCH, str(source / "data/curves/hydrogel_film_two_term.csv"),
+                          str(source / SCENE), kind], stdout=subprocess.PIPE, text=True)
+    assert p.stdout.readline() == "started\n"
+    time.sleep(1.0)
+    sent = time.monotonic()
+    p.send_signal(signal.SIGINT)
+    out, _ = p.communicate(timeout=120)
+    words = out.split()
+    assert words[0] == "interrupted", out
+    assert 0 < int(words[1]) < 400
+    assert words[2] == "True"
+    print("KeyboardInterrupt %.3f s after SIGINT, %s fits kept" % (float(words[3]) - sent, words[1]))

@@ -8,7 +8,7 @@
 #include "layerjkr/contact.hpp"
 #include "layerjkr/discrete.hpp"
 #include "layerjkr/error.hpp"
-#include "reports.hpp"
+#include "limits.hpp"
 #include "reports.hpp"
 
 namespace layerjkr::cli {
@@ -47,6 +47,7 @@ int run_discrete(const DiscreteArguments& a) {
   if (!(a.w >= 0.0) || !std::isfinite(a.w)) throw InputError("--w = " + format_double(a.w) + " must be finite and >= 0");
   const int modes = int(!a.at.empty()) + int(a.points > 0) + int(a.summary);
   if (modes != 1) throw InputError("discrete needs exactly one of --at, --points N (N >= 1) or --summary");
+  if (a.points > 0) check_count("--points", a.points, 1, kMaxPoints);
   if (a.single == !a.flat.empty())
     throw InputError(a.single ? "--single-model uses the convex data alone: drop --flat" : "discrete needs --flat FILE (or --single-model)");
   DiscreteOptions o;

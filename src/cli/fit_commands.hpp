@@ -17,9 +17,13 @@ int run_fit(const FitArguments& args, const std::string& data, const std::string
 /// (curve,segment,force,height,tip_position), which `fit` reads back.
 int run_export(const std::string& path, const std::string& out);
 
-/// `layerjkr fit-map INPUT... --out RESULTS.csv [--plot-dir DIR]`: one row per curve, progress
-/// on stderr; with a plot directory, one heat map per fitted field over the map grid.
+/// `layerjkr fit-map INPUT... --out RESULTS.csv [--plot-dir DIR] [--resume]`: one row per curve,
+/// written in input order as the curves finish, progress on stderr; with a plot directory, one
+/// heat map per fitted field over the map grid. SIGINT / SIGTERM stop it cleanly: no new curve
+/// starts, the running ones finish, the table so far is committed, and it returns 130 / 143.
+/// With `resume`, the rows of an existing table (same header) are kept and their curves (by
+/// file and curve cells) not fitted again.
 int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
-                const std::string& out, const std::string& plot_dir = "");
+                const std::string& out, const std::string& plot_dir = "", bool resume = false);
 
 }  // namespace layerjkr::cli

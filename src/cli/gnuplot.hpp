@@ -9,4 +9,8 @@ namespace layerjkr::cli {
 /// (the flag that asked for the plot) if gnuplot is missing or fails.
 void run_gnuplot(const std::string& script, const std::string& png, const std::string& what);
 
+/// `path` as a gnuplot single-quoted string (quotes doubled), so no file name can end the
+/// string and add commands; throws InputError for a name with a line break.
+std::string gnuplot_quoted(const std::string& path);
+
 }  // namespace layerjkr::cli

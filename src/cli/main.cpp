@@ -2,11 +2,13 @@
 //   layerjkr curve SCENE.json (--at a1,a2,... | --a-max A --points N)
 //   layerjkr summary SCENE.json
 //   layerjkr fit DATA.csv --scene S.json --free E,w,delta0 [--out R.json] [--plot F.png] ...
-//   layerjkr fit-map DIR_OR_GLOB... --scene S.json --free ... --jobs N --out RESULTS.csv
+//   layerjkr fit-map DIR_OR_GLOB... --scene S.json --free ... --jobs N --out RESULTS.csv [--resume]
 //   layerjkr export FILE.jpk-force|.jpk-force-map|.jpk-qi-data|.ibw --out OUT.csv
-// Exit codes: 0 success, 2 invalid scene or arguments, 1 internal failure.
+// Exit codes: 0 success, 2 invalid scene or arguments, 1 internal failure, 130 / 143 fit-map
+// stopped by SIGINT / SIGTERM. Every error is one line on stderr.
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -20,12 +22,22 @@
 
 #include "discrete_command.hpp"
 #include "fit_commands.hpp"
+#include "limits.hpp"
 #include "reports.hpp"
 #include "layerjkr/layerjkr.hpp"
 
 namespace {
 
 using layerjkr::format_double;
+
+// One line on stderr, whatever the message holds (CLI11's messages can span lines).
+int fail(int code, const std::string& message) {
+  std::string line = "layerjkr: " + message;
+  for (char& c : line)
+    if (c == '\n' || c == '\r') c = ' ';
+  std::cerr << line << "\n";
+  return code;
+}
 
 void print_warnings(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) std::cerr << "layerjkr: warning: " << w << "\n";
@@ -43,7 +55,7 @@ int run_curve(const std::string& path, const std::string& at, double a_max, int 
   } else {
     if (!(a_max > 0.0) || !std::isfinite(a_max))
       throw layerjkr::InputError("--a-max = " + format_double(a_max) + " must be finite and > 0");
-    if (points < 1) throw layerjkr::InputError("--points = " + std::to_string(points) + " must be >= 1");
+    layerjkr::cli::check_count("--points", points, 1, layerjkr::cli::kMaxPoints);
     for (int i = 1; i <= points; ++i) radii.push_back(a_max * i / points);
   }
   // Compute everything before printing so a failure never leaves partial output.
@@ -91,6 +103,7 @@ static int run_main(int argc, char** argv) {
   layerjkr::cli::FitArguments fit_args;
   std::string data_path, report_path, plot_path, map_out, map_plot_dir;
   std::vector<std::string> map_inputs;
+  bool map_resume = false;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   CLI::App* fit = app.add_subcommand(
       "fit", "Fit a measured curve (CSV or instrument file) with a scene's model: estimates, errors, identifiability");
@@ -111,6 +124,8 @@ static int run_main(int argc, char** argv) {
   fit_map->add_option("--out", map_out, "Results CSV")->required();
   fit_map->add_option("--plot-dir", map_plot_dir,
                       "Draw each fitted field (parameters, rms, status) as a heat-map PNG over the map grid (gnuplot)");
+  fit_map->add_flag("--resume", map_resume,
+                    "Keep the rows of an existing --out table (same header) and fit only the curves it lacks");
 
   std::string export_path, export_out;
   CLI::App* export_cmd = app.add_subcommand(
@@ -127,9 +142,8 @@ static int run_main(int argc, char** argv) {
   const std::vector<std::string> commands = {"curve", "summary", "fit", "fit-map", "export", "discrete"};
   if (argc > 1 && argv[1][0] != '-' &&
       std::find(commands.begin(), commands.end(), std::string(argv[1])) == commands.end()) {
-    std::cerr << "layerjkr: unknown command '" << argv[1]
-              << "' (known: curve, summary, fit, fit-map, export, discrete)\nRun 'layerjkr --help' for usage.\n";
-    return 2;
+    return fail(2, "unknown command '" + std::string(argv[1]) +
+                       "' (known: curve, summary, fit, fit-map, export, discrete; see --help)");
   }
   try {
     app.parse(argc, argv);
@@ -140,34 +154,31 @@ static int run_main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "layerjkr: " << e.what() << "\nRun 'layerjkr --help' for usage.\n";
-    return 2;
+    return fail(2, std::string(e.what()) + " (see --help)");
   }
 
   try {
     if (*curve) return run_curve(scene_path, at, a_max, points);
     if (*fit) return layerjkr::cli::run_fit(fit_args, data_path, report_path, plot_path);
-    if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out, map_plot_dir);
+    if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out, map_plot_dir, map_resume);
     if (*export_cmd) return layerjkr::cli::run_export(export_path, export_out);
     if (*discrete) return layerjkr::cli::run_discrete(discrete_args);
     return run_summary(scene_path);
   } catch (const layerjkr::NumericalError& e) {
-    std::cerr << "layerjkr: numerical failure: " << e.what() << "\n";
-    return 1;
+    return fail(1, std::string("numerical failure: ") + e.what());
   } catch (const layerjkr::Error& e) {
-    std::cerr << "layerjkr: " << e.what() << "\n";
-    return 2;
+    return fail(2, e.what());
   } catch (const std::exception& e) {
-    std::cerr << "layerjkr: internal error: " << e.what() << "\n";
-    return 1;
+    return fail(1, std::string("internal error: ") + e.what());
   }
 }
 
 int main(int argc, char** argv) {
+  // Past RLIMIT_FSIZE a write fails with EFBIG, which the writers report, instead of a core dump.
+  std::signal(SIGXFSZ, SIG_IGN);
   try {
     return run_main(argc, argv);
   } catch (const std::exception& e) {  // setting up the parser itself failed
-    std::cerr << "layerjkr: internal error: " << e.what() << "\n";
-    return 1;
+    return fail(1, std::string("internal error: ") + e.what());
   }
 }

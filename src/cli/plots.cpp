@@ -3,9 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <sstream>
 
@@ -17,42 +15,45 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The plot's data file goes whether gnuplot succeeds or not.
-struct RemoveOnExit {
-  std::string path;
-  ~RemoveOnExit() { std::remove(path.c_str()); }
-};
-
 std::string num(double v) { return std::isfinite(v) ? format_double(v) : ""; }
 
 }  // namespace
 
 // Data, fitted curve and residuals with gnuplot (pngcairo), through a temporary file.
-void plot_fit(const FitSummary& s, const std::string& path) {
-  const std::string dat = path + ".dat.tmp", png = path + ".tmp.png";
+// The data file is an OutputFile never committed: gnuplot reads it by its private name, and it
+// goes whether gnuplot succeeds or not.
+void plot_fit(const FitSummary& s, OutputFile& png) {
+  OutputFile data(png.target() + ".dat");
   {
-    std::ofstream f(dat);
+    std::ostringstream f;
     f.precision(17);
     for (std::size_t i = 0; i < s.delta.size(); ++i)
       f << s.delta[i] << " " << s.P[i] << " " << s.P_fit[i] << " " << s.P[i] - s.P_fit[i] << " "
         << (!s.excluded.empty() && s.excluded[i] ? 1 : 0) << "\n";
-    if (!f) throw InputError(path + ": cannot write the plot data");
+    data.write(f.str());
   }
+  const std::string dat = gnuplot_quoted(data.temporary());
   std::ostringstream g;
   g << "set terminal pngcairo size 900,750 font ',10' noenhanced\n"
-    << "set output '" << png << "'\n"
+    << "set output " << gnuplot_quoted(png.temporary()) << "\n"
     << "set multiplot layout 2,1 title 'layerjkr fit: " << s.model << " (rms " << s.rms_residual << " N)'\n"
     << "set format x '%.3s%c'\nset format y '%.1s%c'\nset grid\n"
     << "set ylabel 'force P [N]'\nset key top left\n"
-    << "plot '" << dat << "' using 1:($5 == 0 ? $2 : 1/0) with points pt 7 ps 0.4 lc rgb '#777777' title 'data', "
+    << "plot " << dat << " using 1:($5 == 0 ? $2 : 1/0) with points pt 7 ps 0.4 lc rgb '#777777' title 'data', "
     << "'' using 1:($5 == 1 ? $2 : 1/0) with points pt 7 ps 0.4 lc rgb '#e67e22' title 'excluded (not JKR)', "
     << "'' using 1:3 with points pt 7 ps 0.3 lc rgb '#c0392b' title 'fit'\n"
     << "set xlabel 'delta [m]'\nset ylabel 'residual [N]'\nunset key\n"
-    << "plot '" << dat << "' using 1:4 with points pt 7 ps 0.3 lc rgb '#2c3e50', 0 lc rgb '#c0392b'\n"
+    << "plot " << dat << " using 1:4 with points pt 7 ps 0.3 lc rgb '#2c3e50', 0 lc rgb '#c0392b'\n"
     << "unset multiplot\n";
-  const RemoveOnExit remove_dat{dat};
-  run_gnuplot(g.str(), png, "--plot");
-  fs::rename(png, path);
+  run_gnuplot(g.str(), png.temporary(), "--plot");
+  png.commit();
+}
+
+void prepare_plot_dir(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError("--plot-dir " + dir + ": cannot create the directory (" + ec.message() + ")");
+  const OutputFile probe((fs::path(dir) / "status.png").string());
 }
 
 void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitParameter>& free,
@@ -64,9 +65,7 @@ void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitP
   }
   if (nx == 0 || ny == 0)
     throw InputError("--plot-dir: no input carries map positions (instrument force maps and QI files do)");
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError("--plot-dir " + dir + ": cannot create the directory (" + ec.message() + ")");
+  prepare_plot_dir(dir);
   struct Field {
     std::string name, label;
     std::function<double(const BatchItem&)> value;
@@ -90,10 +89,10 @@ void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitP
   fields.push_back({"rms_residual", "rms residual [N]", [](const BatchItem& it) { return it.summary.rms_residual; }});
   fields.push_back({"status", "status (1 fitted, 0 failed)", [](const BatchItem& it) { return it.ok ? 1.0 : 0.0; }});
   for (const Field& f : fields) {
-    const std::string dat = (fs::path(dir) / (f.name + ".dat.tmp")).string();
-    const std::string png = (fs::path(dir) / (f.name + ".png")).string();
+    OutputFile png((fs::path(dir) / (f.name + ".png")).string());
+    OutputFile data(png.target() + ".dat");
     {
-      std::ofstream d(dat);
+      std::ostringstream d;
       d.precision(17);
       // gnuplot's image needs every pixel of the grid: NaN where there is no value.
       std::vector<double> grid(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), std::nan(""));
@@ -106,17 +105,17 @@ void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitP
           const double v = grid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(x)];
           d << x << " " << y << " " << (std::isfinite(v) ? num(v) : std::string("NaN")) << "\n";
         }
-      if (!d) throw InputError("--plot-dir: cannot write " + dat);
+      data.write(d.str());
     }
     std::ostringstream g;
-    g << "set terminal pngcairo size 640,560 font ',10' noenhanced\nset output '" << png << "'\n"
+    g << "set terminal pngcairo size 640,560 font ',10' noenhanced\nset output " << gnuplot_quoted(png.temporary()) << "\n"
       << "set title 'fit-map: " << f.label << "'\nset xlabel 'grid x'\nset ylabel 'grid y'\n"
       << "set xrange [-0.5:" << nx - 0.5 << "]\nset yrange [-0.5:" << ny - 0.5 << "]\n"
       << "set size ratio -1\nset palette rgb 33,13,10\nset colorbox\n"
       << (f.name == "status" ? "set cbrange [0:1]\n" : "")
-      << "plot '" << dat << "' using 1:2:3 with image notitle\n";
-    const RemoveOnExit remove_dat{dat};
-    run_gnuplot(g.str(), png, "--plot-dir");
+      << "plot " << gnuplot_quoted(data.temporary()) << " using 1:2:3 with image notitle\n";
+    run_gnuplot(g.str(), png.temporary(), "--plot-dir");
+    png.commit();
   }
 }
 

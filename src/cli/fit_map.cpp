@@ -1,0 +1,195 @@
+// layerjkr fit-map: the results table, written row by row in input order as curves finish, so an
+// interrupted run (SIGINT, SIGTERM) leaves a valid partial table that --resume completes.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <utility>
+
+#include "files.hpp"
+#include "fit_commands.hpp"
+#include "layerjkr/layerjkr.hpp"
+#include "limits.hpp"
+#include "plots.hpp"
+#include "results_table.hpp"
+
+namespace layerjkr::cli {
+namespace {
+
+std::string num(double v) { return std::isfinite(v) ? format_double(v) : ""; }
+std::string index(int v) { return v >= 0 ? std::to_string(v) : std::string(); }
+
+std::string header(const std::vector<FitParameter>& free) {
+  std::string h = "file,curve,x,y,grid_x,grid_y,status,error,model,converged,iterations,rms_residual,identifiable";
+  for (FitParameter q : free) h += std::string(",") + to_string(q) + "," + to_string(q) + "_stderr";
+  return h + "\n";
+}
+
+std::string row(const BatchItem& it, std::size_t free) {
+  std::ostringstream csv;
+  csv << csv_cell(it.source) << "," << index(it.curve) << "," << num(it.x) << "," << num(it.y) << ","
+      << index(it.grid_x) << "," << index(it.grid_y) << "," << (it.ok ? "ok" : "error") << "," << csv_cell(it.error);
+  if (it.ok) {
+    const FitSummary& s = it.summary;
+    csv << "," << s.model << "," << (s.converged ? 1 : 0) << "," << s.iterations << ","
+        << format_double(s.rms_residual) << "," << (s.identifiable ? 1 : 0);
+    for (const auto& e : s.parameters) csv << "," << num(e.value) << "," << num(e.standard_error);
+  } else {
+    csv << ",,,,,";
+    for (std::size_t k = 0; k < free; ++k) csv << ",,";
+  }
+  csv << "\n";
+  return csv.str();
+}
+
+using Key = std::pair<std::string, std::string>;  // the file and curve cells of a row
+
+// The rows of an earlier table (--resume), by key. `skip` (worker threads, concurrently) moves a
+// row from `waiting` to `claimed`; on_item (one at a time) takes it from there.
+struct Earlier {
+  std::vector<std::string> rows;
+  std::vector<char> written;
+  std::map<Key, std::deque<std::size_t>> waiting, claimed;
+  std::mutex lock;
+};
+
+// Reads `out` for --resume (results_table.hpp); a missing table is a fresh start.
+void read_earlier(const std::string& out, const std::string& head, Earlier& e) {
+  std::error_code ec;
+  if (!std::filesystem::exists(out, ec)) return;
+  std::ifstream f(out, std::ios::binary);
+  std::stringstream text;
+  text << f.rdbuf();
+  if (!f) throw InputError("--resume: cannot read " + out);
+  for (ResultsRow& r : parse_results_table(text.str(), head, out)) {
+    e.waiting[{r.file, r.curve}].push_back(e.rows.size());
+    e.rows.push_back(std::move(r.line));
+  }
+  e.written.assign(e.rows.size(), 0);
+}
+
+// SIGINT / SIGTERM: the batch polls the flag between curves. The handler resets itself, so a
+// second signal stops the process at once.
+std::atomic<int> stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler writes an atomic");
+extern "C" void on_stop_signal(int sig) { stop_signal.store(sig); }
+
+class StopOnSignals {
+ public:
+  StopOnSignals() {
+    struct sigaction sa {};
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESETHAND | SA_RESTART;
+    sigaction(SIGINT, &sa, &old_int_);
+    sigaction(SIGTERM, &sa, &old_term_);
+  }
+  ~StopOnSignals() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  StopOnSignals(const StopOnSignals&) = delete;
+  StopOnSignals& operator=(const StopOnSignals&) = delete;
+
+ private:
+  struct sigaction old_int_ {}, old_term_ {};
+};
+
+}  // namespace
+
+int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
+                const std::string& out, const std::string& plot_dir, bool resume) {
+  const Prepared p = prepare(args);
+  check_count("--jobs", jobs, 1, kMaxJobs);
+  if (resume && !plot_dir.empty())
+    throw InputError("--plot-dir needs every fit, and --resume does not redo the earlier ones: run them apart");
+  const std::vector<std::string> files = expand_inputs(inputs);
+  std::vector<std::string> all_inputs = files;
+  all_inputs.push_back(args.scene);
+  check_not_input(out, "--out", all_inputs);
+  const std::string head = header(p.options.free);
+  Earlier earlier;
+  if (resume) read_earlier(out, head, earlier);
+  // Every output is created before the first fit: a bad path fails now, not after the work.
+  OutputFile table(out);
+  if (!plot_dir.empty()) prepare_plot_dir(plot_dir);
+  table.write(head);
+
+  std::size_t rows = 0, failed = 0, skipped = 0;
+  BatchOptions b;
+  b.jobs = jobs;
+  b.cancelled = [] { return stop_signal.load() != 0; };
+  if (resume)
+    b.skip = [&](const BatchItem& it) {
+      const std::lock_guard<std::mutex> guard(earlier.lock);
+      const Key key{it.source, index(it.curve)};
+      const auto found = earlier.waiting.find(key);
+      if (found == earlier.waiting.end() || found->second.empty()) return false;
+      earlier.claimed[key].push_back(found->second.front());
+      found->second.pop_front();
+      return true;
+    };
+  b.on_item = [&](std::size_t, const BatchItem& it) {
+    if (it.skipped) {
+      const std::lock_guard<std::mutex> guard(earlier.lock);
+      auto& mine = earlier.claimed[{it.source, index(it.curve)}];
+      table.write(earlier.rows[mine.front()]);
+      earlier.written[mine.front()] = 1;
+      mine.pop_front();
+      ++skipped;
+    } else {
+      table.write(row(it, p.options.free.size()));
+      failed += it.ok ? 0 : 1;
+    }
+    ++rows;
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  auto last = t0 - std::chrono::seconds(1);
+  bool drawn = false;
+  b.progress = [&](std::size_t done, std::size_t total) {
+    const auto now = std::chrono::steady_clock::now();
+    if (done != total && now - last < std::chrono::milliseconds(200)) return;
+    last = now;
+    drawn = done != total;
+    const int width = 30, filled = static_cast<int>(width * done / total);
+    std::cerr << "\rfit-map [" << std::string(filled, '#') << std::string(width - filled, ' ') << "] "
+              << done << "/" << total << "  "
+              << std::chrono::duration<double>(now - t0).count() << " s" << std::flush;
+    if (done == total) std::cerr << "\n";
+  };
+  std::vector<BatchItem> items;
+  {
+    const StopOnSignals stop;
+    items = fit_files(files, p.scene, p.options, p.csv, b);
+  }
+  // Rows of the earlier table that this run's inputs did not name are kept, after the others.
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < earlier.rows.size(); ++i)
+    if (!earlier.written[i]) {
+      table.write(earlier.rows[i]);
+      ++kept;
+    }
+  table.commit();
+  if (drawn) std::cerr << "\n";
+  const std::string kept_note = kept ? "; " + std::to_string(kept) + " earlier row(s) for other inputs kept at the end" : "";
+  if (const int sig = stop_signal.load()) {
+    std::cerr << "fit-map: stopped by " << (sig == SIGINT ? "SIGINT" : "SIGTERM") << ": " << rows << " of "
+              << items.size() << " rows written to " << out << kept_note << "; --resume finishes the table\n";
+    return 128 + sig;
+  }
+  if (!plot_dir.empty()) plot_map_fields(items, p.options.free, plot_dir);
+  std::cerr << "fit-map: " << rows - failed - skipped << " of " << rows - skipped << " curves fitted";
+  if (skipped) std::cerr << " (" << skipped << " rows kept from the earlier run)";
+  if (failed) std::cerr << "; " << failed << " failed (see the error column of " << out << ")";
+  std::cerr << kept_note << "\n";
+  return 0;
+}
+
+}  // namespace layerjkr::cli
