@@ -279,6 +279,29 @@ SceneModel read_model(const Reader& in, const json& root, MediumType medium) {
                        "' (available: " + list + ")");
 }
 
+// The scene's lengths and energies in dimensionless form. Outside these ranges the
+// quantities the solvers form (a^3, R^2, ratios of moments) overflow or underflow: the
+// answer would be non-finite or silently wrong (w = 1e308 found no pull-off), so the scene
+// is refused, naming the key. L is the indenter's length scale (R; f(L) = L for a power
+// law); a cone is scale-free and has none.
+void check_scales(const Reader& in, const Scene& s) {
+  const auto pl = s.profile->power_law_form();
+  if (pl && pl->d == 1.0) return;
+  const double L = s.profile->length_scale();
+  const MediumSpec& m = s.medium;
+  const bool elastic = m.type == MediumType::layer || m.type == MediumType::half_space;
+  // An elastic modulus: E* for solids, K L for foundations (K [N/m^3]).
+  const double E = elastic ? m.E / (1.0 - m.nu * m.nu) : m.K * L;
+  if (m.type == MediumType::layer && !(L / m.h >= 1e-9 && L / m.h <= 1e9))
+    in.fail("indenter", "length scale L = " + format_double(L) + " m against medium.h = " + format_double(m.h) +
+                            " m is out of range: L/h = " + format_double(L / m.h) + "; valid range: [1e-9, 1e9]");
+  const double omega = s.w / (E * L);
+  if (s.w > 0.0 && !(omega >= 1e-30 && omega <= 1e6))
+    in.fail("w", "= " + format_double(s.w) + " J/m^2 is out of range for this indenter and medium: w/(E L) = " +
+                     format_double(omega) + " with " + (elastic ? "E* = " : "E = K L = ") + format_double(E) +
+                     " Pa, L = " + format_double(L) + " m (the indenter's length scale); valid range: [1e-30, 1e6]");
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& source) {
@@ -314,6 +337,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     in.fail("solver", "must be closed_form with model \"" + std::string(to_string(s.model)) + "\"");
   // Every invalid value is reported at parse time, without building anything.
   in.checked("medium", [&] { validate(resolve_model(s).spec); });
+  check_scales(in, s);
   return s;
 }
 

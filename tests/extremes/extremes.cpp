@@ -402,6 +402,55 @@ void tables(Groups& g) {
   });
 }
 
+// Scenes at the edge of their valid ranges, through parse_scene and solve_summary as the
+// CLI and Python see them: refused as input errors naming the key, value and range (exit
+// 2), or answered finitely - never a failure (exit 1) or a non-finite number.
+void input_ranges(Groups& g) {
+  g.area("Input ranges (scenes: refused naming key and range, or answered finitely)", "ranges");
+  const auto scene = [](const std::string& indenter, const std::string& w) {
+    return R"({"indenter": )" + indenter +
+           R"(, "medium": {"type": "layer", "E": 5e4, "nu": 0.3, "h": 2e-7, "base": "bonded"}, "model": "two_term", "w": )" +
+           w + "}";
+  };
+  const std::string para = R"({"shape": "paraboloid", "R": 1e-5})";
+  struct Refused {
+    std::string cell, text, names;
+  };
+  for (const Refused& r : std::vector<Refused>{
+           {"w = 1e308 (printed -inf and NaN)", scene(para, "1e308"), "w = 1e+308"},
+           {"w = 1e-300", scene(para, "1e-300"), "valid range: [1e-30, 1e6]"},
+           {"R = 5e-324 (failed, exit 1)", scene(R"({"shape": "paraboloid", "R": 5e-324})", "1e-3"), "L/h"},
+           {"R = 1e300", scene(R"({"shape": "sphere", "R": 1e300})", "1e-3"), "valid range: [1e-9, 1e9]"},
+           {"power law d = 1000 (failed, exit 1)", scene(R"({"shape": "power_law", "B": 1, "d": 1000})", "1e-3"),
+            "d = 1000 is invalid; valid range: [1, 50]"}}) {
+    g.add(r.cell, [r](Matrix& m) {
+      try {
+        solve_summary(parse_scene(r.text, "scene"));
+        m.truth(r.cell, false, "input error naming " + r.names, "answered");
+      } catch (const InputError& e) {
+        const std::string msg = e.what();
+        m.truth(r.cell, msg.find(r.names) != std::string::npos, "input error naming " + r.names,
+                "input error: " + msg.substr(0, 90));
+      }
+    });
+  }
+  for (const auto& [cell, text] : std::vector<std::pair<std::string, std::string>>{
+           {"w/(E* R) = 1e5, two_term", scene(para, "5.5e4")},
+           {"w/(E* R) = 1e-29, two_term", scene(para, "5.5e-28")},
+           {"power law d = 50, two_term", scene(R"({"shape": "power_law", "B": 1e3, "d": 50})", "1e-3")},
+           {"power law d = 50, exact",
+            R"({"indenter": {"shape": "power_law", "B": 1e3, "d": 50}, "medium": {"type": "layer", "E": 5e4, "nu": 0.3, "h": 0.1, "base": "bonded"}, "model": "exact", "w": 1e-3})"}}) {
+    g.add(cell, [cell = cell, text = text](Matrix& m) {
+      m.guarded(cell, "a finite answer", [&] {
+        const SummaryAnswer s = solve_summary(parse_scene(text, "scene"));
+        const bool ok = s.contact.pull_off && std::isfinite(s.contact.pull_off->P) &&
+                        s.contact.zero_load_radius && std::isfinite(*s.contact.zero_load_radius);
+        m.truth(cell, ok, "a finite pull-off and zero-load radius", ok ? "finite" : "missing or not finite");
+      });
+    });
+  }
+}
+
 const std::vector<Group>& groups() {
   static const std::vector<Group> list = [] {
     Groups g;
@@ -412,6 +461,7 @@ const std::vector<Group>& groups() {
     foundation(g);
     scales(g);
     tables(g);
+    input_ranges(g);
     return g.list;
   }();
   return list;
