@@ -320,6 +320,29 @@ void foundation(Groups& g) {
               "finite, converging to Winkler as T -> 0", "rel. diff from Winkler " + sci(e));
     }
   });
+  // The ODE route (solver "ode") on the same cells: it failed at tiny radii before.
+  for (double G : {1e-12, -1e-12, 30.0, -30.0}) {
+    const std::string cell = "ODE route, two-term G = " + sci(G) + ": pull-off and P_H(a) vs the closed form";
+    g.add(cell, [G, cell](Matrix& m) {
+      const ProfilePtr s = make_paraboloid(1e-3);
+      const ContactModelPtr ode = make_ode_foundation(s, K, G, FoundationKind::asymptotic);
+      const ContactModelPtr closed = make_two_term(s, K, G);
+      m.guarded(cell, "finite", [&] {
+        const auto po = JkrSolution(ode, 0.05).pull_off(), ref = JkrSolution(closed, 0.05).pull_off();
+        m.rel(cell + ": pull-off", po ? po->P : NAN, ref ? ref->P : NAN, 1e-8);
+        m.rel(cell + ": P_H(1e-9 m)", ode->state(1e-9).P_H, closed->state(1e-9).P_H, 1e-6);
+      });
+    });
+  }
+  for (double Kx : {1e3, 1e12, 1e20}) {
+    const std::string cell = "ODE route, Winkler K = " + sci(Kx) + ", pull-off vs -2 pi w R";
+    g.add(cell, [Kx, cell](Matrix& m) {
+      m.guarded(cell, "finite", [&] {
+        const auto po = JkrSolution(make_ode_foundation(make_paraboloid(1e-3), Kx, 0.0, FoundationKind::asymptotic), 0.05).pull_off();
+        m.rel(cell, po ? po->P : NAN, -2 * kPi * 0.05 * 1e-3, 1e-8);
+      });
+    });
+  }
   for (double Kx : {1e3, 1e8, 1e12, 1e16, 1e20}) {
     const std::string cell = "Winkler K = " + sci(Kx) + ", pull-off vs -2 pi w R";
     g.add(cell, [Kx, cell](Matrix& m) {
