@@ -1,5 +1,5 @@
-// libFuzzer target: the curve CSV reader. The first byte picks units and the raw-AFM
-// options; any input must parse to finite, equal-length columns or throw layerjkr::Error.
+// libFuzzer target: the curve CSV reader. The first byte picks units, the raw-AFM
+// options, a curve and a row limit; any input must parse to finite, equal-length columns or throw layerjkr::Error.
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -15,6 +15,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (mode & 2) o.force_unit = 1e-9;
   if (mode & 4) o.spring_constant = 0.05;
   if (mode & 8) o.z_sign = -1.0;
+  if (mode & 16) o.curve = 3;     // the curve column's selection
+  if (mode & 32) o.max_rows = 5;  // the row limit
   const std::string text(reinterpret_cast<const char*>(data + 1), size - 1);
   try {
     const layerjkr::CurveData c = layerjkr::parse_curve_csv(text, "fuzz", o);

@@ -17,8 +17,10 @@
 //                                         CsvOptions::curve
 // Aliases: P <-> force; a unit suffix _m / _N (delta_m, force_N, tip_position_m, ...) is
 // accepted and means SI, so it cannot be combined with non-SI CsvOptions units.
+// A leading UTF-8 byte-order mark is ignored (as in scene files). Limits: max_bytes, max_rows.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -59,6 +61,10 @@ struct CsvOptions {
   double z_sign = 1.0;           ///< +1: z grows towards the sample; -1: it decreases
   double deflection_sign = 1.0;  ///< +1: deflection > 0 when pushed away by the sample
   int curve = -1;  ///< with a curve column: read only this curve (-1: the file must hold one)
+  /// Largest file read_curve_csv reads [bytes] (default 512 MiB), > 0: a bound on memory.
+  std::size_t max_bytes = std::size_t{512} << 20;
+  /// Most data rows parse_curve_csv accepts (default 10^7, about 1 GB of peak memory in a fit), > 0.
+  std::size_t max_rows = 10'000'000;
   /// Throws DomainError naming the first invalid field.
   void validate() const;
 };
@@ -69,11 +75,12 @@ void parse_units(const std::string& text, CsvOptions& options);
 
 /// Parses CSV text (see the forms above). `source` names the data in errors. Throws
 /// InputError for a bad header, a non-numeric or non-finite cell (naming row and
-/// column), a row with the wrong number of cells, or no data rows.
+/// column), a row with the wrong number of cells, no data rows, or more than max_rows rows.
 CurveData parse_curve_csv(const std::string& text, const std::string& source,
                           const CsvOptions& options = {});
 
-/// Reads and parses a CSV file.
+/// Reads and parses a CSV file; a file over max_bytes, a directory or a device is an
+/// InputError naming the path and the limit.
 CurveData read_curve_csv(const std::string& path, const CsvOptions& options = {});
 
 }  // namespace layerjkr

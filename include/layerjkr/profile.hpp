@@ -99,7 +99,7 @@ ProfilePtr make_sphere(double R);
 /// Cone f = r cot(alpha) with semi-angle alpha [rad] in (0, pi/2).
 ProfilePtr make_cone(double semi_angle_rad);
 
-/// Power law f = B r^d with B > 0 [m^(1-d)] and d >= 1.
+/// Power law f = B r^d with B > 0 [m^(1-d)] and d in [1, 50] (beyond, a flat punch).
 ProfilePtr make_power_law(double B, double d);
 
 /// Measured profile from a table (r_i [m], z_i [m]): r strictly increasing from

@@ -51,6 +51,46 @@ class ModelWarning(UserWarning):
     the answer's ``warnings`` list."""
 
 
+def _number(name: str, value: Any) -> float:
+    """A real number for option ``name``, else TypeError naming it (not a bare conversion error)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError("%s must be a number, got %s %r" % (name, type(value).__name__, value))
+    return float(value)
+
+
+def _integer(name: str, value: Any) -> int:
+    """An integer for option ``name``: 2.5 is refused rather than truncated."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError("%s must be an integer, got %s %r" % (name, type(value).__name__, value))
+    return int(value)
+
+
+def _text(name: str, value: Any) -> str:
+    if not isinstance(value, str):
+        raise TypeError("%s must be a string, got %s %r" % (name, type(value).__name__, value))
+    return value
+
+
+def _json_value(value: Any) -> Any:
+    """numpy scalars and arrays in a scene dict as the JSON numbers and lists they hold."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    raise TypeError("scene: a value of type %s cannot be written as JSON" % type(value).__name__)
+
+
+def _segments(segment: npt.ArrayLike) -> List[int]:
+    """Segment labels 0 or 1; a non-integer label (0.5) is refused with its value, not cast."""
+    values = np.asarray(segment).ravel()
+    out = []
+    for i, v in enumerate(values.tolist()):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v) or v != int(v):
+            raise InputError("segment[%d] = %r is not a segment label; valid values: 0 (approach), 1 (retract)" % (i, v))
+        out.append(int(v))
+    return out
+
+
 def _warn(messages: Sequence[str], stacklevel: int) -> None:
     for message in messages:
         _warnings.warn(message, ModelWarning, stacklevel=stacklevel + 1)
@@ -89,7 +129,7 @@ def scene(spec: SceneLike, profile: Optional[Callable[[Any], Any]] = None, r_max
     if isinstance(spec, Scene):
         s = spec
     elif isinstance(spec, dict):
-        s = _core.parse_scene(json.dumps(spec), "scene dict")
+        s = _core.parse_scene(json.dumps(spec, default=_json_value), "scene dict")
     elif isinstance(spec, (str, os.PathLike)):
         s = _core.load_scene(os.fspath(spec))
     else:
@@ -307,7 +347,7 @@ def curve(scene: SceneLike, a: npt.ArrayLike, *, warning_threshold: float = 0.05
         Each of the curve's warnings.
     """
     block, warnings, model, reference, choice, seconds = _core.curve(
-        _as_scene(scene), np.asarray(a, dtype=np.float64), float(warning_threshold))
+        _as_scene(scene), np.asarray(a, dtype=np.float64), _number("warning_threshold", warning_threshold))
     result = Curve(block, warnings, model, reference, _choice(choice), seconds)
     _warn(warnings, 2)
     return result
@@ -510,7 +550,7 @@ def summary(scene: SceneLike, *, warning_threshold: float = 0.05) -> Summary:
     ModelWarning
         Each of the summary's warnings.
     """
-    result = Summary(_core.summary(_as_scene(scene), float(warning_threshold)))
+    result = Summary(_core.summary(_as_scene(scene), _number("warning_threshold", warning_threshold)))
     _warn(result._a.warnings, 2)
     return result
 
@@ -774,17 +814,18 @@ class BatchResult(NamedTuple):
 def _free(free: Union[str, Sequence[str]]) -> List[str]:
     if isinstance(free, str):
         free = free.split(",")
-    return [str(f) for f in free]
+    return [_text("free", f) for f in free]
 
 
 def _options(free: Union[str, Sequence[str]], branch: str, control: str, spring_constant: Optional[float],
              baseline: str, window: str, window_fraction: float, loss: str, loss_scale: Optional[float], starts: int,
              max_iterations: int) -> Any:
-    return _core.fit_options(free=_free(free), branch=branch, control=control,
-                             spring_constant=None if spring_constant is None else float(spring_constant),
-                             baseline=baseline, window=window, window_fraction=float(window_fraction), loss=loss,
-                             loss_scale=None if loss_scale is None else float(loss_scale), starts=int(starts),
-                             max_iterations=int(max_iterations))
+    return _core.fit_options(free=_free(free), branch=_text("branch", branch), control=_text("control", control),
+                             spring_constant=None if spring_constant is None else _number("spring_constant", spring_constant),
+                             baseline=_text("baseline", baseline), window=_text("window", window),
+                             window_fraction=_number("window_fraction", window_fraction), loss=_text("loss", loss),
+                             loss_scale=None if loss_scale is None else _number("loss_scale", loss_scale),
+                             starts=_integer("starts", starts), max_iterations=_integer("max_iterations", max_iterations))
 
 
 _FIT_PARAMETERS_DOC = """
@@ -864,7 +905,7 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
     """
     options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
                        starts, max_iterations)
-    seg = None if segment is None else [int(s) for s in np.asarray(segment).ravel()]
+    seg = None if segment is None else _segments(segment)
     s = _core.fit(np.asarray(delta, dtype=np.float64), np.asarray(P, dtype=np.float64), seg, _as_scene(scene), options)
     result = FitResult(s, options.branch)
     _warn(result.warnings, 2)
@@ -939,7 +980,7 @@ def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: Scen
                        starts, max_iterations)
     pairs = [(np.asarray(d, dtype=np.float64), np.asarray(p, dtype=np.float64)) for d, p in curves]
     with _keep_finished(options.branch):
-        return _batch(_core.fit_batch(pairs, _as_scene(scene), options, int(jobs)), options.branch)
+        return _batch(_core.fit_batch(pairs, _as_scene(scene), options, _integer("jobs", jobs)), options.branch)
 
 
 _with_fit_parameters(fit_batch)
@@ -1000,13 +1041,14 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
     """
     options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
                        starts, max_iterations)
-    csv = _core.csv_options(units=units, spring_constant=None if spring_constant is None else float(spring_constant),
-                            z_sign=float(z_sign), deflection_sign=float(deflection_sign),
-                            curve=None if curve is None else int(curve))
+    csv = _core.csv_options(units=_text("units", units),
+                            spring_constant=None if spring_constant is None else _number("spring_constant", spring_constant),
+                            z_sign=_number("z_sign", z_sign), deflection_sign=_number("deflection_sign", deflection_sign),
+                            curve=None if curve is None else _integer("curve", curve))
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]
     with _keep_finished(options.branch):
-        items = _core.fit_files([os.fspath(p) for p in paths], _as_scene(scene), options, csv, int(jobs))
+        items = _core.fit_files([os.fspath(p) for p in paths], _as_scene(scene), options, csv, _integer("jobs", jobs))
     return _batch(items, options.branch)
 
 

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <string>
 
 #include "layerjkr/error.hpp"
 
@@ -19,6 +21,33 @@ std::string percent(double x) {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The last line of defence: an answer never carries a non-finite number silently. Inputs
+// are range-checked (scene_reader's check_scales), so a non-finite value here is a solver
+// failure, reported as one instead of printed as inf or NaN.
+void require_finite(const std::string& what, double v) {
+  if (!std::isfinite(v))
+    throw NumericalError("the answer's " + what + " is " + format_double(v) +
+                         " (not finite): the solver failed for this scene; please report it");
+}
+
+void require_finite(const std::string& what, const CriticalPoint& p) {
+  require_finite(what + " radius", p.a);
+  require_finite(what + " force", p.P);
+  require_finite(what + " approach", p.delta);
+}
+
+void require_finite(const ContactSummary& c) {
+  if (c.zero_load_radius) require_finite("zero-load radius", *c.zero_load_radius);
+  if (c.pull_off) require_finite("pull-off", *c.pull_off);
+  if (c.fixed_grips) require_finite("fixed-grips critical", *c.fixed_grips);
+}
+
+// An unbounded error estimate is a finding (a missed critical point), reported by a
+// warning; NaN is not.
+void require_not_nan(const std::string& what, double v) {
+  if (std::isnan(v)) require_finite(what, v);
 }
 
 }  // namespace
@@ -49,6 +78,11 @@ SummaryAnswer solve_summary(const Scene& scene, const AnswerOptions& options) {
     s.warnings.push_back("model '" + s.contact.model + "' is estimated " + percent(s.error.pull_off_force) +
                          " off its reference model '" + s.error.reference + "' in the pull-off force and " +
                          percent(s.error.zero_load_radius) + " in the zero-load radius");
+  require_finite(s.contact);
+  require_not_nan("pull-off force error estimate", s.error.pull_off_force);
+  require_not_nan("zero-load radius error estimate", s.error.zero_load_radius);
+  for (const std::optional<double>& x : {s.K, s.G, s.E_star})
+    if (x) require_finite("model constant", *x);
   s.seconds = seconds_since(start);
   return s;
 }
@@ -71,8 +105,13 @@ CurveAnswer solve_curve(const Scene& scene, const std::vector<double>& radii, co
   c.choice = built.choice;
   c.warnings = std::move(built.warnings);
   double worst = 0.0, worst_a = 0.0;
-  for (std::size_t i = 0; i < c.states.size(); ++i)
+  for (std::size_t i = 0; i < c.states.size(); ++i) {
+    const std::string at = " at a = " + format_double(c.states[i].a) + " m";
+    require_finite("force" + at, c.states[i].P);
+    require_finite("approach" + at, c.states[i].delta);
+    require_not_nan("error estimate" + at, c.error_estimate[i]);
     if (c.error_estimate[i] > worst) worst = c.error_estimate[i], worst_a = c.states[i].a;
+  }
   if (worst > options.warning_threshold)
     c.warnings.push_back("model '" + c.model + "' is estimated " + percent(worst) + " off its reference model '" +
                          c.reference + "' at a = " + format_double(worst_a) + " m (column error_est)");

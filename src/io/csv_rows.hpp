@@ -31,7 +31,10 @@ inline void split(std::string_view line, std::vector<std::string_view>& cells) {
 /// The data rows of a CSV text: skips blank and '#' comment lines, counts lines from 1.
 class CsvRows {
  public:
-  explicit CsvRows(std::string_view text) : text_(text) {}
+  // A leading UTF-8 byte-order mark (spreadsheet exports) is skipped, as in scene files.
+  explicit CsvRows(std::string_view text) : text_(text) {
+    if (text_.substr(0, 3) == "\xEF\xBB\xBF") text_.remove_prefix(3);
+  }
   bool next(std::vector<std::string_view>& cells) {
     while (pos_ < text_.size()) {
       std::size_t end = text_.find('\n', pos_);

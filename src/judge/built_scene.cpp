@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 
+#include "judge/reference_profile.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/model_choice.hpp"
 
@@ -35,7 +36,7 @@ BuiltScene build(const Scene& s, const Choose& choose, bool with_reference) {
   }
   b.model = checked([&] { return make_contact_model(s.profile, b.resolved.spec); });
   if (with_reference && b.resolved.reference)
-    b.reference = checked([&] { return make_contact_model(s.profile, *b.resolved.reference); });
+    b.reference = checked([&] { return make_contact_model(detail::reference_profile(s.profile), *b.resolved.reference); });
   return b;
 }
 

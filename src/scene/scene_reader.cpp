@@ -2,9 +2,12 @@
 #include "layerjkr/scene.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <set>
+#include <string>
+#include <vector>
 
 #include <boost/math/constants/constants.hpp>
 #include <nlohmann/json.hpp>
@@ -18,9 +21,78 @@ namespace {
 
 using json = nlohmann::json;
 
+// Deeper nesting than any scene needs is refused while parsing, before anything recursive
+// (dump, destruction) walks the document: 100 000 '[' used to overflow the stack.
+constexpr int kMaxDepth = 32;
+
+// Appends v's JSON text until `out` holds more than `budget` characters: a snippet for an
+// error message costs O(budget), not O(document), and recursion is bounded by kMaxDepth.
+void put(const json& v, std::string& out, std::size_t budget) {
+  if (out.size() > budget) return;
+  if (!v.is_structured()) {
+    out += v.dump();
+    return;
+  }
+  const bool obj = v.is_object();
+  out += obj ? '{' : '[';
+  bool first = true;
+  for (auto it = v.begin(); it != v.end() && out.size() <= budget; ++it, first = false) {
+    if (!first) out += ',';
+    if (obj) out += json(it.key()).dump() + ':';
+    put(*it, out, budget);
+  }
+  out += obj ? '}' : ']';
+}
+
 std::string show(const json& v) {
-  std::string s = v.dump();
+  std::string s;
+  put(v, s, 80);
   return s.size() > 80 ? s.substr(0, 77) + "..." : s;
+}
+
+// The keys seen so far in each open object or array, for the parser callback: a key given
+// twice in one object is an error (nlohmann keeps the last silently).
+struct OpenValue {
+  std::string path;
+  bool object;
+  std::set<std::string> keys;
+  std::string last_key;
+};
+
+// Parses with a depth limit and duplicate-key detection, both while parsing.
+json parse_strict(const std::string& text, const std::string& source) {
+  std::vector<OpenValue> open;
+  auto child_path = [&open]() -> std::string {
+    if (open.empty()) return "";
+    const OpenValue& p = open.back();
+    const std::string sep = p.path.empty() ? "" : ".";
+    return p.object ? p.path + sep + p.last_key : p.path + "[]";
+  };
+  const json::parser_callback_t check = [&](int, json::parse_event_t event, json& parsed) {
+    using E = json::parse_event_t;
+    if (event == E::object_start || event == E::array_start) {
+      if (open.size() >= static_cast<std::size_t>(kMaxDepth))
+        throw InputError(source + ": the JSON nests objects and arrays deeper than " +
+                         std::to_string(kMaxDepth) + " levels, the limit for scene files");
+      open.push_back({child_path(), event == E::object_start, {}, {}});
+    } else if (event == E::object_end || event == E::array_end) {
+      open.pop_back();
+    } else if (event == E::key) {
+      OpenValue& o = open.back();
+      o.last_key = parsed.get<std::string>();
+      if (!o.keys.insert(o.last_key).second) {
+        const std::string sep = o.path.empty() ? "" : ".";
+        throw InputError(source + ": " + o.path + sep + o.last_key +
+                         " is given twice in the same object; give each key once");
+      }
+    }
+    return true;
+  };
+  try {
+    return json::parse(text, check);
+  } catch (const json::exception& e) {  // syntax errors and number overflow (1e999)
+    throw InputError(source + ": not valid JSON (" + e.what() + ")");
+  }
 }
 
 class Reader {
@@ -207,16 +279,34 @@ SceneModel read_model(const Reader& in, const json& root, MediumType medium) {
                        "' (available: " + list + ")");
 }
 
+// The scene's lengths and energies in dimensionless form. Outside these ranges the
+// quantities the solvers form (a^3, R^2, ratios of moments) overflow or underflow: the
+// answer would be non-finite or silently wrong (w = 1e308 found no pull-off), so the scene
+// is refused, naming the key. L is the indenter's length scale (R; f(L) = L for a power
+// law); a cone is scale-free and has none.
+void check_scales(const Reader& in, const Scene& s) {
+  const auto pl = s.profile->power_law_form();
+  if (pl && pl->d == 1.0) return;
+  const double L = s.profile->length_scale();
+  const MediumSpec& m = s.medium;
+  const bool elastic = m.type == MediumType::layer || m.type == MediumType::half_space;
+  // An elastic modulus: E* for solids, K L for foundations (K [N/m^3]).
+  const double E = elastic ? m.E / (1.0 - m.nu * m.nu) : m.K * L;
+  if (m.type == MediumType::layer && !(L / m.h >= 1e-9 && L / m.h <= 1e9))
+    in.fail("indenter", "length scale L = " + format_double(L) + " m against medium.h = " + format_double(m.h) +
+                            " m is out of range: L/h = " + format_double(L / m.h) + "; valid range: [1e-9, 1e9]");
+  const double omega = s.w / (E * L);
+  if (s.w > 0.0 && !(omega >= 1e-30 && omega <= 1e6))
+    in.fail("w", "= " + format_double(s.w) + " J/m^2 is out of range for this indenter and medium: w/(E L) = " +
+                     format_double(omega) + " with " + (elastic ? "E* = " : "E = K L = ") + format_double(E) +
+                     " Pa, L = " + format_double(L) + " m (the indenter's length scale); valid range: [1e-30, 1e6]");
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& source) {
   Reader in(source);
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::exception& e) {  // syntax errors and number overflow (1e999)
-    throw InputError(source + ": not valid JSON (" + e.what() + ")");
-  }
+  const json root = parse_strict(text, source);
   if (!root.is_object()) in.fail("the scene", "must be a JSON object, got " + show(root));
   in.only_keys(root, "scene", {"indenter", "medium", "model", "solver", "w", "tolerance"});
   Scene s;
@@ -247,11 +337,13 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     in.fail("solver", "must be closed_form with model \"" + std::string(to_string(s.model)) + "\"");
   // Every invalid value is reported at parse time, without building anything.
   in.checked("medium", [&] { validate(resolve_model(s).spec); });
+  check_scales(in, s);
   return s;
 }
 
 Scene load_scene(const std::string& path) {
-  return parse_scene(detail::read_file(path, "the scene file"), path);
+  // A scene, even with a table indenter of 10^6 points, is far below 64 MiB.
+  return parse_scene(detail::read_file(path, "the scene file", std::uint64_t{64} << 20), path);
 }
 
 }  // namespace layerjkr

@@ -67,6 +67,9 @@ TEST_CASE("every command rejects bad scenes with one message and exit 2", "[cli]
        "nu = 0.69999"},
       {"table not monotone", R"({"indenter": {"shape": "table", "r": [0, 1, 2], "z": [0, 2, 1]}, "medium": {"type": "winkler", "K": 1e9}})",
        "z"},
+      {"deeply nested", std::string(100000, '[') + std::string(100000, ']'), "deeper than 32 levels"},
+      {"duplicate key", R"({"indenter": {"shape": "sphere", "R": 1e-3}, "medium": {"type": "winkler", "K": 1e9}, "w": 1, "w": 2})",
+       "w is given twice"},
   };
   for (const auto& c : scenes) {
     const std::string path = write_file("bad_scene.json", c.text);
@@ -106,4 +109,11 @@ TEST_CASE("fit rejects bad curves and arguments with one message and exit 2", "[
     check_rejected(c.name, "fit " + path + " --scene " + kScene + " " + c.args + " --out " + out, c.expected, out);
     std::remove(path.c_str());
   }
+}
+
+TEST_CASE("devices are refused instead of read forever", "[cli][bad-input][limits]") {
+  const std::string out = unique("never_written.json");
+  check_rejected("summary /dev/urandom", "summary /dev/urandom", "not a regular file", out);
+  check_rejected("fit /dev/urandom", "fit /dev/urandom --scene " + kScene + " --free E --out " + out,
+                 "not a regular file", out);
 }

@@ -320,6 +320,29 @@ void foundation(Groups& g) {
               "finite, converging to Winkler as T -> 0", "rel. diff from Winkler " + sci(e));
     }
   });
+  // The ODE route (solver "ode") on the same cells: it failed at tiny radii before.
+  for (double G : {1e-12, -1e-12, 30.0, -30.0}) {
+    const std::string cell = "ODE route, two-term G = " + sci(G) + ": pull-off and P_H(a) vs the closed form";
+    g.add(cell, [G, cell](Matrix& m) {
+      const ProfilePtr s = make_paraboloid(1e-3);
+      const ContactModelPtr ode = make_ode_foundation(s, K, G, FoundationKind::asymptotic);
+      const ContactModelPtr closed = make_two_term(s, K, G);
+      m.guarded(cell, "finite", [&] {
+        const auto po = JkrSolution(ode, 0.05).pull_off(), ref = JkrSolution(closed, 0.05).pull_off();
+        m.rel(cell + ": pull-off", po ? po->P : NAN, ref ? ref->P : NAN, 1e-8);
+        m.rel(cell + ": P_H(1e-9 m)", ode->state(1e-9).P_H, closed->state(1e-9).P_H, 1e-6);
+      });
+    });
+  }
+  for (double Kx : {1e3, 1e12, 1e20}) {
+    const std::string cell = "ODE route, Winkler K = " + sci(Kx) + ", pull-off vs -2 pi w R";
+    g.add(cell, [Kx, cell](Matrix& m) {
+      m.guarded(cell, "finite", [&] {
+        const auto po = JkrSolution(make_ode_foundation(make_paraboloid(1e-3), Kx, 0.0, FoundationKind::asymptotic), 0.05).pull_off();
+        m.rel(cell, po ? po->P : NAN, -2 * kPi * 0.05 * 1e-3, 1e-8);
+      });
+    });
+  }
   for (double Kx : {1e3, 1e8, 1e12, 1e16, 1e20}) {
     const std::string cell = "Winkler K = " + sci(Kx) + ", pull-off vs -2 pi w R";
     g.add(cell, [Kx, cell](Matrix& m) {
@@ -402,6 +425,55 @@ void tables(Groups& g) {
   });
 }
 
+// Scenes at the edge of their valid ranges, through parse_scene and solve_summary as the
+// CLI and Python see them: refused as input errors naming the key, value and range (exit
+// 2), or answered finitely - never a failure (exit 1) or a non-finite number.
+void input_ranges(Groups& g) {
+  g.area("Input ranges (scenes: refused naming key and range, or answered finitely)", "ranges");
+  const auto scene = [](const std::string& indenter, const std::string& w) {
+    return R"({"indenter": )" + indenter +
+           R"(, "medium": {"type": "layer", "E": 5e4, "nu": 0.3, "h": 2e-7, "base": "bonded"}, "model": "two_term", "w": )" +
+           w + "}";
+  };
+  const std::string para = R"({"shape": "paraboloid", "R": 1e-5})";
+  struct Refused {
+    std::string cell, text, names;
+  };
+  for (const Refused& r : std::vector<Refused>{
+           {"w = 1e308 (printed -inf and NaN)", scene(para, "1e308"), "w = 1e+308"},
+           {"w = 1e-300", scene(para, "1e-300"), "valid range: [1e-30, 1e6]"},
+           {"R = 5e-324 (failed, exit 1)", scene(R"({"shape": "paraboloid", "R": 5e-324})", "1e-3"), "L/h"},
+           {"R = 1e300", scene(R"({"shape": "sphere", "R": 1e300})", "1e-3"), "valid range: [1e-9, 1e9]"},
+           {"power law d = 1000 (failed, exit 1)", scene(R"({"shape": "power_law", "B": 1, "d": 1000})", "1e-3"),
+            "d = 1000 is invalid; valid range: [1, 50]"}}) {
+    g.add(r.cell, [r](Matrix& m) {
+      try {
+        solve_summary(parse_scene(r.text, "scene"));
+        m.truth(r.cell, false, "input error naming " + r.names, "answered");
+      } catch (const InputError& e) {
+        const std::string msg = e.what();
+        m.truth(r.cell, msg.find(r.names) != std::string::npos, "input error naming " + r.names,
+                "input error: " + msg.substr(0, 90));
+      }
+    });
+  }
+  for (const auto& [cell, text] : std::vector<std::pair<std::string, std::string>>{
+           {"w/(E* R) = 1e5, two_term", scene(para, "5.5e4")},
+           {"w/(E* R) = 1e-29, two_term", scene(para, "5.5e-28")},
+           {"power law d = 50, two_term", scene(R"({"shape": "power_law", "B": 1e3, "d": 50})", "1e-3")},
+           {"power law d = 50, exact",
+            R"({"indenter": {"shape": "power_law", "B": 1e3, "d": 50}, "medium": {"type": "layer", "E": 5e4, "nu": 0.3, "h": 0.1, "base": "bonded"}, "model": "exact", "w": 1e-3})"}}) {
+    g.add(cell, [cell = cell, text = text](Matrix& m) {
+      m.guarded(cell, "a finite answer", [&] {
+        const SummaryAnswer s = solve_summary(parse_scene(text, "scene"));
+        const bool ok = s.contact.pull_off && std::isfinite(s.contact.pull_off->P) &&
+                        s.contact.zero_load_radius && std::isfinite(*s.contact.zero_load_radius);
+        m.truth(cell, ok, "a finite pull-off and zero-load radius", ok ? "finite" : "missing or not finite");
+      });
+    });
+  }
+}
+
 const std::vector<Group>& groups() {
   static const std::vector<Group> list = [] {
     Groups g;
@@ -412,6 +484,7 @@ const std::vector<Group>& groups() {
     foundation(g);
     scales(g);
     tables(g);
+    input_ranges(g);
     return g.list;
   }();
   return list;

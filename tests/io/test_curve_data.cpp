@@ -1,8 +1,11 @@
 // The CSV reader: every form, units, branch selection, and one clear error per defect.
 #include <catch2/catch.hpp>
 
+#include <fstream>
+
 #include "layerjkr/curve_data.hpp"
 #include "layerjkr/error.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace layerjkr;
 
@@ -84,4 +87,42 @@ TEST_CASE("every defect names the line and the column", "[csv][errors]") {
   CHECK_THAT(err("delta,P,segment\n1,2,0\n2,3,1\n3,4,0\n"), Catch::Contains("row 3 returns to segment 0"));
   CHECK(parse_curve_csv("delta,P\n1,2\n2,3\n2,3\n", "t").size() == 3);  // repeats are samples
   CHECK_THROWS_WITH(read_curve_csv("/nonexistent/x.csv"), Catch::Contains("cannot open"));
+}
+
+TEST_CASE("a leading UTF-8 byte-order mark is ignored, as in scene files", "[csv]") {
+  const CurveData d = parse_curve_csv("\xEF\xBB\xBF" "delta,P\n1,2\n2,3\n", "bom.csv");
+  CHECK(d.size() == 2);
+  CHECK(d.P[1] == 3.0);
+}
+
+TEST_CASE("input limits: rows, bytes, devices, each naming the limit", "[csv][errors][limits]") {
+  CsvOptions few;
+  few.max_rows = 2;
+  CHECK(parse_curve_csv("delta,P\n1,2\n2,3\n", "t", few).size() == 2);
+  CHECK_THROWS_WITH(parse_curve_csv("delta,P\n1,2\n2,3\n3,4\n", "t", few),
+                    Catch::Contains("more than 2 data rows") && Catch::Contains("max_rows"));
+  const std::string path = test::scratch().file("limits.csv");
+  std::ofstream(path) << "delta,P\n1,2\n2,3\n";
+  CsvOptions small;
+  small.max_bytes = 10;
+  CHECK_THROWS_WITH(read_curve_csv(path, small),
+                    Catch::Contains("limits.csv") && Catch::Contains("10 bytes") && Catch::Contains("max_bytes"));
+  CHECK(read_curve_csv(path).size() == 2);
+  // A device would be read forever (summary /dev/urandom ate all memory); a directory is no file.
+  CHECK_THROWS_WITH(read_curve_csv("/dev/urandom"), Catch::Contains("not a regular file"));
+  CHECK_THROWS_WITH(read_curve_csv(test::scratch().path().string()), Catch::Contains("not a regular file"));
+  CsvOptions zero;
+  zero.max_rows = 0;
+  CHECK_THROWS_AS(parse_curve_csv("delta,P\n1,2\n", "t", zero), DomainError);
+}
+
+TEST_CASE("the curve column of many curves is read in linear time", "[csv]") {
+  // 200 000 distinct ids: a linear search per row (the old reader) took ~10 s here.
+  std::string text = "curve,segment,force,height,tip_position\n";
+  for (int i = 0; i < 200000; ++i) text += std::to_string(i) + ",0,1,0,-" + std::to_string(i % 7) + "\n";
+  CsvOptions one;
+  one.curve = 123456;
+  const CurveData d = parse_curve_csv(text, "many.csv", one);
+  CHECK(d.size() == 1);
+  CHECK_THROWS_WITH(parse_curve_csv(text, "many.csv"), Catch::Contains("holds 200000 curves"));
 }

@@ -137,7 +137,8 @@ TEST_CASE("profile factories reject invalid parameters with named errors", "[pro
   CHECK_THROWS_AS(make_sphere(INFINITY), DomainError);
   CHECK_THROWS_WITH(make_cone(M_PI / 2), Catch::Contains("semi_angle_rad"));
   CHECK_THROWS_AS(make_cone(0.0), DomainError);
-  CHECK_THROWS_WITH(make_power_law(1.0, 0.5), Catch::Contains("d = 0.5") && Catch::Contains(">= 1"));
+  CHECK_THROWS_WITH(make_power_law(1.0, 0.5), Catch::Contains("d = 0.5") && Catch::Contains("[1, 50]"));
+  CHECK_THROWS_WITH(make_power_law(1.0, 1000.0), Catch::Contains("d = 1000") && Catch::Contains("[1, 50]"));
   CHECK_THROWS_AS(make_power_law(-1.0, 2.0), DomainError);
   CHECK_THROWS_WITH(make_table_profile({0, 2, 1}, {0, 1, 2}), Catch::Contains("r[2] = 1"));
   CHECK_THROWS_WITH(make_table_profile({0, 1, 2}, {0, 2, 1}), Catch::Contains("z[2] = 1"));

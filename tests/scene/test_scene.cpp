@@ -95,6 +95,52 @@ TEST_CASE("invalid scenes name the key and the value", "[scene][errors]") {
   CHECK_THROWS_WITH(load_scene("/nonexistent/scene.json"), Catch::Contains("cannot open"));
 }
 
+TEST_CASE("deep nesting is refused while parsing, naming the limit", "[scene][errors][limits]") {
+  // 100 000 '[' crashed the reader (a recursive dump for the error snippet overflowed the stack).
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  CHECK_THROWS_WITH(parse_scene(deep, "deep.json"),
+                    Catch::Contains("deep.json") && Catch::Contains("deeper than 32 levels"));
+  std::string objects;
+  for (int i = 0; i < 40; ++i) objects += R"({"indenter": )";
+  objects += "1" + std::string(40, '}');
+  CHECK_THROWS_WITH(parse_scene(objects), Catch::Contains("deeper than 32 levels"));
+  // Just inside the limit: an ordinary error, its snippet bounded.
+  const std::string nested = std::string(31, '[') + std::string(31, ']');
+  CHECK_THROWS_WITH(parse_scene(nested), Catch::Contains("must be a JSON object, got [[[["));
+  std::string wide = "[";
+  for (int i = 0; i < 100000; ++i) wide += "12345,";
+  wide += "1]";
+  const std::string message = [&] {
+    try {
+      parse_scene(wide);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  }();
+  CHECK(message.size() < 200);
+  CHECK_THAT(message, Catch::Contains("..."));
+}
+
+TEST_CASE("a key given twice is an error naming the key, not the last one winning", "[scene][errors]") {
+  // "model": "two_term", "model": "exact" used to run the exact model.
+  CHECK_THROWS_WITH(parse_scene(scene(kPara, kLayer, R"(, "model": "two_term", "model": "exact")")),
+                    Catch::Contains("model is given twice"));
+  CHECK_THROWS_WITH(
+      parse_scene(scene(R"({"shape": "paraboloid", "R": 0.01, "R": 0.02})", kLayer, R"(, "model": "two_term")")),
+      Catch::Contains("indenter.R is given twice"));
+  // The same key in different objects is fine.
+  CHECK_NOTHROW(parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 0.01}, "medium": {"type": "winkler", "K": 1e9}})"));
+}
+
+TEST_CASE("a scene with a UTF-8 byte-order mark is read, as CSV files are", "[scene]") {
+  CHECK(parse_scene("\xEF\xBB\xBF" + scene(kPara, kLayer, R"(, "model": "two_term")")).model == SceneModel::two_term);
+}
+
+TEST_CASE("scene files: devices and oversized files are refused, naming the path", "[scene][errors][limits]") {
+  CHECK_THROWS_WITH(load_scene("/dev/urandom"), Catch::Contains("/dev/urandom") && Catch::Contains("not a regular file"));
+}
+
 TEST_CASE("a bundled scene file loads and solves", "[scene]") {
   const Scene s = load_scene(std::string(LAYERJKR_SOURCE_DIR) + "/data/scenes/sphere_pdms_film_two_term.json");
   const JkrSolution jkr(build_scene(s).model, s.w);
