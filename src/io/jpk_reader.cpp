@@ -58,6 +58,7 @@ class Reader {
   }
 
   std::string read(const std::string& name) const { return zip_.read(name); }
+  std::optional<std::uint64_t> declared_size(const std::string& name) const { return zip_.declared_size(name); }
 
  private:
   std::string path_;
@@ -138,7 +139,6 @@ struct ChannelReader {
   std::vector<double> base_values(const std::string& channel) const {
     const std::string c = "channel." + channel + ".";
     const std::string file = dir + in.value(seg, c + "data.file.name", where);
-    const std::string bytes = in.read(file);
     const std::string enc = seg.count(c + "data.encoder.type") ? c + "data.encoder." : c + "encoder.";
     std::string type;
     if (seg.count(enc + "type")) type = seg.at(enc + "type");
@@ -160,6 +160,12 @@ struct ChannelReader {
       if (type == candidate.name) e = &candidate;
     if (!e) in.fail(where, "channel " + channel + " has the unknown data type '" + type + "'");
     const std::size_t width = e->width;
+    // The header's count bounds the entry before it is unpacked, not only after.
+    const std::optional<std::uint64_t> declared = in.declared_size(file);
+    if (points && declared && *declared != static_cast<std::uint64_t>(*points) * width)
+      in.fail(file, "declares " + std::to_string(*declared) + " bytes; the segment header announces " +
+                        std::to_string(*points) + " samples of " + std::to_string(width) + " bytes");
+    const std::string bytes = in.read(file);
     if (bytes.empty() || bytes.size() % width != 0)
       in.fail(file, "holds " + std::to_string(bytes.size()) + " bytes, not a whole number of " + std::to_string(width) +
                         "-byte samples (" + type + ")");
@@ -257,10 +263,7 @@ InstrumentSegment read_segment(const Reader& in, const Properties& shared, const
   return s;
 }
 
-}  // namespace
-
-InstrumentFile read_jpk(const std::string& path, InstrumentFormat format, const ReadLimits& limits) {
-  const ZipArchive zip(path, limits);
+InstrumentFile read_archive(const ZipArchive& zip, const std::string& path, InstrumentFormat format) {
   const Reader in(path, zip);
   InstrumentFile file;
   file.path = path;
@@ -326,6 +329,19 @@ InstrumentFile read_jpk(const std::string& path, InstrumentFormat format, const 
     file.curves.push_back(std::move(curve));
   }
   return file;
+}
+
+}  // namespace
+
+InstrumentFile read_jpk(const std::string& path, InstrumentFormat format, const ReadLimits& limits) {
+  const ZipArchive zip(path, limits);
+  return read_archive(zip, path, format);
+}
+
+InstrumentFile read_jpk_bytes(std::string bytes, const std::string& path, InstrumentFormat format,
+                              const ReadLimits& limits) {
+  const ZipArchive zip(std::move(bytes), path, limits);
+  return read_archive(zip, path, format);
 }
 
 }  // namespace layerjkr::detail

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@ class ZipArchive {
   /// Opens `path`; throws InputError naming it if it is missing, not a zip archive, or
   /// names one entry twice. `limits` bound what read() may unpack.
   explicit ZipArchive(const std::string& path, const ReadLimits& limits = ReadLimits{});
+  /// The same from the archive's bytes in memory (the fuzzer's way in); `path` names it in errors.
+  ZipArchive(std::string bytes, const std::string& path, const ReadLimits& limits);
   ~ZipArchive();
   ZipArchive(const ZipArchive&) = delete;
   ZipArchive& operator=(const ZipArchive&) = delete;
@@ -26,6 +29,8 @@ class ZipArchive {
   /// Every entry name, in archive order (directories end in '/').
   const std::vector<std::string>& names() const { return names_; }
   bool contains(const std::string& name) const;
+  /// The uncompressed size the central directory declares for `name` (none if it is absent).
+  std::optional<std::uint64_t> declared_size(const std::string& name) const;
   /// The whole uncompressed entry, checked against the central directory: exactly its
   /// declared size and CRC-32. Throws InputError naming the file and the entry if it is
   /// missing, truncated, longer than declared or corrupt, or if its declared size passes
@@ -35,6 +40,7 @@ class ZipArchive {
 
  private:
   struct Handle;
+  void list_names();
   std::string path_;
   ReadLimits limits_;
   std::unique_ptr<Handle> handle_;

@@ -103,7 +103,9 @@ TEST_CASE("a member whose declared size lies fails: shorter or longer than its d
 TEST_CASE("a member cut short or with a sample count other than the header's fails", "[io][archive]") {
   test::TempDir dir;
   std::vector<test::Member> odd = test::jpk_members();
-  odd[2].bytes.pop_back();  // vDeflection: 15 bytes, half a sample
+  odd[2].bytes.pop_back();  // vDeflection: 15 bytes, half a sample, and no count to compare with
+  odd[1].bytes.erase(0, odd[1].bytes.find('\n') + 1);
+  REQUIRE(odd[1].bytes.find("num-points") == std::string::npos);
   CHECK_THAT(input_error([&] { read_instrument_file(synthetic(dir, "odd.jpk-force", odd)); }),
                        Catch::Matchers::Contains("vDeflection.dat") && Catch::Matchers::Contains("whole number"));
   std::vector<test::Member> short_both = test::jpk_members();
@@ -111,17 +113,23 @@ TEST_CASE("a member cut short or with a sample count other than the header's fai
   short_both[3].bytes.resize(14);
   CHECK_THAT(input_error([&] { read_instrument_file(synthetic(dir, "short.jpk-force", short_both)); }),
                        Catch::Matchers::Contains("vDeflection.dat") && Catch::Matchers::Contains("announces 8"));
+  // Checked against the declared size before unpacking: a bomb in a channel's place fails
+  // with the header's count under any limit.
+  std::vector<test::Member> bomb = test::jpk_members();
+  bomb[2].bytes.assign(std::size_t{4} << 20, '\0');
+  CHECK_THAT(input_error([&] { read_instrument_file(synthetic(dir, "bomb.jpk-force", bomb)); }),
+             Catch::Matchers::Contains("declares 4194304 bytes") && Catch::Matchers::Contains("announces 8 samples"));
 }
 
 TEST_CASE("a declared 4 GB member fails before anything is allocated, naming the limit", "[io][archive]") {
   test::TempDir dir;
   std::string bytes = test::read_bytes(synthetic(dir, "base.jpk-force"));
-  test::patch_member(bytes, "segments/0/channels/vDeflection.dat", "size", 0xFFFFFFF0U);
+  test::patch_member(bytes, "header.properties", "size", 0xFFFFFFF0U);  // a header: no count to check it against
   const std::string path = dir.file("huge.jpk-force");
   test::write_bytes(path, bytes);
   CHECK_THAT(input_error([&] { read_instrument_file(path); }),
-                       Catch::Matchers::Contains("huge.jpk-force") && Catch::Matchers::Contains("vDeflection.dat") &&
-                           Catch::Matchers::Contains("4294967280 bytes") && Catch::Matchers::Contains("268435456 bytes") &&
+                       Catch::Matchers::Contains("huge.jpk-force") && Catch::Matchers::Contains("'header.properties'") &&
+                           Catch::Matchers::Contains("4294967280 bytes (4096.0 MiB)") && Catch::Matchers::Contains("268435456 bytes (256.0 MiB)") &&
                            Catch::Matchers::Contains("LAYERJKR_MAX_MEMBER_MB"));
 }
 
