@@ -65,9 +65,9 @@ struct InstrumentFile {
 
 /// Bounds on what reading an archive may unpack, checked against the sizes the archive
 /// declares before anything is allocated: a zip bomb or a lying header fails with a message
-/// naming the entry, its size and the limit instead of exhausting memory. The shared JPK
-/// files unpack entries of at most 127 KB and archives to at most 1.3x their size (channel
-/// data barely compress; headers do 7-8x); the defaults leave room for the largest real maps.
+/// naming the entry, its size and the limit instead of exhausting memory. In the shared JPK
+/// files the entries read are at most 127 KB and unpack to 1.3-2.3x the archive's size
+/// (channel data barely compress, headers do 7-8x); the defaults leave room for large maps.
 struct ReadLimits {
   /// Largest uncompressed entry [bytes]. Default 256 MiB: 64 M samples of a 4-byte channel,
   /// over 10 minutes of one segment at 100 kHz.
