@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -62,12 +63,34 @@ struct InstrumentFile {
   std::vector<InstrumentCurve> curves;
 };
 
+/// Bounds on what reading an archive may unpack, checked against the sizes the archive
+/// declares before anything is allocated: a zip bomb or a lying header fails with a message
+/// naming the entry, its size and the limit instead of exhausting memory. In the shared JPK
+/// files the entries read are at most 127 KB and unpack to 1.3-2.3x the archive's size
+/// (channel data barely compress, headers do 7-8x); the defaults leave room for large maps.
+struct ReadLimits {
+  /// Largest uncompressed entry [bytes]. Default 256 MiB: 64 M samples of a 4-byte channel,
+  /// over 10 minutes of one segment at 100 kHz.
+  std::uint64_t max_member_bytes = std::uint64_t{256} << 20;
+  /// Largest total of the entries read from one archive [bytes]. Default 4 GiB: a 500 MB QI
+  /// map unpacks to about 0.7 GB (ratio of the shared QI file), with 5x to spare.
+  std::uint64_t max_archive_bytes = std::uint64_t{4} << 30;
+
+  /// The defaults, replaced by the environment variables LAYERJKR_MAX_MEMBER_MB and
+  /// LAYERJKR_MAX_ARCHIVE_MB where set (whole MiB, 1 to 1048576); any other value is an
+  /// InputError naming the variable.
+  static ReadLimits from_environment();
+};
+
 /// True if the file name ends in an extension read_instrument_file knows.
 bool is_instrument_file(const std::string& path);
 
 /// Reads every curve of a JPK archive or an Igor wave. Throws InputError naming the file and
-/// what is wrong (not a zip, truncated or corrupt archive, missing header, channel or
-/// calibration, data of the wrong size, unknown encoder).
+/// what is wrong (not a zip; an entry truncated, corrupt (CRC-32) or over `limits`; a missing
+/// or duplicated header key, channel or calibration; a header number that is not a finite
+/// number or out of range; data of another size than the header announces; unknown encoder).
+InstrumentFile read_instrument_file(const std::string& path, const ReadLimits& limits);
+/// The same with ReadLimits::from_environment().
 InstrumentFile read_instrument_file(const std::string& path);
 
 /// One curve as the fit consumes it: delta = -tip_position, P = force, segment 0 for the

@@ -8,8 +8,10 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <sstream>
 
+#include "io/csv_rows.hpp"
 #include "io/instrument_readers.hpp"
 #include "io/read_file.hpp"
 #include "layerjkr/error.hpp"
@@ -58,40 +60,66 @@ class Bytes {
   bool little_ = true;
 };
 
-// Latin-1 note "Key:Value\r..." -> map (first ':' splits; values trimmed).
-std::map<std::string, std::string> parse_note(const std::string& note) {
-  std::map<std::string, std::string> out;
-  std::stringstream in(note);
-  for (std::string line; std::getline(in, line, '\r');) {
-    const std::size_t colon = line.find(':');
-    if (colon == std::string::npos) continue;
-    std::string value = line.substr(colon + 1);
-    const std::size_t first = value.find_first_not_of(" \t\n");
-    value = first == std::string::npos ? "" : value.substr(first, value.find_last_not_of(" \t\n") - first + 1);
-    out.emplace(line.substr(0, colon), value);
+// Latin-1 note "Key:Value\r..." (first ':' splits; values trimmed). Asylum writes some keys
+// twice (SaveForce, SaveImage), so a repeat is an error only when the reader asks for that key.
+class Note {
+ public:
+  Note(const std::string& note, const Bytes& b) : b_(b) {
+    std::stringstream in(note);
+    for (std::string line; std::getline(in, line, '\r');) {
+      const std::size_t colon = line.find(':');
+      if (colon == std::string::npos) continue;
+      std::string value = line.substr(colon + 1);
+      const std::size_t first = value.find_first_not_of(" \t\n");
+      value = first == std::string::npos ? "" : value.substr(first, value.find_last_not_of(" \t\n") - first + 1);
+      const auto [it, fresh] = values_.emplace(line.substr(0, colon), value);
+      if (!fresh) repeated_.emplace(it->first, value);
+    }
   }
-  return out;
-}
 
-std::vector<double> numbers(const std::string& list) {
-  std::vector<double> out;
-  std::stringstream in(list);
-  for (std::string item; std::getline(in, item, ',');) {
-    double v = NAN;
-    if (!item.empty() && item != "NaN") std::from_chars(item.data(), item.data() + item.size(), v);
-    out.push_back(v);
+  const std::string* find(const std::string& key) const {
+    const auto it = values_.find(key);
+    if (it == values_.end()) return nullptr;
+    const auto again = repeated_.find(key);
+    if (again != repeated_.end())
+      b_.fail("the wave note gives " + key + " twice ('" + it->second + "' and '" + again->second + "')");
+    return &it->second;
   }
-  return out;
-}
+  std::string text(const std::string& key) const {
+    const std::string* v = find(key);
+    return v ? *v : "";
+  }
 
-double note_number(const Bytes& b, const std::map<std::string, std::string>& note, const std::string& key) {
-  const auto it = note.find(key);
-  if (it == note.end()) b.fail("the wave note has no " + key);
-  double v = NAN;
-  const auto [end, ec] = std::from_chars(it->second.data(), it->second.data() + it->second.size(), v);
-  if (ec != std::errc() || !(v > 0.0)) b.fail("the note's " + key + " = '" + it->second + "' is not a positive number");
-  return v;
-}
+  // The whole value must be one finite number > 0: "1,1841" or "1e-3e5" are errors, not 1 or 0.001.
+  double positive(const std::string& key) const {
+    const std::string* text = find(key);
+    if (!text) b_.fail("the wave note has no " + key);
+    double v = 0.0;
+    if (!parse_finite(*text, v) || !(v > 0.0)) b_.fail("the note's " + key + " = '" + *text + "' is not a finite number > 0");
+    return v;
+  }
+
+  // A comma-separated list of finite numbers or NaN (Direction's marker for a pause), an
+  // empty last item allowed ("NaN,1,-1,"); anything else is an error naming the key.
+  std::vector<double> list(const std::string& key) const {
+    std::vector<double> out;
+    const std::string* text = find(key);
+    if (!text) return out;
+    std::stringstream in(*text);
+    for (std::string item; std::getline(in, item, ',');) {
+      const std::string_view cell = trim(item);
+      double v = NAN;
+      if (cell != "NaN" && !parse_finite(cell, v))
+        b_.fail("the note's " + key + " = '" + *text + "' holds '" + item + "', not a number");
+      out.push_back(v);
+    }
+    return out;
+  }
+
+ private:
+  const Bytes& b_;
+  std::map<std::string, std::string> values_, repeated_;
+};
 
 }  // namespace
 
@@ -123,13 +151,14 @@ InstrumentFile read_ibw_bytes(std::string bytes, const std::string& path) {
     b.fail("announces " + std::to_string(rows) + " x " + std::to_string(cols) + " values that do not fit its wave record");
   const std::size_t data = wave + kWaveHeader;
   const std::size_t note_at = kBinHeader + wfm_size + formula_size;
-  const auto note = parse_note(b.text(note_at, note_size));
+  const Note note(b.text(note_at, note_size), b);
   const std::size_t labels_at = note_at + note_size + data_units_size + dim_units + labels_before;
   std::map<std::string, std::size_t> column;
   if (labels1 >= kLabel * (cols + 1)) {
     for (std::size_t c = 0; c < cols; ++c) {
       const std::string label = b.text(labels_at + kLabel * (c + 1), kLabel);
-      column[label.substr(0, label.find('\0'))] = c;
+      const std::string name = label.substr(0, label.find('\0'));
+      if (!column.emplace(name, c).second) b.fail("labels two columns " + name);
     }
   }
   for (const char* name : {"Raw", "Defl", "ZSnsr"})
@@ -142,23 +171,23 @@ InstrumentFile read_ibw_bytes(std::string bytes, const std::string& path) {
   InstrumentFile file;
   file.path = path;
   file.format = InstrumentFormat::ibw;
-  file.software = note.count("Version") ? note.at("Version") : "";
-  file.instrument = note.count("MicroscopeModel") ? note.at("MicroscopeModel") : "";
+  file.software = note.text("Version");
+  file.instrument = note.text("MicroscopeModel");
   InstrumentCurve curve;
-  curve.spring_constant = note_number(b, note, "SpringConstant");
-  curve.sensitivity = note_number(b, note, "InvOLS");
+  curve.spring_constant = note.positive("SpringConstant");
+  curve.sensitivity = note.positive("InvOLS");
   // Segments between consecutive Indexes: [0, I1], [I1 + 1, I2], ...; Direction 1 extends.
-  std::vector<double> idx = note.count("Indexes") ? numbers(note.at("Indexes")) : std::vector<double>{};
-  std::vector<double> dir = note.count("Direction") ? numbers(note.at("Direction")) : std::vector<double>{};
+  std::vector<double> idx = note.list("Indexes");
+  const std::vector<double> dir = note.list("Direction");
   if (idx.size() < 2) idx = {0.0, static_cast<double>(rows - 1)};
   for (std::size_t k = 1; k < idx.size(); ++k) {
     const auto fits = [&](double v) { return v >= 0.0 && v < static_cast<double>(rows) && v == std::floor(v); };
     if (!fits(idx[k]) || (k > 1 && !fits(idx[k - 1])))
-      b.fail("the note's Indexes (" + note.at("Indexes") + ") do not fit its " + std::to_string(rows) + " rows");
+      b.fail("the note's Indexes (" + note.text("Indexes") + ") do not fit its " + std::to_string(rows) + " rows");
     const auto first = k == 1 ? std::size_t{0} : static_cast<std::size_t>(idx[k - 1]) + 1;
     const auto last = static_cast<std::size_t>(idx[k]);
     if (first > last)
-      b.fail("the note's Indexes (" + note.at("Indexes") + ") are not increasing");
+      b.fail("the note's Indexes (" + note.text("Indexes") + ") are not increasing");
     InstrumentSegment s;
     const double d = k < dir.size() ? dir[k] : NAN;
     s.style = d > 0 ? SegmentStyle::extend : d < 0 ? SegmentStyle::retract : SegmentStyle::pause;

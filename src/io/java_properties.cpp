@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "layerjkr/error.hpp"
+
 namespace layerjkr::detail {
 namespace {
 
@@ -92,7 +94,7 @@ bool is_space(char c) { return c == ' ' || c == '\t' || c == '\f'; }
 
 }  // namespace
 
-Properties parse_properties(const std::string& text) {
+Properties parse_properties(const std::string& text, const std::string& where) {
   Properties out;
   std::size_t pos = 0;
   while (pos < text.size()) {
@@ -110,7 +112,11 @@ Properties parse_properties(const std::string& text) {
     while (value < line.size() && is_space(line[value])) ++value;
     if (value < line.size() && (line[value] == '=' || line[value] == ':')) ++value;
     while (value < line.size() && is_space(line[value])) ++value;
-    out[unescape(line, i, key_end)] = unescape(line, value, line.size());
+    std::string key = unescape(line, i, key_end);
+    auto [it, fresh] = out.emplace(std::move(key), unescape(line, value, line.size()));
+    if (!fresh)
+      throw InputError(where + ": the key '" + it->first + "' is given twice ('" + it->second + "' and '" +
+                       unescape(line, value, line.size()) + "')");
   }
   return out;
 }

@@ -6,8 +6,10 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <set>
 
+#include "io/csv_rows.hpp"
 #include "io/instrument_readers.hpp"
 #include "io/java_properties.hpp"
 #include "io/zip_archive.hpp"
@@ -26,7 +28,7 @@ class Reader {
 
   Properties properties(const std::string& name) const {
     if (!zip_.contains(name)) fail(name, "missing from the archive");
-    return parse_properties(zip_.read(name));
+    return parse_properties(zip_.read(name), path_ + ": " + name);
   }
 
   const std::string& value(const Properties& p, const std::string& key, const std::string& where) const {
@@ -35,16 +37,28 @@ class Reader {
     return it->second;
   }
 
+  // The whole value must be one finite number: "1,5", "1e-3e5", "NaN" and "Infinity" are
+  // errors, not 1, 0.001 or a NaN passed on.
   double number(const Properties& p, const std::string& key, const std::string& where) const {
-    const std::string& text = value(p, key, where);
+    return to_number(key, value(p, key, where), where);
+  }
+  double to_number(const std::string& key, const std::string& text, const std::string& where) const {
     double v = 0.0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (ec != std::errc() || end != text.data() + text.size())
-      fail(where, "'" + key + "' = '" + text + "' is not a number");
+    if (!parse_finite(text, v)) fail(where, "'" + key + "' = '" + text + "' is not a finite number");
     return v;
+  }
+  // A whole number in [lo, hi], so that the cast to an integer type is defined.
+  long long whole(const std::string& key, const std::string& text, double lo, double hi,
+                  const std::string& where) const {
+    const double v = to_number(key, text, where);
+    if (!(v >= lo && v <= hi && v == std::floor(v)))
+      fail(where, "'" + key + "' = '" + text + "' is not a whole number in [" + format_double(lo) + ", " +
+                      format_double(hi) + "]");
+    return static_cast<long long>(v);
   }
 
   std::string read(const std::string& name) const { return zip_.read(name); }
+  std::optional<std::uint64_t> declared_size(const std::string& name) const { return zip_.declared_size(name); }
 
  private:
   std::string path_;
@@ -103,6 +117,7 @@ T big_endian(const unsigned char* p) {
   }
 }
 
+// Whole samples only: the caller checks that bytes.size() is a multiple of sizeof(T).
 template <class T>
 std::vector<double> decode(const std::string& bytes) {
   std::vector<double> out(bytes.size() / sizeof(T));
@@ -116,6 +131,7 @@ struct ChannelReader {
   const Properties& seg;
   std::string dir;    // "…/segments/N/"
   std::string where;  // names the segment in errors
+  std::optional<std::size_t> points;  // the samples the header announces, if it does
 
   bool has(const std::string& channel) const { return seg.count("channel." + channel + ".data.file.name") > 0; }
 
@@ -123,24 +139,40 @@ struct ChannelReader {
   std::vector<double> base_values(const std::string& channel) const {
     const std::string c = "channel." + channel + ".";
     const std::string file = dir + in.value(seg, c + "data.file.name", where);
-    const std::string bytes = in.read(file);
     const std::string enc = seg.count(c + "data.encoder.type") ? c + "data.encoder." : c + "encoder.";
     std::string type;
     if (seg.count(enc + "type")) type = seg.at(enc + "type");
     else if (seg.count(c + "type")) type = seg.at(c + "type");
     else type = in.value(seg, c + "data.type", where);
-    std::vector<double> v;
-    if (type == "signedshort") v = decode<std::int16_t>(bytes);
-    else if (type == "unsignedshort") v = decode<std::uint16_t>(bytes);
-    else if (type == "signedinteger") v = decode<std::int32_t>(bytes);
-    else if (type == "unsignedinteger") v = decode<std::uint32_t>(bytes);
-    else if (type == "signedlong") v = decode<std::int64_t>(bytes);
-    else if (type == "float-data" || type == "float") v = decode<float>(bytes);
-    else if (type == "double-data" || type == "double") v = decode<double>(bytes);
-    else in.fail(where, "channel " + channel + " has the unknown data type '" + type + "'");
-    const std::size_t width = bytes.size() / std::max<std::size_t>(v.size(), 1);
-    if (v.empty() || bytes.size() % width != 0)
-      in.fail(file, "holds " + std::to_string(bytes.size()) + " bytes, not a whole number of samples");
+    struct Encoding {
+      const char* name;
+      std::size_t width;
+      std::vector<double> (*decode)(const std::string&);
+    };
+    static const Encoding encodings[] = {
+        {"signedshort", 2, decode<std::int16_t>},    {"unsignedshort", 2, decode<std::uint16_t>},
+        {"signedinteger", 4, decode<std::int32_t>},  {"unsignedinteger", 4, decode<std::uint32_t>},
+        {"signedlong", 8, decode<std::int64_t>},     {"float-data", 4, decode<float>},
+        {"float", 4, decode<float>},                 {"double-data", 8, decode<double>},
+        {"double", 8, decode<double>}};
+    const Encoding* e = nullptr;
+    for (const Encoding& candidate : encodings)
+      if (type == candidate.name) e = &candidate;
+    if (!e) in.fail(where, "channel " + channel + " has the unknown data type '" + type + "'");
+    const std::size_t width = e->width;
+    // The header's count bounds the entry before it is unpacked, not only after.
+    const std::optional<std::uint64_t> declared = in.declared_size(file);
+    if (points && declared && *declared != static_cast<std::uint64_t>(*points) * width)
+      in.fail(file, "declares " + std::to_string(*declared) + " bytes; the segment header announces " +
+                        std::to_string(*points) + " samples of " + std::to_string(width) + " bytes");
+    const std::string bytes = in.read(file);
+    if (bytes.empty() || bytes.size() % width != 0)
+      in.fail(file, "holds " + std::to_string(bytes.size()) + " bytes, not a whole number of " + std::to_string(width) +
+                        "-byte samples (" + type + ")");
+    if (points && bytes.size() / width != *points)
+      in.fail(file, "holds " + std::to_string(bytes.size() / width) + " samples; the segment header announces " +
+                        std::to_string(*points));
+    std::vector<double> v = e->decode(bytes);
     if (seg.count(enc + "scaling.multiplier")) {
       const double m = in.number(seg, enc + "scaling.multiplier", where), o = in.number(seg, enc + "scaling.offset", where);
       for (double& x : v) x = x * m + o;
@@ -180,17 +212,18 @@ const std::string* find_suffix(const Properties& p, const std::string& suffix) {
   return nullptr;
 }
 
-double suffix_number(const Properties& p, const std::string& suffix, double fallback) {
+// The value of the first key ending in `suffix` as a finite number, or `fallback` if no key does.
+double suffix_number(const Reader& in, const Properties& p, const std::string& suffix, double fallback,
+                     const std::string& where) {
   const std::string* v = find_suffix(p, suffix);
-  double out = fallback;
-  if (v) std::from_chars(v->data(), v->data() + v->size(), out);
-  return out;
+  return v ? in.to_number(suffix.substr(1), *v, where) : fallback;
 }
 
-// A header's count or index as an int; `fallback` unless it is a whole number in [-1, 1e9]
-// (a float-to-int conversion out of range would be undefined).
-int to_int(double v, int fallback) {
-  return v >= -1.0 && v <= 1e9 && v == std::floor(v) ? static_cast<int>(v) : fallback;
+// The same as a whole number in [lo, hi] (a float-to-int conversion out of range is undefined).
+int suffix_int(const Reader& in, const Properties& p, const std::string& suffix, int fallback, double lo, double hi,
+               const std::string& where) {
+  const std::string* v = find_suffix(p, suffix);
+  return v ? static_cast<int>(in.whole(suffix.substr(1), *v, lo, hi, where)) : fallback;
 }
 
 // A segment's style, spelled as the registry knows it; any other is an error, not a guess.
@@ -204,7 +237,11 @@ InstrumentSegment read_segment(const Reader& in, const Properties& shared, const
   const std::string where = dir + "segment-header.properties";
   Properties seg = in.properties(where);
   resolve_shared(seg, shared);
-  const ChannelReader ch{in, seg, dir, where};
+  std::optional<std::size_t> points;
+  if (seg.count("force-segment-header.num-points"))
+    points = static_cast<std::size_t>(
+        in.whole("force-segment-header.num-points", seg.at("force-segment-header.num-points"), 0, 1e15, where));
+  const ChannelReader ch{in, seg, dir, where, points};
   InstrumentSegment s;
   s.style = read_style(in, in.value(seg, "force-segment-header.settings.style", where), where);
   s.duration = in.number(seg, "force-segment-header.duration", where);
@@ -223,17 +260,10 @@ InstrumentSegment read_segment(const Reader& in, const Properties& shared, const
   if (s.height.size() != s.force.size() || (!s.piezo_height.empty() && s.piezo_height.size() != s.force.size()))
     in.fail(where, "channels of different lengths (" + std::to_string(s.force.size()) + " force samples, " +
                        std::to_string(s.height.size()) + " heights)");
-  if (seg.count("force-segment-header.num-points") &&
-      in.number(seg, "force-segment-header.num-points", where) != static_cast<double>(s.force.size()))
-    in.fail(where, "the header announces " + seg.at("force-segment-header.num-points") + " points, the data hold " +
-                       std::to_string(s.force.size()));
   return s;
 }
 
-}  // namespace
-
-InstrumentFile read_jpk(const std::string& path, InstrumentFormat format) {
-  const ZipArchive zip(path);
+InstrumentFile read_archive(const ZipArchive& zip, const std::string& path, InstrumentFormat format) {
   const Reader in(path, zip);
   InstrumentFile file;
   file.path = path;
@@ -244,12 +274,28 @@ InstrumentFile read_jpk(const std::string& path, InstrumentFormat format) {
   if (const std::string* v = find_suffix(top, ".description.instrument")) file.instrument = *v;
   if (const std::string* v = find_suffix(top, ".description.source-software")) file.software = *v;
   if (find_suffix(top, ".position-pattern.grid.ilength")) {
-    file.grid_shape_x = std::max(0, to_int(suffix_number(top, ".position-pattern.grid.ilength", 0), 0));
-    file.grid_shape_y = std::max(0, to_int(suffix_number(top, ".position-pattern.grid.jlength", 0), 0));
-    file.grid_size_x = suffix_number(top, ".position-pattern.grid.ulength", 0);
-    file.grid_size_y = suffix_number(top, ".position-pattern.grid.vlength", 0);
-    file.grid_center_x = suffix_number(top, ".position-pattern.grid.xcenter", 0);
-    file.grid_center_y = suffix_number(top, ".position-pattern.grid.ycenter", 0);
+    // A map's grid: every value present and finite, the shape at least one pixel, the
+    // size positive, so that the pixel of a position is always defined.
+    const std::string where = "header.properties";
+    auto need = [&](const std::string& suffix) -> const std::string& {
+      const std::string* v = find_suffix(top, suffix);
+      if (!v) in.fail(where, "the map grid has no '*" + suffix + "'");
+      return *v;
+    };
+    auto shape = [&](const std::string& suffix) {
+      return static_cast<int>(in.whole(suffix.substr(1), need(suffix), 1, 1e6, where));
+    };
+    auto size = [&](const std::string& suffix) {
+      const double v = in.to_number(suffix.substr(1), need(suffix), where);
+      if (!(v > 0.0)) in.fail(where, "'" + suffix.substr(1) + "' = '" + need(suffix) + "' must be > 0 (m)");
+      return v;
+    };
+    file.grid_shape_x = shape(".position-pattern.grid.ilength");
+    file.grid_shape_y = shape(".position-pattern.grid.jlength");
+    file.grid_size_x = size(".position-pattern.grid.ulength");
+    file.grid_size_y = size(".position-pattern.grid.vlength");
+    file.grid_center_x = in.to_number("xcenter", need(".position-pattern.grid.xcenter"), where);
+    file.grid_center_y = in.to_number("ycenter", need(".position-pattern.grid.ycenter"), where);
   }
   const std::vector<int> indices = numbered_dirs(zip.names(), "index/");
   std::vector<std::string> prefixes;
@@ -264,14 +310,14 @@ InstrumentFile read_jpk(const std::string& path, InstrumentFormat format) {
       if (const std::string* v = find_suffix(header, ".description.instrument")) file.instrument = *v;
     if (file.software.empty())
       if (const std::string* v = find_suffix(header, ".description.source-software")) file.software = *v;
-    curve.position_index = to_int(suffix_number(header, ".header.position-index", -1), -1);
-    curve.x = suffix_number(header, ".header.position.x", curve.x);
-    curve.y = suffix_number(header, ".header.position.y", curve.y);
-    if (file.grid_shape_x > 0 && file.grid_shape_y > 0 && file.grid_size_x > 0.0 && file.grid_size_y > 0.0 &&
-        std::isfinite(curve.x) && std::isfinite(curve.y)) {
+    const std::string where = p + "header.properties";
+    curve.position_index = suffix_int(in, header, ".header.position-index", -1, -1, 1e9, where);
+    curve.x = suffix_number(in, header, ".header.position.x", curve.x, where);
+    curve.y = suffix_number(in, header, ".header.position.y", curve.y, where);
+    if (file.grid_shape_x > 0 && std::isfinite(curve.x) && std::isfinite(curve.y)) {
       auto pixel = [](double v, double center, double size, int shape) {
         const double i = std::floor((v - (center - 0.5 * size)) / size * shape);
-        return static_cast<int>(std::clamp(i, 0.0, static_cast<double>(shape - 1)));
+        return std::isnan(i) ? 0 : static_cast<int>(std::clamp(i, 0.0, static_cast<double>(shape - 1)));
       };
       curve.grid_x = pixel(curve.x, file.grid_center_x, file.grid_size_x, file.grid_shape_x);
       curve.grid_y = pixel(curve.y, file.grid_center_y, file.grid_size_y, file.grid_shape_y);
@@ -283,6 +329,19 @@ InstrumentFile read_jpk(const std::string& path, InstrumentFormat format) {
     file.curves.push_back(std::move(curve));
   }
   return file;
+}
+
+}  // namespace
+
+InstrumentFile read_jpk(const std::string& path, InstrumentFormat format, const ReadLimits& limits) {
+  const ZipArchive zip(path, limits);
+  return read_archive(zip, path, format);
+}
+
+InstrumentFile read_jpk_bytes(std::string bytes, const std::string& path, InstrumentFormat format,
+                              const ReadLimits& limits) {
+  const ZipArchive zip(std::move(bytes), path, limits);
+  return read_archive(zip, path, format);
 }
 
 }  // namespace layerjkr::detail

@@ -1,0 +1,147 @@
+// Test helper: small JPK force archives and Igor waves made in the test, so that damaged
+// and hostile files can be built byte by byte without ../shared. Header-only; the tests
+// that include it link libzip.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <zip.h>
+
+namespace test {
+
+struct Member {
+  std::string name, bytes;
+  bool deflate = true;
+};
+
+/// Writes `members` as a zip archive at `path` (libzip, as JPK's own writer would).
+inline void write_zip(const std::string& path, const std::vector<Member>& members) {
+  int code = 0;
+  zip_t* zip = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &code);
+  if (!zip) throw std::runtime_error("cannot create " + path);
+  for (const Member& m : members) {
+    zip_source_t* src = zip_source_buffer(zip, m.bytes.data(), m.bytes.size(), 0);
+    const zip_int64_t i = src ? zip_file_add(zip, m.name.c_str(), src, ZIP_FL_ENC_UTF_8) : -1;
+    if (i < 0 || zip_set_file_compression(zip, static_cast<zip_uint64_t>(i), m.deflate ? ZIP_CM_DEFLATE : ZIP_CM_STORE, 0) != 0)
+      throw std::runtime_error("cannot add " + m.name + " to " + path);
+  }
+  if (zip_close(zip) != 0) throw std::runtime_error("cannot write " + path);
+}
+
+/// Big-endian signed 16-bit samples, as JPK stores them.
+inline std::string shorts(const std::vector<int>& v) {
+  std::string out;
+  for (int x : v) {
+    const auto u = static_cast<std::uint16_t>(static_cast<std::int16_t>(x));
+    out += static_cast<char>(u >> 8);
+    out += static_cast<char>(u & 0xFF);
+  }
+  return out;
+}
+
+/// The members of a one-segment JPK force curve of `n` samples; `header` and `segment` are
+/// appended to the two headers (a key given there overrides nothing: it is added, so tests
+/// pass keys the minimal headers lack, or repeat one on purpose).
+inline std::vector<Member> jpk_members(int n = 8, const std::string& header = "", const std::string& segment = "") {
+  std::vector<int> force, height;
+  for (int i = 0; i < n; ++i) {
+    force.push_back(100 * i - 300);
+    height.push_back(1000 - 50 * i);
+  }
+  std::string seg =
+      "force-segment-header.num-points=" + std::to_string(n) + "\n"
+      "force-segment-header.duration=1.0\n"
+      "force-segment-header.settings.style=extend\n";
+  for (const char* ch : {"vDeflection", "strainGaugeHeight"}) {
+    const std::string c = std::string("channel.") + ch + ".";
+    seg += c + "data.file.name=channels/" + ch + ".dat\n" + c + "data.type=short\n" + c + "data.encoder.type=signedshort\n" +
+           c + "data.encoder.scaling.multiplier=1.0E-4\n" + c + "data.encoder.scaling.offset=0.0\n" + c +
+           "conversion-set.conversions.base=volts\n";
+  }
+  seg += "channel.vDeflection.conversion-set.conversion.distance.base-calibration-slot=volts\n"
+         "channel.vDeflection.conversion-set.conversion.distance.scaling.multiplier=5.0E-8\n"
+         "channel.vDeflection.conversion-set.conversion.distance.scaling.offset=0.0\n"
+         "channel.vDeflection.conversion-set.conversion.force.base-calibration-slot=distance\n"
+         "channel.vDeflection.conversion-set.conversion.force.scaling.multiplier=0.05\n"
+         "channel.vDeflection.conversion-set.conversion.force.scaling.offset=0.0\n"
+         "channel.strainGaugeHeight.conversion-set.conversion.nominal.base-calibration-slot=volts\n"
+         "channel.strainGaugeHeight.conversion-set.conversion.nominal.scaling.multiplier=1.0E-5\n"
+         "channel.strainGaugeHeight.conversion-set.conversion.nominal.scaling.offset=0.0\n";
+  const std::string top =
+      "force-scan-series.header.position.x=1.0E-6\n"
+      "force-scan-series.header.position.y=2.0E-6\n"
+      "force-scan-series.header.position-index=0\n";
+  return {{"header.properties", top + header},
+          {"segments/0/segment-header.properties", seg + segment},
+          {"segments/0/channels/vDeflection.dat", shorts(force)},
+          {"segments/0/channels/strainGaugeHeight.dat", shorts(height)}};
+}
+
+inline std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+inline void write_bytes(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+/// Offsets of the central-directory record and the local header of `name` in a zip's bytes.
+inline std::pair<std::size_t, std::size_t> zip_records(const std::string& zip, const std::string& name) {
+  auto u16 = [&](std::size_t at) { return static_cast<std::size_t>(static_cast<unsigned char>(zip[at]) |
+                                                                   static_cast<unsigned char>(zip[at + 1]) << 8); };
+  auto u32 = [&](std::size_t at) { return u16(at) | u16(at + 2) << 16; };
+  for (std::size_t at = zip.find("PK\x01\x02"); at != std::string::npos; at = zip.find("PK\x01\x02", at + 4))
+    if (zip.compare(at + 46, u16(at + 28), name) == 0 && u16(at + 28) == name.size()) return {at, u32(at + 42)};
+  throw std::runtime_error("no central-directory record for " + name);
+}
+
+inline void put_u32(std::string& bytes, std::size_t at, std::uint32_t v) {
+  for (int k = 0; k < 4; ++k) bytes[at + static_cast<std::size_t>(k)] = static_cast<char>((v >> (8 * k)) & 0xFF);
+}
+
+/// Sets the CRC-32 (field "crc") or the uncompressed size ("size") that both the central
+/// directory and the local header of `name` declare.
+inline void patch_member(std::string& zip, const std::string& name, const std::string& field, std::uint32_t v) {
+  const auto [central, local] = zip_records(zip, name);
+  const std::size_t c = field == "crc" ? 16 : 24, l = field == "crc" ? 14 : 22;
+  put_u32(zip, central + c, v);
+  put_u32(zip, local + l, v);
+}
+
+/// An Igor binary wave v5 (little-endian, float64) with columns Raw, Defl, ZSnsr of `rows`
+/// rows and the note `note` ("Key:Value\r..."), the layout ibw_reader.cpp reads.
+inline std::string igor_wave(const std::string& note, int rows = 6) {
+  const std::size_t cols = 3, data_bytes = static_cast<std::size_t>(rows) * cols * 8, wfm = 320 + data_bytes;
+  std::string labels(32 * (cols + 1), '\0');
+  const char* names[] = {"Raw", "Defl", "ZSnsr"};
+  for (std::size_t c = 0; c < cols; ++c) std::memcpy(&labels[32 * (c + 1)], names[c], std::strlen(names[c]));
+  std::string b(64 + wfm, '\0');
+  auto put = [&](std::size_t at, const void* v, std::size_t n) { std::memcpy(&b[at], v, n); };
+  const std::int16_t version = 5, type = 4;
+  const std::int32_t wfm_size = static_cast<std::int32_t>(wfm), note_size = static_cast<std::int32_t>(note.size()),
+                     label_size = static_cast<std::int32_t>(labels.size()), n_rows = rows, n_cols = 3;
+  const double step = 1e-3;
+  put(0, &version, 2);
+  put(4, &wfm_size, 4);
+  put(12, &note_size, 4);
+  put(40, &label_size, 4);
+  put(64 + 16, &type, 2);
+  put(64 + 68, &n_rows, 4);
+  put(64 + 72, &n_cols, 4);
+  put(64 + 84, &step, 8);
+  for (int r = 0; r < rows; ++r)
+    for (std::size_t c = 0; c < cols; ++c) {
+      const double v = 1e-9 * (r + 1) * static_cast<double>(c + 1);
+      put(64 + 320 + (c * static_cast<std::size_t>(rows) + static_cast<std::size_t>(r)) * 8, &v, 8);
+    }
+  return b + note + labels;
+}
+
+}  // namespace test

@@ -1,0 +1,157 @@
+// Header values are read strictly (issue #21): the whole token must be one finite number
+// ("1,1841" is not 1, "1e-3e5" not 0.001), a key the reader needs may not be given twice,
+// and counts, indices and map grids are checked before any cast to an integer. Hand-made
+// .properties text, synthetic JPK archives and Igor waves; the real files still read as
+// tests/io/test_instrument.cpp asserts.
+#include <catch2/catch.hpp>
+
+#include "io/instrument_readers.hpp"
+#include "io/java_properties.hpp"
+#include "jpk_builder.hpp"
+#include "layerjkr/error.hpp"
+#include "layerjkr/instrument.hpp"
+#include "support/temp_dir.hpp"
+
+using namespace layerjkr;
+
+namespace {
+
+template <class F>
+std::string input_error(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
+// The minimal archive with `key=value` in member `member` (0: header, 1: segment header)
+// replaced by `key=replacement`, or `extra` appended.
+std::string archive(const test::TempDir& dir, std::size_t member, const std::string& line,
+                    const std::string& replacement) {
+  std::vector<test::Member> members = test::jpk_members();
+  std::string& text = members[member].bytes;
+  if (line.empty()) {
+    text += replacement + "\n";
+  } else {
+    const std::size_t at = text.find(line + "\n");
+    REQUIRE(at != std::string::npos);
+    text.replace(at, line.size(), replacement);
+  }
+  const std::string path = dir.file("hand.jpk-force");
+  test::write_zip(path, members);
+  return path;
+}
+
+const std::string kNote =
+    "Version:16.11.212\rMicroscopeModel:MFP3D\rSaveForce:1\rSaveForce:2\rInvOLS: 4.499e-08\r"
+    "Indexes: 0,2,5\rDirection: NaN,1,-1,\r";
+
+InstrumentFile igor(const std::string& note) { return detail::read_ibw_bytes(test::igor_wave(note), "hand.ibw"); }
+
+}  // namespace
+
+TEST_CASE(".properties: a key given twice is an error naming it; escapes and continuations still read", "[io][headers]") {
+  const detail::Properties p = detail::parse_properties("a=1\n# c\nb : two\\\n  words\nc\\=d=3\n", "x.properties");
+  CHECK(p.at("a") == "1");
+  CHECK(p.at("b") == "twowords");
+  CHECK(p.at("c=d") == "3");
+  CHECK_THAT(input_error([] { detail::parse_properties("a=1\nb=2\na=3\n", "seg/header.properties"); }),
+             Catch::Contains("seg/header.properties") && Catch::Contains("'a' is given twice") &&
+                 Catch::Contains("'1' and '3'"));
+}
+
+TEST_CASE("JPK header numbers: the whole value must be one finite number", "[io][headers]") {
+  test::TempDir dir;
+  const std::string key = "channel.vDeflection.conversion-set.conversion.force.scaling.multiplier";
+  CHECK(read_instrument_file(archive(dir, 1, key + "=0.05", key + "=0.05")).curves[0].spring_constant == 0.05);
+  for (const char* bad : {"0,05", "5e-2e5", "0.05x", "NaN", "Infinity", "-Infinity", "inf", "1e999", ""}) {
+    INFO(bad);
+    CHECK_THAT(input_error([&] { read_instrument_file(archive(dir, 1, key + "=0.05", key + "=" + bad)); }),
+               Catch::Contains("hand.jpk-force") && Catch::Contains(key) && Catch::Contains("not a finite number"));
+  }
+  CHECK_THAT(input_error([&] {
+               read_instrument_file(archive(dir, 1, "force-segment-header.num-points=8", "force-segment-header.num-points=8.5"));
+             }),
+             Catch::Contains("num-points") && Catch::Contains("whole number"));
+  CHECK_THAT(input_error([&] {
+               read_instrument_file(archive(dir, 0, "force-scan-series.header.position-index=0",
+                                            "force-scan-series.header.position-index=1e20"));
+             }),
+             Catch::Contains("position-index") && Catch::Contains("whole number in [-1, 1000000000]"));
+  CHECK_THAT(input_error([&] {
+               read_instrument_file(archive(dir, 0, "force-scan-series.header.position.x=1.0E-6",
+                                            "force-scan-series.header.position.x=1,0E-6"));
+             }),
+             Catch::Contains("position.x"));
+}
+
+TEST_CASE("JPK headers: a key given twice fails the file, naming the member and the key", "[io][headers]") {
+  test::TempDir dir;
+  CHECK_THAT(input_error([&] { read_instrument_file(archive(dir, 1, "", "force-segment-header.duration=2.0")); }),
+             Catch::Contains("hand.jpk-force") && Catch::Contains("segments/0/segment-header.properties") &&
+                 Catch::Contains("'force-segment-header.duration' is given twice"));
+}
+
+TEST_CASE("JPK map grid: NaN, infinite, fractional or non-positive values are refused before any cast", "[io][headers]") {
+  test::TempDir dir;
+  const std::string grid =
+      "force-scan-map.position-pattern.grid.ilength=2\nforce-scan-map.position-pattern.grid.jlength=2\n"
+      "force-scan-map.position-pattern.grid.ulength=1.0E-5\nforce-scan-map.position-pattern.grid.vlength=1.0E-5\n"
+      "force-scan-map.position-pattern.grid.xcenter=0.0\nforce-scan-map.position-pattern.grid.ycenter=0.0";
+  const InstrumentFile good = read_instrument_file(archive(dir, 0, "", grid));
+  CHECK(good.grid_shape_x == 2);
+  CHECK(good.curves[0].grid_x == 1);  // x = 1 um in a 10 um grid centred on 0: the right half
+  struct Case {
+    const char* line;
+    const char* bad;
+  };
+  for (const Case& c : {Case{"grid.xcenter=0.0", "grid.xcenter=nan"}, Case{"grid.ycenter=0.0", "grid.ycenter=Infinity"},
+                        Case{"grid.ilength=2", "grid.ilength=2.5"}, Case{"grid.jlength=2", "grid.jlength=1e300"},
+                        Case{"grid.ilength=2", "grid.ilength=0"}, Case{"grid.ulength=1.0E-5", "grid.ulength=-1.0E-5"},
+                        Case{"grid.vlength=1.0E-5", "grid.vlength=NaN"}}) {
+    std::string text = grid;
+    text.replace(text.find(c.line), std::string(c.line).size(), c.bad);
+    INFO(c.bad);
+    CHECK_THAT(input_error([&] { read_instrument_file(archive(dir, 0, "", text)); }),
+               Catch::Contains("hand.jpk-force") && Catch::Contains("header.properties") &&
+                   Catch::Contains(std::string(c.bad).substr(5, std::string(c.bad).find('=') - 5)));
+  }
+  std::string missing = grid;
+  missing.erase(missing.find("force-scan-map.position-pattern.grid.xcenter"));
+  CHECK_THAT(input_error([&] { read_instrument_file(archive(dir, 0, "", missing)); }), Catch::Contains("xcenter"));
+}
+
+TEST_CASE("Igor notes: SpringConstant and InvOLS must be whole finite numbers > 0", "[io][headers]") {
+  const InstrumentFile f = igor(kNote + "SpringConstant: 1.1841\r");
+  REQUIRE(f.curves.size() == 1);
+  CHECK(f.curves[0].spring_constant == 1.1841);
+  CHECK(f.curves[0].segments.size() == 2);
+  for (const char* bad : {"1,1841", "1e-3e5", "1.1841 N/m", "NaN", "inf", "-1", "0", ""}) {
+    INFO(bad);
+    CHECK_THAT(input_error([&] { igor(kNote + "SpringConstant: " + bad + "\r"); }),
+               Catch::Contains("hand.ibw") && Catch::Contains("SpringConstant") && Catch::Contains("finite number > 0"));
+  }
+}
+
+TEST_CASE("Igor notes: a key the reader uses given twice is an error; others may repeat", "[io][headers]") {
+  CHECK_NOTHROW(igor(kNote + "SpringConstant: 1.1841\rSaveImage:1\rSaveImage:0\r"));
+  CHECK_THAT(input_error([&] { igor(kNote + "SpringConstant: 1.1841\rSpringConstant: 0.5\r"); }),
+             Catch::Contains("hand.ibw") && Catch::Contains("SpringConstant twice") && Catch::Contains("'0.5'"));
+  CHECK_THAT(input_error([&] { igor(kNote + "SpringConstant: 1.1841\rInvOLS: 4.5e-08\r"); }), Catch::Contains("InvOLS twice"));
+}
+
+TEST_CASE("Igor notes: Indexes and Direction are lists of numbers, nothing else", "[io][headers]") {
+  std::string note = kNote + "SpringConstant: 1.1841\r";
+  const std::string good = "Indexes: 0,2,5";
+  for (const char* bad : {"Indexes: 0,2x,5", "Indexes: 0,,5", "Indexes: 0,2;5", "Indexes: 0,2,1e-3e5"}) {
+    std::string text = note;
+    text.replace(text.find(good), good.size(), bad);
+    INFO(bad);
+    CHECK_THAT(input_error([&] { igor(text); }), Catch::Contains("hand.ibw") && Catch::Contains("Indexes"));
+  }
+  std::string direction = note;
+  direction.replace(direction.find("Direction: NaN,1,-1,"), 20, "Direction: NaN,one,-1");
+  CHECK_THAT(input_error([&] { igor(direction); }), Catch::Contains("Direction") && Catch::Contains("'one'"));
+}
