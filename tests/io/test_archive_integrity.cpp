@@ -16,6 +16,8 @@
 
 using namespace layerjkr;
 
+using test::input_error;
+
 namespace {
 
 const std::string kSpot3 = std::string(LAYERJKR_SOURCE_DIR) + "/../shared/data/instrument/fmt-jpk-fd_spot3-0192.jpk-force";
@@ -33,17 +35,6 @@ std::vector<double> all_values(const InstrumentFile& f) {
     }
   }
   return out;
-}
-
-// The message of the InputError `f` throws (anything else propagates and fails the test).
-template <class F>
-std::string input_error(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
 }
 
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {

@@ -11,20 +11,13 @@
 #include "layerjkr/error.hpp"
 #include "layerjkr/instrument.hpp"
 #include "support/temp_dir.hpp"
+#include "support/test_support.hpp"
 
 using namespace layerjkr;
 
-namespace {
+using test::input_error;
 
-template <class F>
-std::string input_error(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
+namespace {
 
 // The minimal archive with `key=value` in member `member` (0: header, 1: segment header)
 // replaced by `key=replacement`, or `extra` appended.

@@ -5,9 +5,21 @@
 #include <string>
 #include <vector>
 
+#include "layerjkr/error.hpp"
 #include "layerjkr/profile.hpp"
 
 namespace test {
+
+// The message of the InputError `f` throws; anything else propagates and fails the test.
+template <class F>
+std::string input_error(F&& f) {
+  try {
+    f();
+  } catch (const layerjkr::InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
 
 inline double rel_err(double value, double reference) {
   if (reference == 0.0) return std::abs(value);
