@@ -19,11 +19,10 @@ using namespace test::cli;
 namespace fs = std::filesystem;
 
 namespace {
-const std::string kSource = LAYERJKR_SOURCE_DIR;
-const std::string kCli = LAYERJKR_CLI_PATH;
-const std::string kCurve = kSource + "/data/curves/hydrogel_film_two_term.csv";
-const std::string kScene = kSource + "/data/scenes/hydrogel_film_two_term.json";
-const std::string kFree = " --scene " + kScene + " --branch all --free E,w,delta0,P0";
+const std::string kCli = cli_path();
+const std::string kCurve = sample_curve();
+const std::string kScene = sample_scene();
+const std::string kFree = sample_fit_flags();
 
 std::size_t count_lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
 

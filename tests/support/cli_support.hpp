@@ -25,6 +25,12 @@ inline std::string slurp(const std::string& path) {
   return s.str();
 }
 
+// The CLI executable, and the bundled sample curve with its scene and the flags that fit it.
+inline std::string cli_path() { return LAYERJKR_CLI_PATH; }
+inline std::string sample_curve() { return std::string(LAYERJKR_SOURCE_DIR) + "/data/curves/hydrogel_film_two_term.csv"; }
+inline std::string sample_scene() { return std::string(LAYERJKR_SOURCE_DIR) + "/data/scenes/hydrogel_film_two_term.json"; }
+inline std::string sample_fit_flags() { return " --scene " + sample_scene() + " --branch all --free E,w,delta0,P0"; }
+
 // A path for `name` in this test process's scratch directory (removed at exit).
 inline std::string unique(const std::string& name) { return test::scratch().file(name); }
 
