@@ -35,7 +35,6 @@ struct BuiltScene {
   ContactModelPtr reference;
   ResolvedModel resolved;             ///< K, G, E*, the validity warnings
   std::optional<AutoChoice> choice;   ///< model "auto" only
-  std::vector<std::string> warnings;  ///< resolved.warnings
 };
 
 /// Builds the contact model of a scene. Model "auto" chooses the cheapest model within the

@@ -70,7 +70,7 @@ SummaryAnswer solve_summary(const Scene& scene, const AnswerOptions& options) {
   s.g_is_tension = built.resolved.g_is_tension;
   s.E_star = built.resolved.E_star;
   s.choice = built.choice;
-  s.warnings = std::move(built.warnings);
+  s.warnings = std::move(built.resolved.warnings);
   if (!std::isfinite(s.error.worst()))
     s.warnings.push_back("model '" + s.contact.model + "' misses a critical point its reference model '" +
                          s.error.reference + "' has (estimated error unbounded)");
@@ -103,7 +103,7 @@ CurveAnswer solve_curve(const Scene& scene, const std::vector<double>& radii, co
   c.model = built.model->name();
   c.reference = estimator.reference_name();
   c.choice = built.choice;
-  c.warnings = std::move(built.warnings);
+  c.warnings = std::move(built.resolved.warnings);
   double worst = 0.0, worst_a = 0.0;
   for (std::size_t i = 0; i < c.states.size(); ++i) {
     const std::string at = " at a = " + format_double(c.states[i].a) + " m";

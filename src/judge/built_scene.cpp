@@ -26,7 +26,6 @@ auto checked(F make) {
 BuiltScene build(const Scene& s, const Choose& choose, bool with_reference) {
   BuiltScene b;
   b.resolved = checked([&] { return resolve_model(s); });
-  b.warnings = b.resolved.warnings;
   if (b.resolved.automatic) {
     const ModelChoice choice = checked([&] { return choose(b.resolved.spec.layer); });
     b.model = choice.contact_model;

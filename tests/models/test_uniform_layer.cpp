@@ -155,7 +155,7 @@ TEST_CASE("uniform layer: scenes and bad input", "[uniform]") {
       "medium": {"type": "layer", "E": 1e4, "nu": 0.49, "h": 1e-6}, "model": "uniform", "w": 0.01})");
   const BuiltScene built = build_scene(ok);
   CHECK(built.model->name() == "uniform");
-  CHECK(built.warnings.empty());  // no compressible constants, no non-uniformity warning
+  CHECK(built.resolved.warnings.empty());  // no compressible constants, no non-uniformity warning
   CHECK_THROWS_WITH(parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 1e-3},
       "medium": {"type": "layer", "E": 1e4, "nu": 0.3, "h": 1e-5, "base": "frictionless"}, "model": "uniform"})"),
                     Catch::Contains("bonded"));

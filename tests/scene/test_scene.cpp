@@ -47,7 +47,7 @@ TEST_CASE("valid scenes build the expected models", "[scene]") {
   CHECK(*b.resolved.K == Approx(3e6 * 0.7 / (1e-4 * 1.3 * 0.4)).epsilon(1e-14));
   CHECK(b.resolved.G.value() < 0.0);
   CHECK(b.resolved.E_star.value() == Approx(3e6 / 0.91).epsilon(1e-14));
-  CHECK(build_scene(parse_scene(scene(kPara, R"({"type": "layer", "E": 3e6, "nu": 0.49, "h": 1e-4})", R"(, "model": "two_term")"))).warnings.size() == 1);
+  CHECK(build_scene(parse_scene(scene(kPara, R"({"type": "layer", "E": 3e6, "nu": 0.49, "h": 1e-4})", R"(, "model": "two_term")"))).resolved.warnings.size() == 1);
 }
 
 TEST_CASE("invalid scenes name the key and the value", "[scene][errors]") {
