@@ -20,6 +20,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -82,14 +84,60 @@ struct ReadLimits {
   static ReadLimits from_environment();
 };
 
+/// The format a file name says: .jpk-force, .jpk-force-map, .jpk-qi-data, .ibw, and for
+/// Bruker NanoScope .spm or a numbered extension .000 - .999; none for any other name.
+std::optional<InstrumentFormat> instrument_format(const std::string& path);
 /// True if the file name ends in an extension read_instrument_file knows.
 bool is_instrument_file(const std::string& path);
+/// The known formats in words, for messages ("known: " + this).
+std::string known_instrument_formats();
 
-/// Reads every curve of a JPK archive or an Igor wave. Throws InputError naming the file and
+/// A half-open range [begin, end) of curve positions in file order (0-based; for JPK maps the
+/// order of the index/N numbers, for NanoScope force volumes the order of the data block).
+/// The default is every curve; `end` past the last curve stops at the last one.
+struct CurveRange {
+  std::size_t begin = 0;
+  std::size_t end = std::numeric_limits<std::size_t>::max();
+  /// Parses "A:B", "A:" or ":B" (whole numbers, A <= B); anything else is an InputError
+  /// naming `what` (e.g. "--curves") and the text.
+  static CurveRange parse(const std::string& text, const std::string& what);
+};
+
+/// An instrument file opened for reading its curves one at a time. Opening reads the header
+/// and the index of the curves (for a JPK archive its central directory; for NanoScope the
+/// text header), never the samples; curve(i) then reads curve i alone - random access, so
+/// any range of a map is read without the rest, and a whole map's samples are never held.
+/// Thread safety: curve() may be called from several threads at once (the archive's entries
+/// are fetched under a lock and inflated and decoded outside it). Move-only; owns the file
+/// handle, which stays open until destruction.
+class InstrumentReader {
+ public:
+  /// Opens `path` (its format from instrument_format). Throws InputError naming the file:
+  /// missing, of no known format, or with a header that cannot be read (see read_instrument_file).
+  explicit InstrumentReader(const std::string& path, const ReadLimits& limits = ReadLimits::from_environment());
+  ~InstrumentReader();
+  InstrumentReader(InstrumentReader&&) noexcept;
+  InstrumentReader& operator=(InstrumentReader&&) noexcept;
+
+  /// The file's metadata (path, format, instrument, software, map grid); `curves` is empty.
+  const InstrumentFile& header() const;
+  /// How many curves the file holds.
+  std::size_t size() const;
+  /// The curve at position i (< size()); throws InputError naming the file and the curve if it
+  /// cannot be read or its spring constant is not finite and > 0, std::out_of_range past the end.
+  InstrumentCurve curve(std::size_t i) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Reads every curve (or those of `range`) of a JPK archive, an Igor wave or a NanoScope file.
+/// Throws InputError naming the file and
 /// what is wrong (not a zip; an entry truncated, corrupt (CRC-32) or over `limits`; a missing
 /// or duplicated header key, channel or calibration; a header number that is not a finite
 /// number or out of range; data of another size than the header announces; unknown encoder).
-InstrumentFile read_instrument_file(const std::string& path, const ReadLimits& limits);
+InstrumentFile read_instrument_file(const std::string& path, const ReadLimits& limits, const CurveRange& range = {});
 /// The same with ReadLimits::from_environment().
 InstrumentFile read_instrument_file(const std::string& path);
 

@@ -82,8 +82,8 @@ enum class FitFamily { foundation, hertz, tabulated };
 enum class SegmentStyle { extend, retract, pause, modulation };
 
 /// An instrument file's format (instrument.hpp): "jpk-force", "jpk-force-map",
-/// "jpk-qi-data", "ibw".
-enum class InstrumentFormat { jpk_force, jpk_force_map, jpk_qi_data, ibw };
+/// "jpk-qi-data", "ibw", "nanoscope" (Bruker force curves and force volumes).
+enum class InstrumentFormat { jpk_force, jpk_force_map, jpk_qi_data, ibw, nanoscope };
 
 /// Smoothing of discrete data (discrete.hpp): "log_polynomial", "log_spline".
 enum class Smoothing { log_polynomial, log_spline };

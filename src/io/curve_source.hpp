@@ -1,0 +1,36 @@
+// Internal: one format's random access to the curves of a file, behind InstrumentReader
+// (instrument.hpp). Opening reads the header and the index of the curves; each curve is then
+// read on its own, so a range of a map is read without the rest and a map never sits whole
+// in memory.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "layerjkr/instrument.hpp"
+
+namespace layerjkr::detail {
+
+class CurveSource {
+ public:
+  virtual ~CurveSource() = default;
+  /// The file's metadata (path, format, instrument, software, grid); `curves` is empty.
+  virtual const InstrumentFile& header() const = 0;
+  /// How many curves the file holds.
+  virtual std::size_t size() const = 0;
+  /// The curve at position i in [0, size()), in file order, read on its own. Safe to call
+  /// from several threads at once. Throws InputError naming the file, the curve and the field.
+  virtual InstrumentCurve curve(std::size_t i) const = 0;
+};
+
+std::unique_ptr<CurveSource> open_jpk(const std::string& path, InstrumentFormat format, const ReadLimits& limits);
+/// The same from the archive's bytes (the fuzzer's way in); `path` names it in errors.
+std::unique_ptr<CurveSource> open_jpk_bytes(std::string bytes, const std::string& path, InstrumentFormat format,
+                                            const ReadLimits& limits);
+std::unique_ptr<CurveSource> open_ibw(const std::string& path);
+std::unique_ptr<CurveSource> open_ibw_bytes(std::string bytes, const std::string& path);
+std::unique_ptr<CurveSource> open_nanoscope(const std::string& path, const ReadLimits& limits);
+std::unique_ptr<CurveSource> open_nanoscope_bytes(std::string bytes, const std::string& path, const ReadLimits& limits);
+
+}  // namespace layerjkr::detail
