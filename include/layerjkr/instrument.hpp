@@ -126,6 +126,9 @@ class InstrumentReader {
   /// The curve at position i (< size()); throws InputError naming the file and the curve if it
   /// cannot be read or its spring constant is not finite and > 0, std::out_of_range past the end.
   InstrumentCurve curve(std::size_t i) const;
+  /// The number curve i carries (InstrumentCurve::index: JPK's index/N, else the position),
+  /// known without reading the curve; std::out_of_range past the end.
+  int curve_number(std::size_t i) const;
 
  private:
   struct Impl;
