@@ -1,4 +1,4 @@
-// Internal: the text header of a Bruker NanoScope file (docs/instrument-formats.md, NanoScope).
+// Internal: the text header of a Bruker NanoScope file (docs/instrument-files.md, NanoScope).
 // Latin-1 lines `\Key: value` ending in CR LF, grouped in sections that start with `\*Name`;
 // the header ends at `\*File list end` (then Ctrl-Z and padding up to the binary data).
 #pragma once

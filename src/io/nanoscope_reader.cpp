@@ -1,6 +1,6 @@
 // Bruker NanoScope force files (single ramps and force volumes) as a CurveSource: opening
 // parses and checks the text header only; curve(i) then reads curve i's bytes alone (pread).
-// Conventions and their evidence: docs/instrument-formats.md (NanoScope) and
+// Conventions and their evidence: docs/instrument-files.md (NanoScope) and
 // ../shared/data/instrument/bruker/FORMAT_NOTES.md.
 #include <fcntl.h>
 #include <sys/stat.h>

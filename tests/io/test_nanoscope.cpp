@@ -46,7 +46,7 @@ std::vector<std::int64_t> ramp_samples(std::size_t curves, int n, std::int64_t s
   return v;
 }
 
-// The stored block of segment s (file order; the approach is reversed back) of `values`.
+// A segment's forces in file order (the approach reversed back to how it is stored).
 std::vector<double> stored(const InstrumentSegment& seg, bool reversed) {
   std::vector<double> v = seg.force;
   if (reversed) std::reverse(v.begin(), v.end());
