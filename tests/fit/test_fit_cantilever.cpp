@@ -124,7 +124,7 @@ TEST_CASE("a non-JKR tail after the jump is excluded, counted, and does not bias
   CHECK(kept[FitParameter::P0].value < kP0 - 4.0 * s[FitParameter::P0].standard_error);
 }
 
-TEST_CASE("the model lets go where the cantilever did; bad options name themselves", "[fit][cantilever]") {
+TEST_CASE("the model lets go where the cantilever did - bad options name themselves", "[fit][cantilever]") {
   const FitSummary s = fit_retract(synthetic_retract(0.0, 0.0, 1), kK);
   CHECK(s.points_in_contact == 300);  // every sample up to the jump, none after it
   FitOptions bad;

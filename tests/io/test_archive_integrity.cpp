@@ -124,12 +124,14 @@ TEST_CASE("a declared 4 GB member fails before anything is allocated, naming the
                            Catch::Matchers::Contains("LAYERJKR_MAX_MEMBER_MB"));
 }
 
-TEST_CASE("a highly compressible member over the member or archive limit fails; raised limits read it", "[io][archive]") {
+TEST_CASE("a highly compressible member over the member or archive limit fails - raised limits read it", "[io][archive]") {
   test::TempDir dir;
   // 2 MiB of samples that deflate to a few KB: a small bomb against limits set low here.
   const int n = 1 << 20;
   std::vector<test::Member> members = test::jpk_members(n);
   REQUIRE(members[2].bytes.size() == std::size_t{2} << 20);
+  for (test::Member& m : members)  // constant channels: the ramps of jpk_members barely deflate
+    if (m.bytes.size() == std::size_t{2} << 20) m.bytes.assign(m.bytes.size(), '\0');
   const std::string path = synthetic(dir, "bomb.jpk-force", members);
   CHECK(test::read_bytes(path).size() < 100000);
   ReadLimits low;
@@ -145,7 +147,7 @@ TEST_CASE("a highly compressible member over the member or archive limit fails; 
   CHECK(read_instrument_file(path).curves[0].segments[0].force.size() == static_cast<std::size_t>(n));
 }
 
-TEST_CASE("the limits come from LAYERJKR_MAX_MEMBER_MB / LAYERJKR_MAX_ARCHIVE_MB; bad values are errors", "[io][archive]") {
+TEST_CASE("the limits come from LAYERJKR_MAX_MEMBER_MB / LAYERJKR_MAX_ARCHIVE_MB - bad values are errors", "[io][archive]") {
   ::unsetenv("LAYERJKR_MAX_MEMBER_MB");
   ::unsetenv("LAYERJKR_MAX_ARCHIVE_MB");
   CHECK(ReadLimits::from_environment().max_member_bytes == ReadLimits{}.max_member_bytes);

@@ -45,7 +45,7 @@ InstrumentFile igor(const std::string& note) { return detail::read_ibw_bytes(tes
 
 }  // namespace
 
-TEST_CASE(".properties: a key given twice is an error naming it; escapes and continuations still read", "[io][headers]") {
+TEST_CASE(".properties: a key given twice is an error naming it - escapes and continuations still read", "[io][headers]") {
   const detail::Properties p = detail::parse_properties("a=1\n# c\nb : two\\\n  words\nc\\=d=3\n", "x.properties");
   CHECK(p.at("a") == "1");
   CHECK(p.at("b") == "twowords");
@@ -128,7 +128,7 @@ TEST_CASE("Igor notes: SpringConstant and InvOLS must be whole finite numbers > 
   }
 }
 
-TEST_CASE("Igor notes: a key the reader uses given twice is an error; others may repeat", "[io][headers]") {
+TEST_CASE("Igor notes: a key the reader uses given twice is an error - others may repeat", "[io][headers]") {
   CHECK_NOTHROW(igor(kNote + "SpringConstant: 1.1841\rSaveImage:1\rSaveImage:0\r"));
   CHECK_THAT(input_error([&] { igor(kNote + "SpringConstant: 1.1841\rSpringConstant: 0.5\r"); }),
              Catch::Contains("hand.ibw") && Catch::Contains("SpringConstant twice") && Catch::Contains("'0.5'"));

@@ -59,7 +59,7 @@ TEST_CASE("state estimates bound the error against a finer exact layer, for any 
   }
 }
 
-TEST_CASE("the exact layer's own estimate bounds its error; models exact for their medium estimate ~0", "[auto]") {
+TEST_CASE("the exact layer's own estimate bounds its error - models exact for their medium estimate ~0", "[auto]") {
   const ElasticLayer layer{1.0, 0.45, 1.0, Base::bonded};
   const ProfilePtr p = make_sphere(50.0);
   const ContactModelPtr exact = layer_reference(p, layer), truth = fine_exact(p, layer);
@@ -73,7 +73,7 @@ TEST_CASE("the exact layer's own estimate bounds its error; models exact for the
   CHECK(ModelErrorEstimator(make_winkler(p, 1e3), nullptr, 0.1).at(3.0) == 1e-12);
 }
 
-TEST_CASE("curve estimates: anchors bracket every radius; beyond 1000 h the error falls as h/a", "[auto]") {
+TEST_CASE("curve estimates: anchors bracket every radius - beyond 1000 h the error falls as h/a", "[auto]") {
   const ElasticLayer layer{1.0, 0.3, 1.0, Base::bonded};
   const ProfilePtr p = make_paraboloid(1e3);
   const ModelErrorEstimator e(make_winkler(p, thin_layer_constants(layer).K), layer_reference(p, layer), 0.05);
@@ -147,7 +147,7 @@ TEST_CASE("auto on seeded random scenes: the estimate bounds the error, the choi
   }
 }
 
-TEST_CASE("auto: scenes need a tolerance and a radius; bad input names the parameter", "[auto][scene]") {
+TEST_CASE("auto: scenes need a tolerance and a radius - bad input names the parameter", "[auto][scene]") {
   const std::string head = R"({"indenter": {"shape": "paraboloid", "R": 0.01},
       "medium": {"type": "layer", "E": 3e6, "nu": 0.3, "h": 1e-4}, "model": "auto")";
   CHECK_THROWS_WITH(parse_scene(head + "}"), Catch::Contains("tolerance is missing"));

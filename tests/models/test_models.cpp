@@ -257,7 +257,7 @@ TEST_CASE("thin-layer constants are the small-u expansion of the exact layer ker
   CHECK(f.warnings.empty());
 }
 
-TEST_CASE("near-incompressible bonded layers warn; invalid layers throw", "[models][layer][errors]") {
+TEST_CASE("near-incompressible bonded layers warn - invalid layers throw", "[models][layer][errors]") {
   CHECK(thin_layer_constants({1e6, 0.45, 1e-4, Base::bonded}).warnings.empty());
   const auto w = thin_layer_constants({1e6, 0.49, 1e-4, Base::bonded}).warnings;
   REQUIRE(w.size() == 1);

@@ -29,7 +29,7 @@ double worst_difference(const NonAdhesiveState& s, const NonAdhesiveState& refer
 }
 }  // namespace
 
-TEST_CASE("uniform layer: eps = 1/K and D = -G/K^2 of the stiffness expansion; finite at nu = 1/2", "[uniform]") {
+TEST_CASE("uniform layer: eps = 1/K and D = -G/K^2 of the stiffness expansion - finite at nu = 1/2", "[uniform]") {
   for (double nu : {-0.3, 0.1, 0.3, 0.45, 0.499}) {
     const ElasticLayer layer{2e4, nu, 3e-5, Base::bonded};
     const ThinLayerConstants k = thin_layer_constants(layer);
