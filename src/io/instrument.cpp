@@ -59,6 +59,7 @@ std::string first_bytes(const std::string& path, std::size_t n) {
 
 std::unique_ptr<detail::CurveSource> open_source(const std::string& path, const ReadLimits& limits) {
   std::optional<InstrumentFormat> format = instrument_format(path);
+  if (ends_with(path, ".pfc")) unknown_format(path);  // its header looks like a force file's
   // A NanoScope force file keeps its header whatever it was renamed to.
   if (!format && first_bytes(path, 32).rfind("\\*Force file list", 0) == 0) format = InstrumentFormat::nanoscope;
   if (!format) unknown_format(path);

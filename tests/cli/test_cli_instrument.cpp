@@ -115,3 +115,64 @@ TEST_CASE("fit-map --plot-dir draws every fitted field over the map grid", "[cli
   CHECK(csv_only.code == 2);
   CHECK(csv_only.err.find("no input carries map positions") != std::string::npos);
 }
+
+TEST_CASE("a Bruker curve fits from the file as spot3 does - a force volume maps, whole or by --curves",
+          "[cli][instrument][nanoscope]") {
+  const std::string single = kDir + "bruker/20200904_Egel4-Z1.0_00025.spm";
+  const std::string volume = kDir + "bruker/20200903_Egel2.0_00023.spm";
+  if (!fs::exists(single) || !fs::exists(volume)) {
+    test::report_skip(kDir + "bruker is absent (the shared data beside the repository)");
+    return;
+  }
+  // The header's tip: \Tip Radius: 20 (nm).
+  const std::string scene = write_file("bruker_hertz.json", R"({"indenter": {"shape": "paraboloid", "R": 2e-8},
+      "medium": {"type": "half_space", "E": 1e4, "nu": 0.5}})");
+  const Run r = run("fit " + single + " --scene " + scene + " --free E,delta0,P0");
+  INFO(r.err << r.out);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("converged") != std::string::npos);
+  const double E = value_after(r.out, "E = ");
+  CHECK(E > 1e3);  // a soft gel ("Egel"): kPa, not MPa or Pa
+  CHECK(E < 1e5);
+  const std::string csv = unique("bruker.csv");
+  REQUIRE(run("export " + single + " --out " + csv).code == 0);
+  CHECK(lines(slurp(csv)).size() == 2049);
+  const Run back = run("fit " + csv + " --scene " + scene + " --free E,delta0,P0");
+  REQUIRE(back.code == 0);
+  CHECK(value_after(back.out, "E = ") == E);
+
+  const std::string flags = " --scene " + scene + " --free E,delta0,P0 --jobs 2 --out ";
+  const std::string all = unique("volume.csv"), part = unique("volume_part.csv");
+  REQUIRE(run("fit-map " + volume + flags + all).code == 0);
+  const auto rows = lines(slurp(all));
+  REQUIRE(rows.size() == 257);
+  CHECK(rows[1].rfind(volume + "#0,0,", 0) == 0);
+  CHECK(rows[256].find(",15,15,") != std::string::npos);  // the grid's last pixel
+  // A range is read on its own and gives the very rows of the whole map.
+  REQUIRE(run("fit-map " + volume + flags + part + " --curves 16:32").code == 0);
+  const auto some = lines(slurp(part));
+  REQUIRE(some.size() == 17);
+  for (std::size_t i = 1; i < some.size(); ++i) CHECK(some[i] == rows[16 + i]);
+  const Run none = run("fit-map " + volume + flags + unique("none.csv") + " --curves 300:");
+  CHECK(none.code == 0);
+  CHECK(none.err.find("0 of 1 curves fitted") != std::string::npos);
+  CHECK(slurp(unique("none.csv")).find("selects none of its 256 curves") != std::string::npos);
+  const std::string two = unique("two.csv");
+  REQUIRE(run("export " + volume + " --out " + two + " --curves 254:").code == 0);
+  CHECK(lines(slurp(two)).size() == 1 + 2 * 2048);
+  CHECK(run("fit-map " + volume + flags + part + " --curves 5:2").code == 2);
+}
+
+TEST_CASE("fit on a binary file of no known format names the known formats", "[cli][instrument][errors]") {
+  const std::string bin = write_file("mystery.dat", std::string("\x7f" "ELF\0\0\0", 7));
+  const Run r = run("fit " + bin + " --scene " + hertz_scene() + " --free E,delta0,P0");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("mystery.dat") != std::string::npos);
+  CHECK(r.err.find("NUL bytes") != std::string::npos);
+  CHECK(r.err.find("Bruker NanoScope") != std::string::npos);
+  CHECK(lines(r.err).size() == 1);
+  const std::string pfc = write_file("capture.pfc", "\\*Force file list\r\n");
+  const Run p = run("export " + pfc + " --out " + unique("pfc.csv"));
+  CHECK(p.code == 2);
+  CHECK(p.err.find("PeakForce Capture") != std::string::npos);
+}
