@@ -112,8 +112,8 @@ CurveRange CurveRange::parse(const std::string& text, const std::string& what) {
   CurveRange r;
   auto number = [&](std::string_view s, std::size_t& out) {
     if (s.empty()) return;
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
-    if (ec != std::errc() || end != s.data() + s.size()) throw bad();
+    const auto [stop, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+    if (ec != std::errc() || stop != s.data() + s.size()) throw bad();
   };
   number(std::string_view(text).substr(0, colon), r.begin);
   number(std::string_view(text).substr(colon + 1), r.end);
