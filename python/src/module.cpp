@@ -15,10 +15,12 @@
 #include <exception>
 #include <mutex>
 #include <optional>
-#include <thread>
 #include <string>
+#include <thread>
+#include <utility>
 #include <vector>
 
+#include "instrument.hpp"
 #include "layerjkr/layerjkr.hpp"
 
 #ifndef LAYERJKR_VERSION
@@ -233,29 +235,13 @@ std::vector<BatchItem> fit_batch_py(const std::vector<std::pair<Array, Array>>& 
   return run_interruptible(b, [&](const BatchOptions& o) { return fit_batch(data, scene, options, o); });
 }
 
+// curves: (begin, end) positions of each instrument file, checked by the Python layer.
 std::vector<BatchItem> fit_files_py(const std::vector<std::string>& paths, const Scene& scene, const FitOptions& options,
-                                    const CsvOptions& csv, int jobs) {
-  const BatchOptions b = batch_options(jobs);
+                                    const CsvOptions& csv, int jobs,
+                                    const std::optional<std::pair<std::size_t, std::size_t>>& curves) {
+  BatchOptions b = batch_options(jobs);
+  if (curves) b.curves = CurveRange{curves->first, curves->second};
   return run_interruptible(b, [&](const BatchOptions& o) { return fit_files(paths, scene, options, csv, o); });
-}
-
-py::list read_instrument(const std::string& path) {
-  InstrumentFile f;
-  {
-    py::gil_scoped_release release;
-    f = read_instrument_file(path);
-  }
-  py::list out;
-  for (const InstrumentCurve& c : f.curves) {
-    const CurveData d = to_curve_data(c, path);
-    py::dict item;
-    item["index"] = c.index, item["x"] = c.x, item["y"] = c.y, item["grid_x"] = c.grid_x, item["grid_y"] = c.grid_y;
-    item["spring_constant"] = c.spring_constant, item["sensitivity"] = c.sensitivity;
-    item["delta"] = to_array(d.delta), item["P"] = to_array(d.P);
-    item["segment"] = py::array_t<int>(static_cast<py::ssize_t>(d.segment.size()), d.segment.data());
-    out.append(item);
-  }
-  return out;
 }
 
 }  // namespace
@@ -400,6 +386,6 @@ PYBIND11_MODULE(_core, m) {
   m.def("fit", &fit_arrays, py::arg("delta"), py::arg("P"), py::arg("segment"), py::arg("scene"), py::arg("options"));
   m.def("fit_batch", &fit_batch_py, py::arg("curves"), py::arg("scene"), py::arg("options"), py::arg("jobs"));
   m.def("fit_files", &fit_files_py, py::arg("paths"), py::arg("scene"), py::arg("options"), py::arg("csv"),
-        py::arg("jobs"));
-  m.def("read_instrument", &read_instrument, py::arg("path"));
+        py::arg("jobs"), py::arg("curves") = py::none());
+  layerjkr::python::bind_instrument(m);
 }
