@@ -1,12 +1,16 @@
 // Instrument files: dispatch by extension, and the curve a fit consumes (instrument.hpp).
 #include "layerjkr/instrument.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <stdexcept>
 #include <optional>
 #include <string_view>
 
+#include "io/curve_source.hpp"
 #include "io/instrument_readers.hpp"
 #include "io/zip_archive.hpp"
 #include "layerjkr/error.hpp"
@@ -14,11 +18,8 @@
 namespace layerjkr {
 namespace {
 
-// The format an extension names (the registry's spellings are the extensions).
-std::optional<InstrumentFormat> format_of(const std::string& path) {
-  const auto dot = path.rfind('.');
-  if (dot == std::string::npos) return std::nullopt;
-  return from_string<InstrumentFormat>(std::string_view(path).substr(dot + 1));
+bool ends_with(const std::string& s, std::string_view suffix) {
+  return s.size() >= suffix.size() && std::string_view(s).substr(s.size() - suffix.size()) == suffix;
 }
 
 // A limit in MiB from the environment, or `fallback` when the variable is unset.
@@ -35,6 +36,43 @@ std::uint64_t env_mib(const char* name, std::uint64_t fallback) {
   return v << 20;
 }
 
+// A file's first bytes, to name what an unreadable file is (never more than `n`).
+std::string first_bytes(const std::string& path, std::size_t n) {
+  std::ifstream f(path, std::ios::binary);
+  std::string head(n, '\0');
+  f.read(head.data(), static_cast<std::streamsize>(n));
+  head.resize(static_cast<std::size_t>(std::max<std::streamsize>(f.gcount(), 0)));
+  return head;
+}
+
+// The error for a file of no known format, naming what it is where that can be told.
+[[noreturn]] void unknown_format(const std::string& path) {
+  if (ends_with(path, ".pfc"))
+    throw InputError(path + ": Bruker PeakForce Capture (.pfc) files are not supported: their layout is not "
+                            "documented publicly (known: " + known_instrument_formats() + ")");
+  const std::string head = first_bytes(path, 32);
+  if (head.rfind("\\*File list", 0) == 0)
+    throw InputError(path + ": a Bruker NanoScope image file, not force curves: unsupported (known: " +
+                     known_instrument_formats() + ")");
+  throw InputError(path + ": not an instrument file (known: " + known_instrument_formats() + ")");
+}
+
+std::unique_ptr<detail::CurveSource> open_source(const std::string& path, const ReadLimits& limits) {
+  std::optional<InstrumentFormat> format = instrument_format(path);
+  // A NanoScope force file keeps its header whatever it was renamed to.
+  if (!format && first_bytes(path, 32).rfind("\\*Force file list", 0) == 0) format = InstrumentFormat::nanoscope;
+  if (!format) unknown_format(path);
+  switch (*format) {
+    case InstrumentFormat::ibw: return detail::open_ibw(path);
+    case InstrumentFormat::nanoscope:  // TRANSITIONAL until the NanoScope reader (branch bruker) merges
+      throw InputError(path + ": Bruker NanoScope files are not read by this build");
+    case InstrumentFormat::jpk_force:
+    case InstrumentFormat::jpk_force_map:
+    case InstrumentFormat::jpk_qi_data: return detail::open_jpk(path, *format, limits);
+  }
+  unknown_format(path);
+}
+
 }  // namespace
 
 ReadLimits ReadLimits::from_environment() {
@@ -44,23 +82,115 @@ ReadLimits ReadLimits::from_environment() {
   return limits;
 }
 
-bool is_instrument_file(const std::string& path) { return format_of(path).has_value(); }
+std::optional<InstrumentFormat> instrument_format(const std::string& path) {
+  for (InstrumentFormat f : {InstrumentFormat::jpk_force, InstrumentFormat::jpk_force_map,
+                             InstrumentFormat::jpk_qi_data, InstrumentFormat::ibw})
+    if (ends_with(path, std::string(".") + to_string(f))) return f;
+  if (ends_with(path, ".spm")) return InstrumentFormat::nanoscope;
+  // NanoScope numbers its files: name.000, name.001, ...
+  const std::size_t dot = path.rfind('.');
+  const std::size_t slash = path.find_last_of("/\\");
+  if (dot != std::string::npos && (slash == std::string::npos || dot > slash) && path.size() - dot == 4 &&
+      std::all_of(path.begin() + static_cast<std::ptrdiff_t>(dot) + 1, path.end(),
+                  [](char c) { return c >= '0' && c <= '9'; }))
+    return InstrumentFormat::nanoscope;
+  return std::nullopt;
+}
+
+bool is_instrument_file(const std::string& path) { return instrument_format(path).has_value(); }
+
+std::string known_instrument_formats() {
+  return ".jpk-force, .jpk-force-map, .jpk-qi-data (JPK), .ibw (Asylum / Igor), .spm or .000-.999 (Bruker NanoScope)";
+}
+
+CurveRange CurveRange::parse(const std::string& text, const std::string& what) {
+  const std::size_t colon = text.find(':');
+  auto bad = [&]() -> InputError {
+    return InputError(what + " = '" + text + "': must be A:B, A: or :B with whole numbers 0 <= A <= B (curves A to B - 1)");
+  };
+  if (colon == std::string::npos || text.find(':', colon + 1) != std::string::npos) throw bad();
+  CurveRange r;
+  auto number = [&](std::string_view s, std::size_t& out) {
+    if (s.empty()) return;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+    if (ec != std::errc() || end != s.data() + s.size()) throw bad();
+  };
+  number(std::string_view(text).substr(0, colon), r.begin);
+  number(std::string_view(text).substr(colon + 1), r.end);
+  if (r.begin > r.end) throw bad();
+  return r;
+}
+
+struct InstrumentReader::Impl {
+  std::unique_ptr<detail::CurveSource> source;
+};
+
+InstrumentReader::InstrumentReader(const std::string& path, const ReadLimits& limits)
+    : impl_(std::make_unique<Impl>(Impl{open_source(path, limits)})) {}
+InstrumentReader::~InstrumentReader() = default;
+InstrumentReader::InstrumentReader(InstrumentReader&&) noexcept = default;
+InstrumentReader& InstrumentReader::operator=(InstrumentReader&&) noexcept = default;
+
+const InstrumentFile& InstrumentReader::header() const { return impl_->source->header(); }
+std::size_t InstrumentReader::size() const { return impl_->source->size(); }
+
+InstrumentCurve InstrumentReader::curve(std::size_t i) const { return detail::checked_curve(*impl_->source, i); }
+
+namespace detail {
+
+InstrumentCurve checked_curve(const CurveSource& source, std::size_t i) {
+  if (i >= source.size())
+    throw std::out_of_range("InstrumentReader::curve: position " + std::to_string(i) + " of a file of " +
+                            std::to_string(source.size()) + " curves");
+  InstrumentCurve c = source.curve(i);
+  if (!(c.spring_constant > 0.0) || !std::isfinite(c.spring_constant))
+    throw InputError(source.header().path + ": curve " + std::to_string(c.index) + " has spring constant " +
+                     format_double(c.spring_constant) + " N/m; it must be finite and > 0");
+  return c;
+}
+
+InstrumentFile read_all(const CurveSource& source, const CurveRange& range) {
+  InstrumentFile file = source.header();
+  const std::size_t end = std::min(range.end, source.size());
+  for (std::size_t i = range.begin; i < end; ++i) file.curves.push_back(checked_curve(source, i));
+  return file;
+}
+
+namespace {
+
+class ReadWhole final : public CurveSource {
+ public:
+  explicit ReadWhole(InstrumentFile file) : curves_(std::move(file.curves)), file_(std::move(file)) {
+    file_.curves.clear();
+  }
+  const InstrumentFile& header() const override { return file_; }
+  std::size_t size() const override { return curves_.size(); }
+  InstrumentCurve curve(std::size_t i) const override { return curves_.at(i); }
+
+ private:
+  std::vector<InstrumentCurve> curves_;
+  InstrumentFile file_;
+};
+
+}  // namespace
+
+std::unique_ptr<CurveSource> source_of(InstrumentFile file) { return std::make_unique<ReadWhole>(std::move(file)); }
+
+std::unique_ptr<CurveSource> open_ibw(const std::string& path) { return source_of(read_ibw(path)); }
+
+InstrumentFile read_jpk_bytes(std::string bytes, const std::string& path, InstrumentFormat format,
+                              const ReadLimits& limits) {
+  return read_all(*open_jpk_bytes(std::move(bytes), path, format, limits));
+}
+
+}  // namespace detail
 
 InstrumentFile read_instrument_file(const std::string& path) {
   return read_instrument_file(path, ReadLimits::from_environment());
 }
 
-InstrumentFile read_instrument_file(const std::string& path, const ReadLimits& limits) {
-  const std::optional<InstrumentFormat> format = format_of(path);
-  if (!format)
-    throw InputError(path + ": not an instrument file (known: .jpk-force, .jpk-force-map, .jpk-qi-data, .ibw)");
-  InstrumentFile file =
-      *format == InstrumentFormat::ibw ? detail::read_ibw(path) : detail::read_jpk(path, *format, limits);
-  for (const InstrumentCurve& c : file.curves)
-    if (!(c.spring_constant > 0.0) || !std::isfinite(c.spring_constant))
-      throw InputError(path + ": curve " + std::to_string(c.index) + " has spring constant " +
-                       format_double(c.spring_constant) + " N/m; it must be finite and > 0");
-  return file;
+InstrumentFile read_instrument_file(const std::string& path, const ReadLimits& limits, const CurveRange& range) {
+  return detail::read_all(*open_source(path, limits), range);
 }
 
 std::vector<double> InstrumentCurve::tip_position(std::size_t s) const {

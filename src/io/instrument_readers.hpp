@@ -1,20 +1,28 @@
-// Internal: the per-format readers behind read_instrument_file (instrument.hpp).
+// Internal: whole-file reads over the per-format curve sources (curve_source.hpp), for the
+// fuzzers and the tests that build files in memory.
 #pragma once
 
+#include <memory>
 #include <string>
 
+#include "io/curve_source.hpp"
 #include "layerjkr/instrument.hpp"
 
 namespace layerjkr::detail {
 
-/// JPK archive of one of the three JPK formats.
-InstrumentFile read_jpk(const std::string& path, InstrumentFormat format, const ReadLimits& limits);
-/// The same from the archive's bytes; `path` names it in errors.
-InstrumentFile read_jpk_bytes(std::string bytes, const std::string& path, InstrumentFormat format,
-                              const ReadLimits& limits);
-/// Igor binary wave v5 (Asylum force curve).
+/// Curve i of `source`, its spring constant checked (finite and > 0) as every reader does.
+InstrumentCurve checked_curve(const CurveSource& source, std::size_t i);
+/// The curves of `range` with the file's metadata.
+InstrumentFile read_all(const CurveSource& source, const CurveRange& range = {});
+/// A source over curves already read (formats read whole, such as an Igor wave).
+std::unique_ptr<CurveSource> source_of(InstrumentFile file);
+
+/// Igor binary wave v5 (Asylum force curve), read whole.
 InstrumentFile read_ibw(const std::string& path);
 /// The same from the file's bytes; `path` names it in errors.
 InstrumentFile read_ibw_bytes(std::string bytes, const std::string& path);
+/// Every curve of a JPK archive given as bytes; `path` names it in errors.
+InstrumentFile read_jpk_bytes(std::string bytes, const std::string& path, InstrumentFormat format,
+                              const ReadLimits& limits);
 
 }  // namespace layerjkr::detail

@@ -8,9 +8,10 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <string_view>
 
 #include "io/csv_rows.hpp"
-#include "io/instrument_readers.hpp"
+#include "io/curve_source.hpp"
 #include "io/java_properties.hpp"
 #include "io/zip_archive.hpp"
 #include "layerjkr/error.hpp"
@@ -65,24 +66,52 @@ class Reader {
   const ZipArchive& zip_;
 };
 
-bool starts_with(const std::string& s, const std::string& prefix) { return s.compare(0, prefix.size(), prefix) == 0; }
+bool starts_with(std::string_view s, std::string_view prefix) { return s.substr(0, prefix.size()) == prefix; }
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-// The numbered sub-directories of `prefix` ("index/" -> 0, 1, 9, 10, ...), numerically sorted.
-std::vector<int> numbered_dirs(const std::vector<std::string>& names, const std::string& prefix) {
-  std::set<int> found;
-  for (const std::string& n : names) {
-    if (!starts_with(n, prefix)) continue;
-    const std::size_t slash = n.find('/', prefix.size());
-    if (slash == std::string::npos || slash == prefix.size()) continue;
-    int v = 0;
-    const char* b = n.data() + prefix.size();
-    const auto [end, ec] = std::from_chars(b, n.data() + slash, v);
-    if (ec == std::errc() && end == n.data() + slash) found.insert(v);
+// The number that starts `s` and ends at the next '/' ("12/segments/..." -> 12, rest
+// "segments/..."), or none.
+std::optional<int> leading_number(std::string_view& s) {
+  const std::size_t slash = s.find('/');
+  if (slash == std::string_view::npos || slash == 0) return std::nullopt;
+  int v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + slash, v);
+  if (ec != std::errc() || end != s.data() + slash || v < 0) return std::nullopt;
+  s.remove_prefix(slash + 1);
+  return v;
+}
+
+// Where each curve lives: "index/N/" (maps) or "" (a single curve) and its segment numbers,
+// both numerically sorted, from one pass over the archive's names.
+struct CurveLocation {
+  int number = 0;
+  std::string prefix;
+  std::vector<int> segments;
+};
+
+std::vector<CurveLocation> locate_curves(const ZipArchive& zip) {
+  std::map<int, std::set<int>> maps;
+  std::set<int> single;
+  for (std::size_t i = 0; i < zip.size(); ++i) {
+    std::string_view n = zip.name(i);
+    std::set<int>* segments = &single;
+    if (starts_with(n, "index/")) {
+      n.remove_prefix(6);
+      const std::optional<int> curve = leading_number(n);
+      if (!curve) continue;
+      segments = &maps[*curve];
+    }
+    if (!starts_with(n, "segments/")) continue;
+    n.remove_prefix(9);
+    if (const std::optional<int> s = leading_number(n)) segments->insert(*s);
   }
-  return {found.begin(), found.end()};
+  std::vector<CurveLocation> out;
+  if (maps.empty()) out.push_back({0, "", {single.begin(), single.end()}});
+  for (const auto& [number, segments] : maps)
+    out.push_back({number, "index/" + std::to_string(number) + "/", {segments.begin(), segments.end()}});
+  return out;
 }
 
 // Copies every shared `<block>.<number>.<rest>` to `<target><rest>` for the header's
@@ -263,85 +292,102 @@ InstrumentSegment read_segment(const Reader& in, const Properties& shared, const
   return s;
 }
 
-InstrumentFile read_archive(const ZipArchive& zip, const std::string& path, InstrumentFormat format) {
-  const Reader in(path, zip);
-  InstrumentFile file;
-  file.path = path;
-  file.format = format;
-  const Properties top = in.properties("header.properties");
-  const Properties shared = zip.contains("shared-data/header.properties") ? in.properties("shared-data/header.properties")
-                                                                           : Properties{};
-  if (const std::string* v = find_suffix(top, ".description.instrument")) file.instrument = *v;
-  if (const std::string* v = find_suffix(top, ".description.source-software")) file.software = *v;
-  if (find_suffix(top, ".position-pattern.grid.ilength")) {
-    // A map's grid: every value present and finite, the shape at least one pixel, the
-    // size positive, so that the pixel of a position is always defined.
-    const std::string where = "header.properties";
-    auto need = [&](const std::string& suffix) -> const std::string& {
-      const std::string* v = find_suffix(top, suffix);
-      if (!v) in.fail(where, "the map grid has no '*" + suffix + "'");
-      return *v;
-    };
-    auto shape = [&](const std::string& suffix) {
-      return static_cast<int>(in.whole(suffix.substr(1), need(suffix), 1, 1e6, where));
-    };
-    auto size = [&](const std::string& suffix) {
-      const double v = in.to_number(suffix.substr(1), need(suffix), where);
-      if (!(v > 0.0)) in.fail(where, "'" + suffix.substr(1) + "' = '" + need(suffix) + "' must be > 0 (m)");
-      return v;
-    };
-    file.grid_shape_x = shape(".position-pattern.grid.ilength");
-    file.grid_shape_y = shape(".position-pattern.grid.jlength");
-    file.grid_size_x = size(".position-pattern.grid.ulength");
-    file.grid_size_y = size(".position-pattern.grid.vlength");
-    file.grid_center_x = in.to_number("xcenter", need(".position-pattern.grid.xcenter"), where);
-    file.grid_center_y = in.to_number("ycenter", need(".position-pattern.grid.ycenter"), where);
-  }
-  const std::vector<int> indices = numbered_dirs(zip.names(), "index/");
-  std::vector<std::string> prefixes;
-  if (indices.empty()) prefixes.emplace_back("");
-  for (int i : indices) prefixes.push_back("index/" + std::to_string(i) + "/");
-  for (std::size_t c = 0; c < prefixes.size(); ++c) {
-    const std::string& p = prefixes[c];
-    InstrumentCurve curve;
-    curve.index = indices.empty() ? 0 : indices[c];
-    const Properties header = p.empty() ? top : in.properties(p + "header.properties");
-    if (file.instrument.empty())
-      if (const std::string* v = find_suffix(header, ".description.instrument")) file.instrument = *v;
-    if (file.software.empty())
-      if (const std::string* v = find_suffix(header, ".description.source-software")) file.software = *v;
-    const std::string where = p + "header.properties";
-    curve.position_index = suffix_int(in, header, ".header.position-index", -1, -1, 1e9, where);
-    curve.x = suffix_number(in, header, ".header.position.x", curve.x, where);
-    curve.y = suffix_number(in, header, ".header.position.y", curve.y, where);
-    if (file.grid_shape_x > 0 && std::isfinite(curve.x) && std::isfinite(curve.y)) {
-      auto pixel = [](double v, double center, double size, int shape) {
-        const double i = std::floor((v - (center - 0.5 * size)) / size * shape);
-        return std::isnan(i) ? 0 : static_cast<int>(std::clamp(i, 0.0, static_cast<double>(shape - 1)));
-      };
-      curve.grid_x = pixel(curve.x, file.grid_center_x, file.grid_size_x, file.grid_shape_x);
-      curve.grid_y = pixel(curve.y, file.grid_center_y, file.grid_size_y, file.grid_shape_y);
-    }
-    const std::vector<int> segments = numbered_dirs(zip.names(), p + "segments/");
-    if (segments.empty()) in.fail(p.empty() ? "the archive" : p, "holds no segments");
-    for (int s : segments)
-      curve.segments.push_back(read_segment(in, shared, p + "segments/" + std::to_string(s) + "/", curve));
-    file.curves.push_back(std::move(curve));
-  }
-  return file;
+// The map grid of the top header: every value present and finite, the shape at least one
+// pixel, the size positive, so that the pixel of a position is always defined.
+void read_grid(const Reader& in, const Properties& top, InstrumentFile& file) {
+  if (!find_suffix(top, ".position-pattern.grid.ilength")) return;
+  const std::string where = "header.properties";
+  auto need = [&](const std::string& suffix) -> const std::string& {
+    const std::string* v = find_suffix(top, suffix);
+    if (!v) in.fail(where, "the map grid has no '*" + suffix + "'");
+    return *v;
+  };
+  auto shape = [&](const std::string& suffix) {
+    return static_cast<int>(in.whole(suffix.substr(1), need(suffix), 1, 1e6, where));
+  };
+  auto size = [&](const std::string& suffix) {
+    const double v = in.to_number(suffix.substr(1), need(suffix), where);
+    if (!(v > 0.0)) in.fail(where, "'" + suffix.substr(1) + "' = '" + need(suffix) + "' must be > 0 (m)");
+    return v;
+  };
+  file.grid_shape_x = shape(".position-pattern.grid.ilength");
+  file.grid_shape_y = shape(".position-pattern.grid.jlength");
+  file.grid_size_x = size(".position-pattern.grid.ulength");
+  file.grid_size_y = size(".position-pattern.grid.vlength");
+  file.grid_center_x = in.to_number("xcenter", need(".position-pattern.grid.xcenter"), where);
+  file.grid_center_y = in.to_number("ycenter", need(".position-pattern.grid.ycenter"), where);
 }
+
+void describe(const Properties& header, InstrumentFile& file) {
+  if (file.instrument.empty())
+    if (const std::string* v = find_suffix(header, ".description.instrument")) file.instrument = *v;
+  if (file.software.empty())
+    if (const std::string* v = find_suffix(header, ".description.source-software")) file.software = *v;
+}
+
+// Opening reads the top and shared headers and locates the curves; curve(i) reads curve i's
+// header, segment headers and channels, nothing else.
+class JpkSource final : public CurveSource {
+ public:
+  JpkSource(std::unique_ptr<ZipArchive> zip, const std::string& path, InstrumentFormat format)
+      : zip_(std::move(zip)), in_(path, *zip_) {
+    file_.path = path;
+    file_.format = format;
+    top_ = in_.properties("header.properties");
+    if (zip_->contains("shared-data/header.properties")) shared_ = in_.properties("shared-data/header.properties");
+    describe(top_, file_);
+    read_grid(in_, top_, file_);
+    curves_ = locate_curves(*zip_);
+    // Maps name the instrument in each curve's header: the first one's completes the metadata.
+    if ((file_.instrument.empty() || file_.software.empty()) && !curves_.front().prefix.empty())
+      describe(in_.properties(curves_.front().prefix + "header.properties"), file_);
+  }
+
+  const InstrumentFile& header() const override { return file_; }
+  std::size_t size() const override { return curves_.size(); }
+
+  InstrumentCurve curve(std::size_t i) const override {
+    const CurveLocation& at = curves_.at(i);
+    const std::string& p = at.prefix;
+    InstrumentCurve curve;
+    curve.index = at.number;
+    const Properties own = p.empty() ? Properties{} : in_.properties(p + "header.properties");
+    const Properties& header = p.empty() ? top_ : own;
+    const std::string where = p + "header.properties";
+    curve.position_index = suffix_int(in_, header, ".header.position-index", -1, -1, 1e9, where);
+    curve.x = suffix_number(in_, header, ".header.position.x", curve.x, where);
+    curve.y = suffix_number(in_, header, ".header.position.y", curve.y, where);
+    if (file_.grid_shape_x > 0 && std::isfinite(curve.x) && std::isfinite(curve.y)) {
+      auto pixel = [](double v, double center, double size, int shape) {
+        const double k = std::floor((v - (center - 0.5 * size)) / size * shape);
+        return std::isnan(k) ? 0 : static_cast<int>(std::clamp(k, 0.0, static_cast<double>(shape - 1)));
+      };
+      curve.grid_x = pixel(curve.x, file_.grid_center_x, file_.grid_size_x, file_.grid_shape_x);
+      curve.grid_y = pixel(curve.y, file_.grid_center_y, file_.grid_size_y, file_.grid_shape_y);
+    }
+    if (at.segments.empty()) in_.fail(p.empty() ? "the archive" : p, "holds no segments");
+    for (int s : at.segments)
+      curve.segments.push_back(read_segment(in_, shared_, p + "segments/" + std::to_string(s) + "/", curve));
+    return curve;
+  }
+
+ private:
+  std::unique_ptr<ZipArchive> zip_;
+  Reader in_;
+  InstrumentFile file_;
+  Properties top_, shared_;
+  std::vector<CurveLocation> curves_;
+};
 
 }  // namespace
 
-InstrumentFile read_jpk(const std::string& path, InstrumentFormat format, const ReadLimits& limits) {
-  const ZipArchive zip(path, limits);
-  return read_archive(zip, path, format);
+std::unique_ptr<CurveSource> open_jpk(const std::string& path, InstrumentFormat format, const ReadLimits& limits) {
+  return std::make_unique<JpkSource>(std::make_unique<ZipArchive>(path, limits), path, format);
 }
 
-InstrumentFile read_jpk_bytes(std::string bytes, const std::string& path, InstrumentFormat format,
-                              const ReadLimits& limits) {
-  const ZipArchive zip(std::move(bytes), path, limits);
-  return read_archive(zip, path, format);
+std::unique_ptr<CurveSource> open_jpk_bytes(std::string bytes, const std::string& path, InstrumentFormat format,
+                                            const ReadLimits& limits) {
+  return std::make_unique<JpkSource>(std::make_unique<ZipArchive>(std::move(bytes), path, limits), path, format);
 }
 
 }  // namespace layerjkr::detail
