@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "layerjkr/curve_data.hpp"
+#include "layerjkr/instrument.hpp"
 #include "layerjkr/scene.hpp"
 #include "layerjkr/types.hpp"
 
@@ -183,14 +184,19 @@ struct BatchOptions {
   /// (a fit cannot be interrupted), so the items that ran are always a prefix of the input,
   /// every one of them passed to on_item; the rest are returned with `cancelled` set.
   std::function<bool()> cancelled;
-  /// Called with each item's identity (source, curve, map position; nothing read yet) before it
-  /// is read: true skips it (`skipped` set), e.g. because an earlier run already fitted it.
+  /// Called with each item's identity (source and curve number; nothing read yet, so no map
+  /// position) before it is read: true skips it (`skipped` set), e.g. because an earlier run
+  /// already fitted it.
   std::function<bool(const BatchItem&)> skip;
   /// Called with each finished item (fitted, failed or skipped) and its index, in input order:
   /// as soon as it and every earlier item are finished, so a caller can write results as they
   /// come and keep a deterministic order. If on_item or progress throws, no further curve starts
   /// and the batch rethrows the first such exception once the running fits finish.
   std::function<void(std::size_t, const BatchItem&)> on_item;
+  /// fit_files only: the curves of each instrument file to fit, by position in the file (a
+  /// range of a map is read without the rest). A file the range selects no curve of is one
+  /// failed item saying so. CSV files hold one curve each and ignore it.
+  CurveRange curves;
 };
 
 /// Fits many curves in parallel with the same scene and options. A curve that cannot be
@@ -202,7 +208,10 @@ std::vector<BatchItem> fit_batch(const std::vector<CurveData>& curves, const Sce
 /// The same for files: CSV files, each read with `csv`, and instrument files
 /// (instrument.hpp), of which every curve is its own item, with its number, map position and
 /// pixel, its tip position from the file's spring constant (or csv.spring_constant when > 0).
-/// A file that cannot be read is one failed item; it never stops the batch. Only regular files
+/// Instrument files are streamed: each file's index is read first (to number the items), each
+/// curve by the worker that fits it, so a map's samples are never held whole; memory grows
+/// only with the items' summaries. A file that cannot be read is one failed item, a curve that
+/// cannot be read its own failed item; neither stops the batch. Only regular files
 /// (links followed) are opened: a FIFO, a directory, a dangling or looping link is a failed item
 /// naming what it is, checked before anything opens it (a FIFO would block).
 std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Scene& scene,

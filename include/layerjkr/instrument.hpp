@@ -13,8 +13,16 @@
 // Igor: one 2-D float wave with columns Raw, Defl, ZSnsr (metres); force = Defl * k with k
 // = SpringConstant from the note, measured height = -ZSnsr, piezo height = -Raw, segments
 // split at the note's Indexes (Direction 1: extend, -1: retract).
+// Bruker NanoScope force files (single ramps and force volumes, docs/instrument-files.md):
+// force = raw x V/LSB of the deflection channel's `@4:Z scale` x `Sens. DeflSens` x
+// `Spring Constant` (v9.2+ force volume 4-byte samples are counts x 256: divided by 256);
+// extend = the first block, stored newest first and reversed to time order, retract = the
+// second; `Samps/line: N1 N2` = (extend, retract); height from the ramp (`@4:Ramp Size` x
+// `Sens. Zsens`, step ramp/N, 0 at the turnaround) or from a stored Z sensor channel;
+// force volume curve c at grid_x = c % points per line, grid_y = c / points per line.
 // Every value of ../shared/data/instrument/reference.json is reproduced by the tests
-// (tests/io/test_instrument.cpp): JPK bit for bit, Igor to 1e-7 (float32 data).
+// (tests/io/test_instrument.cpp): JPK bit for bit, Igor to 1e-7 (float32 data); every value
+// of bruker/reference.json by tests/io/test_nanoscope.cpp.
 #pragma once
 
 #include <cstddef>
@@ -126,6 +134,9 @@ class InstrumentReader {
   /// The curve at position i (< size()); throws InputError naming the file and the curve if it
   /// cannot be read or its spring constant is not finite and > 0, std::out_of_range past the end.
   InstrumentCurve curve(std::size_t i) const;
+  /// The number curve i carries (InstrumentCurve::index: JPK's index/N, else the position),
+  /// known without reading the curve; std::out_of_range past the end.
+  int curve_number(std::size_t i) const;
 
  private:
   struct Impl;

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <exception>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -35,8 +36,10 @@ std::string not_a_file(const std::string& path) {
   return path + ": is not a regular file";
 }
 
-template <class Load>
-std::vector<BatchItem> run_batch(std::vector<BatchItem> items, Load load, const Scene& scene,
+// `load(i, item)` reads item i (and may fill in its map position); `unread(i)` is told of an
+// item that will not be loaded (skipped or cancelled), so that a file reader can close.
+template <class Load, class Unread>
+std::vector<BatchItem> run_batch(std::vector<BatchItem> items, Load load, Unread unread, const Scene& scene,
                                  const FitOptions& options, const BatchOptions& batch, bool cancelled = false) {
   if (batch.jobs < 1) throw DomainError("fit_batch", "jobs", batch.jobs, ">= 1");
   options.validate();
@@ -74,8 +77,9 @@ std::vector<BatchItem> run_batch(std::vector<BatchItem> items, Load load, const 
       try {
         if (batch.skip && batch.skip(item)) {
           item.skipped = true;
+          unread(i);
         } else {
-          item.summary = fit(load(i), scene, options);
+          item.summary = fit(load(i, item), scene, options);
           item.summary.delta = {};
           item.summary.P = {};
           item.summary.P_fit = {};
@@ -95,6 +99,7 @@ std::vector<BatchItem> run_batch(std::vector<BatchItem> items, Load load, const 
   for (auto& t : pool) t.join();
   if (hook_error) std::rethrow_exception(hook_error);
   for (std::size_t i = std::min(next.load(), n); i < n; ++i) {
+    unread(i);
     items[i].cancelled = true;
     items[i].error = "cancelled before it was fitted";
   }
@@ -107,20 +112,67 @@ std::vector<BatchItem> fit_batch(const std::vector<CurveData>& curves, const Sce
                                  const FitOptions& options, const BatchOptions& batch) {
   std::vector<BatchItem> items(curves.size());
   for (std::size_t i = 0; i < curves.size(); ++i) items[i].source = curves[i].source;
-  return run_batch(std::move(items), [&](std::size_t i) { return curves[i]; }, scene, options, batch);
+  return run_batch(
+      std::move(items), [&](std::size_t i, BatchItem&) { return curves[i]; }, [](std::size_t) {}, scene, options, batch);
 }
+
+namespace {
+
+// An instrument file of a batch: its reader while curves of it remain to be read. Opened once
+// when the batch is listed; a map stays open for its workers, a single-curve file is closed
+// and reopened by its worker, so that a directory of 10 000 files never holds 10 000 handles.
+class FileSlot {
+ public:
+  FileSlot(std::string path, std::unique_ptr<InstrumentReader> reader, std::size_t curves)
+      : path_(std::move(path)), reader_(std::move(reader)), remaining_(curves) {}
+
+  // The curve at `position`, its reader opened again if it was closed; the last curve of the
+  // file closes it.
+  InstrumentCurve read(std::size_t position) {
+    std::shared_ptr<const InstrumentReader> reader;
+    {
+      const std::lock_guard<std::mutex> guard(lock_);
+      if (!reader_) reader_ = std::make_shared<const InstrumentReader>(path_);
+      reader = reader_;
+    }
+    struct Release {
+      FileSlot& slot;
+      ~Release() { slot.release(); }
+    } release_after{*this};  // also when the curve cannot be read
+    return reader->curve(position);
+  }
+  // A curve of this file that will not be read (skipped, failed before reading, cancelled).
+  void release() {
+    const std::lock_guard<std::mutex> guard(lock_);
+    if (remaining_ > 0 && --remaining_ == 0) reader_.reset();
+  }
+
+ private:
+  std::string path_;
+  std::mutex lock_;
+  std::shared_ptr<const InstrumentReader> reader_;
+  std::size_t remaining_;
+};
+
+// What a worker loads for each item: a CSV path, a curve of an instrument file, or an error
+// found while listing.
+struct Slot {
+  std::string csv_path;
+  std::shared_ptr<FileSlot> file;
+  std::size_t position = 0;
+  std::string error;
+};
+
+// Maps of at least this many curves stay open between listing and reading: reopening a
+// 65 536-curve archive costs as much as reading a few thousand of its curves.
+constexpr std::size_t kKeepOpenCurves = 64;
+
+}  // namespace
 
 std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Scene& scene,
                                  const FitOptions& options, const CsvOptions& csv,
                                  const BatchOptions& batch) {
   csv.validate();
-  // Instrument files are read here, once each (a map holds many curves); CSV files are read
-  // by the workers. A slot without data and without a path carries a read error.
-  struct Slot {
-    std::string csv_path;
-    std::optional<CurveData> data;
-    std::string error;
-  };
   std::vector<BatchItem> items;
   std::vector<Slot> slots;
   bool cancelled = false;
@@ -128,6 +180,7 @@ std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Sc
     items.push_back(std::move(item));
     slots.push_back(std::move(slot));
   };
+  const CurveRange& range = batch.curves;
   for (const std::string& path : paths) {
     BatchItem file_item;
     file_item.source = path;
@@ -141,41 +194,51 @@ std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Sc
       continue;
     }
     try {
-      const InstrumentFile file = read_instrument_file(path);
-      for (const InstrumentCurve& c : file.curves) {
+      auto reader = std::make_unique<InstrumentReader>(path);
+      const std::size_t n = reader->size(), end = std::min(range.end, n);
+      if (range.begin >= end)
+        throw InputError(path + ": the curve range " + std::to_string(range.begin) + ":" +
+                         (range.end == CurveRange{}.end ? std::string() : std::to_string(range.end)) +
+                         " selects none of its " + std::to_string(n) + " curves (positions 0 to " +
+                         std::to_string(n - 1) + ")");
+      std::vector<int> numbers;
+      for (std::size_t i = range.begin; i < end; ++i) numbers.push_back(reader->curve_number(i));
+      if (n < kKeepOpenCurves) reader.reset();
+      const auto file = std::make_shared<FileSlot>(path, std::move(reader), end - range.begin);
+      for (std::size_t i = range.begin; i < end; ++i) {
         BatchItem item;
-        item.source = file.curves.size() > 1 ? path + "#" + std::to_string(c.index) : path;
-        item.curve = c.index;
-        item.x = c.x;
-        item.y = c.y;
-        item.grid_x = c.grid_x;
-        item.grid_y = c.grid_y;
-        Slot s;
-        try {
-          s.data = to_curve_data(c, item.source, csv.spring_constant);
-        } catch (const std::exception& e) {
-          s.error = e.what();
-        }
-        add(std::move(item), std::move(s));
+        item.curve = numbers[i - range.begin];
+        item.source = n > 1 ? path + "#" + std::to_string(item.curve) : path;
+        add(std::move(item), Slot{"", file, i, ""});
       }
     } catch (const std::exception& e) {  // the file's own row, never the batch
       file_slot.error = e.what();
       add(std::move(file_item), std::move(file_slot));
     }
   }
-  return run_batch(
+  std::vector<BatchItem> done = run_batch(
       std::move(items),
-      [&](std::size_t i) {
+      [&](std::size_t i, BatchItem& item) {
         const Slot& s = slots[i];
         if (!s.error.empty()) throw InputError(s.error);
-        // Checked again: the file may have changed since the list was made.
-        if (!s.data) {
-          const std::string why = not_a_file(s.csv_path);
-          if (!why.empty()) throw InputError(why);
+        if (s.file) {
+          const InstrumentCurve c = s.file->read(s.position);
+          item.x = c.x;
+          item.y = c.y;
+          item.grid_x = c.grid_x;
+          item.grid_y = c.grid_y;
+          return to_curve_data(c, item.source, csv.spring_constant);
         }
-        return s.data ? *s.data : read_curve_csv(s.csv_path, csv);
+        // Checked again: the file may have changed since the list was made.
+        const std::string why = not_a_file(s.csv_path);
+        if (!why.empty()) throw InputError(why);
+        return read_curve_csv(s.csv_path, csv);
+      },
+      [&](std::size_t i) {
+        if (slots[i].file) slots[i].file->release();
       },
       scene, options, batch, cancelled);
+  return done;
 }
 
 }  // namespace layerjkr

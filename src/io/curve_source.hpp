@@ -22,6 +22,8 @@ class CurveSource {
   /// The curve at position i in [0, size()), in file order, read on its own. Safe to call
   /// from several threads at once. Throws InputError naming the file, the curve and the field.
   virtual InstrumentCurve curve(std::size_t i) const = 0;
+  /// The number curve i will carry (InstrumentCurve::index), known without reading it.
+  virtual int number(std::size_t i) const { return static_cast<int>(i); }
 };
 
 std::unique_ptr<CurveSource> open_jpk(const std::string& path, InstrumentFormat format, const ReadLimits& limits);

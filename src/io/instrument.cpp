@@ -136,6 +136,13 @@ std::size_t InstrumentReader::size() const { return impl_->source->size(); }
 
 InstrumentCurve InstrumentReader::curve(std::size_t i) const { return detail::checked_curve(*impl_->source, i); }
 
+int InstrumentReader::curve_number(std::size_t i) const {
+  if (i >= size())
+    throw std::out_of_range("InstrumentReader::curve_number: position " + std::to_string(i) + " of a file of " +
+                            std::to_string(size()) + " curves");
+  return impl_->source->number(i);
+}
+
 namespace detail {
 
 InstrumentCurve checked_curve(const CurveSource& source, std::size_t i) {

@@ -345,6 +345,7 @@ class JpkSource final : public CurveSource {
 
   const InstrumentFile& header() const override { return file_; }
   std::size_t size() const override { return curves_.size(); }
+  int number(std::size_t i) const override { return curves_.at(i).number; }
 
   InstrumentCurve curve(std::size_t i) const override {
     const CurveLocation& at = curves_.at(i);
