@@ -2,6 +2,7 @@
 // (fit-map: fit_map.cpp).
 #include "fit_commands.hpp"
 
+#include <algorithm>
 #include <iostream>
 #include <optional>
 
@@ -13,36 +14,52 @@
 namespace layerjkr::cli {
 namespace {
 
-// The curve `fit` reads: a CSV file, or one curve of an instrument file.
+// The curve `fit` reads: a CSV file, or one curve of an instrument file (only that one is read).
 CurveData read_fit_data(const std::string& path, const Prepared& p) {
-  if (!is_instrument_file(path)) return read_curve_csv(path, p.csv);
-  const InstrumentFile file = read_instrument_file(path);
-  if (p.csv.curve < 0 && file.curves.size() > 1)
-    throw InputError(path + ": holds " + std::to_string(file.curves.size()) +
+  if (!is_instrument_file(path)) {
+    try {
+      return read_curve_csv(path, p.csv);
+    } catch (const InputError& e) {
+      // A binary file: say which formats are known rather than only that it is not text.
+      if (std::string(e.what()).find("NUL bytes") == std::string::npos) throw;
+      throw InputError(std::string(e.what()) + "; not CSV, and its name is not of a known instrument format (known: " +
+                       known_instrument_formats() + ")");
+    }
+  }
+  const InstrumentReader reader(path);
+  if (p.csv.curve < 0 && reader.size() > 1)
+    throw InputError(path + ": holds " + std::to_string(reader.size()) +
                      " curves; select one with --curve N, or fit them all with fit-map");
-  for (const InstrumentCurve& c : file.curves)
-    if (p.csv.curve < 0 || c.index == p.csv.curve) return to_curve_data(c, path, p.csv.spring_constant);
+  for (std::size_t i = 0; i < reader.size(); ++i)
+    if (p.csv.curve < 0 || reader.curve_number(i) == p.csv.curve) return to_curve_data(reader.curve(i), path, p.csv.spring_constant);
   throw InputError(path + ": has no curve " + std::to_string(p.csv.curve));
 }
 
 }  // namespace
 
-int run_export(const std::string& path, const std::string& out) {
+int run_export(const std::string& path, const std::string& out, const std::string& curves) {
   check_not_input(out, "--out", {path});
+  const CurveRange range = curves.empty() ? CurveRange{} : CurveRange::parse(curves, "--curves");
   OutputFile csv(out);
-  const InstrumentFile file = read_instrument_file(path);
-  std::string text = "curve,segment,force,height,tip_position\n";
-  for (const InstrumentCurve& c : file.curves) {
+  const InstrumentReader reader(path);
+  const std::size_t end = std::min(range.end, reader.size());
+  if (range.begin >= end)
+    throw InputError("--curves " + curves + ": " + path + " holds " + std::to_string(reader.size()) + " curves");
+  csv.write("curve,segment,force,height,tip_position\n");
+  // One curve at a time: a map is never held whole, in samples or in text.
+  for (std::size_t k = range.begin; k < end; ++k) {
+    const InstrumentCurve c = reader.curve(k);
     const CurveData d = to_curve_data(c, path);
+    std::string text;
     std::size_t row = 0;
     for (const InstrumentSegment& seg : c.segments)
       for (std::size_t i = 0; i < seg.force.size(); ++i, ++row)
         text += std::to_string(c.index) + "," + std::to_string(d.segment[row]) + "," + format_double(seg.force[i]) +
                 "," + format_double(seg.height[i]) + "," + format_double(-d.delta[row]) + "\n";
+    csv.write(text);
   }
-  csv.write(text);
   csv.commit();
-  std::cerr << "export: " << file.curves.size() << " curve(s) of " << path << " written to " << out << "\n";
+  std::cerr << "export: " << end - range.begin << " curve(s) of " << path << " written to " << out << "\n";
   return 0;
 }
 

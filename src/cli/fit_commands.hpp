@@ -13,9 +13,10 @@ namespace layerjkr::cli {
 int run_fit(const FitArguments& args, const std::string& data, const std::string& report,
             const std::string& plot);
 
-/// `layerjkr export FILE --out OUT.csv`: every curve of an instrument file as one CSV
-/// (curve,segment,force,height,tip_position), which `fit` reads back.
-int run_export(const std::string& path, const std::string& out);
+/// `layerjkr export FILE --out OUT.csv [--curves A:B]`: every curve (or those at positions A to
+/// B - 1) of an instrument file as one CSV (curve,segment,force,height,tip_position), which
+/// `fit` reads back; written curve by curve.
+int run_export(const std::string& path, const std::string& out, const std::string& curves = "");
 
 /// `layerjkr fit-map INPUT... --out RESULTS.csv [--plot-dir DIR] [--resume]`: one row per curve,
 /// written in input order as the curves finish, progress on stderr; with a plot directory, one
@@ -23,7 +24,10 @@ int run_export(const std::string& path, const std::string& out);
 /// starts, the running ones finish, the table so far is committed, and it returns 130 / 143.
 /// With `resume`, the rows of an existing table (same header) are kept and their curves (by
 /// file and curve cells) not fitted again.
+/// `curves` ("A:B", empty for all) selects the curves of each map by position; reading skips
+/// the rest. The progress bar (curves/s, time left) is drawn only when stderr is a terminal.
 int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
-                const std::string& out, const std::string& plot_dir = "", bool resume = false);
+                const std::string& out, const std::string& plot_dir = "", bool resume = false,
+                const std::string& curves = "");
 
 }  // namespace layerjkr::cli

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <deque>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,8 @@
 #include <mutex>
 #include <sstream>
 #include <utility>
+
+#include <unistd.h>
 
 #include "files.hpp"
 #include "fit_commands.hpp"
@@ -105,7 +108,7 @@ class StopOnSignals {
 }  // namespace
 
 int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
-                const std::string& out, const std::string& plot_dir, bool resume) {
+                const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves) {
   const Prepared p = prepare(args);
   check_count("--jobs", jobs, 1, kMaxJobs);
   if (resume && !plot_dir.empty())
@@ -125,6 +128,7 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
   std::size_t rows = 0, failed = 0, skipped = 0;
   BatchOptions b;
   b.jobs = jobs;
+  if (!curves.empty()) b.curves = CurveRange::parse(curves, "--curves");
   b.cancelled = [] { return stop_signal.load() != 0; };
   if (resume)
     b.skip = [&](const BatchItem& it) {
@@ -153,17 +157,23 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
   const auto t0 = std::chrono::steady_clock::now();
   auto last = t0 - std::chrono::seconds(1);
   bool drawn = false;
-  b.progress = [&](std::size_t done, std::size_t total) {
-    const auto now = std::chrono::steady_clock::now();
-    if (done != total && now - last < std::chrono::milliseconds(200)) return;
-    last = now;
-    drawn = done != total;
-    const int width = 30, filled = static_cast<int>(width * done / total);
-    std::cerr << "\rfit-map [" << std::string(filled, '#') << std::string(width - filled, ' ') << "] "
-              << done << "/" << total << "  "
-              << std::chrono::duration<double>(now - t0).count() << " s" << std::flush;
-    if (done == total) std::cerr << "\n";
-  };
+  // A bar only for a person watching: logs and pipes get the one-line summary at the end.
+  if (isatty(STDERR_FILENO))
+    b.progress = [&](std::size_t done, std::size_t total) {
+      const auto now = std::chrono::steady_clock::now();
+      if (done != total && now - last < std::chrono::milliseconds(200)) return;
+      last = now;
+      drawn = true;
+      const double seconds = std::chrono::duration<double>(now - t0).count();
+      const double rate = seconds > 0.0 ? static_cast<double>(done) / seconds : 0.0;
+      const int width = 30, filled = static_cast<int>(width * done / total);
+      char line[160];
+      std::snprintf(line, sizeof line, "\rfit-map [%s%s] %zu/%zu  %.0f curves/s  %.0f s left  ",
+                    std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                    std::string(static_cast<std::size_t>(width - filled), ' ').c_str(), done, total, rate,
+                    rate > 0.0 ? static_cast<double>(total - done) / rate : 0.0);
+      std::cerr << line << std::flush;
+    };
   std::vector<BatchItem> items;
   {
     const StopOnSignals stop;

@@ -3,7 +3,7 @@
 //   layerjkr summary SCENE.json
 //   layerjkr fit DATA.csv --scene S.json --free E,w,delta0 [--out R.json] [--plot F.png] ...
 //   layerjkr fit-map DIR_OR_GLOB... --scene S.json --free ... --jobs N --out RESULTS.csv [--resume]
-//   layerjkr export FILE.jpk-force|.jpk-force-map|.jpk-qi-data|.ibw --out OUT.csv
+//   layerjkr export FILE.jpk-force|.jpk-force-map|.jpk-qi-data|.ibw|.spm|.000 --out OUT.csv [--curves A:B]
 // Exit codes: 0 success, 2 invalid scene or arguments, 1 internal failure, 130 / 143 fit-map
 // stopped by SIGINT / SIGTERM. Every error is one line on stderr.
 #include <algorithm>
@@ -108,7 +108,7 @@ static int run_main(int argc, char** argv) {
   CLI::App* fit = app.add_subcommand(
       "fit", "Fit a measured curve (CSV or instrument file) with a scene's model: estimates, errors, identifiability");
   fit->add_option("data", data_path, "Curve CSV (delta,P[,a][,weight][,segment] | tip_position,force | z,deflection | "
-                                     "an export) or a JPK / Igor file")
+                                     "an export) or an instrument file (JPK, Igor, Bruker NanoScope)")
       ->required();
   layerjkr::cli::add_fit_options(*fit, fit_args);
   fit->add_option("--out", report_path, "Write the JSON report here");
@@ -124,14 +124,19 @@ static int run_main(int argc, char** argv) {
   fit_map->add_option("--out", map_out, "Results CSV")->required();
   fit_map->add_option("--plot-dir", map_plot_dir,
                       "Draw each fitted field (parameters, rms, status) as a heat-map PNG over the map grid (gnuplot)");
+  std::string map_curves, export_curves;
+  fit_map->add_option("--curves", map_curves,
+                      "Fit only the curves at positions A to B - 1 of each map (A:B, A: or :B; 0-based, file order); "
+                      "the rest are not read");
   fit_map->add_flag("--resume", map_resume,
                     "Keep the rows of an existing --out table (same header) and fit only the curves it lacks");
 
   std::string export_path, export_out;
   CLI::App* export_cmd = app.add_subcommand(
-      "export", "Write every curve of an instrument file (JPK, Igor) as CSV: curve,segment,force,height,tip_position");
-  export_cmd->add_option("file", export_path, "Instrument file (.jpk-force, .jpk-force-map, .jpk-qi-data, .ibw)")
+      "export", "Write every curve of an instrument file (JPK, Igor, Bruker) as CSV: curve,segment,force,height,tip_position");
+  export_cmd->add_option("file", export_path, "Instrument file (" + layerjkr::known_instrument_formats() + ")")
       ->required();
+  export_cmd->add_option("--curves", export_curves, "Only the curves at positions A to B - 1 (A:B, A: or :B)");
   export_cmd->add_option("--out", export_out, "CSV file to write")->required();
 
   layerjkr::cli::DiscreteArguments discrete_args;
@@ -160,8 +165,8 @@ static int run_main(int argc, char** argv) {
   try {
     if (*curve) return run_curve(scene_path, at, a_max, points);
     if (*fit) return layerjkr::cli::run_fit(fit_args, data_path, report_path, plot_path);
-    if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out, map_plot_dir, map_resume);
-    if (*export_cmd) return layerjkr::cli::run_export(export_path, export_out);
+    if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out, map_plot_dir, map_resume, map_curves);
+    if (*export_cmd) return layerjkr::cli::run_export(export_path, export_out, export_curves);
     if (*discrete) return layerjkr::cli::run_discrete(discrete_args);
     return run_summary(scene_path);
   } catch (const layerjkr::NumericalError& e) {

@@ -64,8 +64,7 @@ std::unique_ptr<detail::CurveSource> open_source(const std::string& path, const 
   if (!format) unknown_format(path);
   switch (*format) {
     case InstrumentFormat::ibw: return detail::open_ibw(path);
-    case InstrumentFormat::nanoscope:  // TRANSITIONAL until the NanoScope reader (branch bruker) merges
-      throw InputError(path + ": Bruker NanoScope files are not read by this build");
+    case InstrumentFormat::nanoscope: return detail::open_nanoscope(path, limits);
     case InstrumentFormat::jpk_force:
     case InstrumentFormat::jpk_force_map:
     case InstrumentFormat::jpk_qi_data: return detail::open_jpk(path, *format, limits);

@@ -81,7 +81,7 @@ TEST_CASE("fit-map fits a directory in parallel and reports a bad curve without 
   INFO(r.err);
   REQUIRE(r.code == 0);
   CHECK(r.err.find("6 of 7 curves fitted") != std::string::npos);
-  CHECK(r.err.find("fit-map [") != std::string::npos);  // the progress bar
+  CHECK(r.err.find("fit-map [") == std::string::npos);  // stderr is a file: no progress bar
   const auto rows = lines(slurp(out));
   REQUIRE(rows.size() == 8);
   CHECK(rows[0] == "file,curve,x,y,grid_x,grid_y,status,error,model,converged,iterations,rms_residual,identifiable,"
@@ -136,4 +136,21 @@ TEST_CASE("fit and fit-map reject bad data and options with exit 2 and no output
     CHECK(r.err.find(c.expected) != std::string::npos);
     CHECK_FALSE(fs::exists(out));
   }
+}
+
+TEST_CASE("fit-map draws a progress bar with curves per second and time left on a terminal", "[cli][fit-map]") {
+  if (std::system("command -v script >/dev/null 2>&1") != 0) {
+    test::report_skip("the program `script` (util-linux) is absent: no terminal to run fit-map on");
+    return;
+  }
+  const std::string out = unique("tty_map.csv");
+  // script(1) gives the CLI a pseudo-terminal; what it draws there arrives on script's stdout.
+  const Run r = run("script -qec '" + cli_path() + " fit-map " + sample_curve() + sample_fit_flags() +
+                        " --jobs 1 --out " + out + "' /dev/null",
+                    true);
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("fit-map [##############################] 1/1") != std::string::npos);
+  CHECK(r.out.find("curves/s") != std::string::npos);
+  CHECK(r.out.find("s left") != std::string::npos);
 }
