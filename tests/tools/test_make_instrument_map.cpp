@@ -3,6 +3,7 @@
 // the source's layout says, each curve's header places it on the 8 x 8 grid, and its data
 // are the source curve's bytes unchanged; the NanoScope force volume has its curve-count
 // keys and data blocks set for 64 curves and curve c's bytes are source curve c % 256's.
+// Both are then read through the library: positions on the grid, samples the source's.
 // Skipped, not failed, when ../shared is absent (the generator's sources live there).
 #include <zip.h>
 
@@ -221,6 +222,25 @@ TEST_CASE("make_instrument_map nanoscope: an 8 x 8 force volume of the 16 x 16 s
   for (const auto& [section, keys] : s)
     for (const auto& [key, value] : keys) changed += m[section][key] != value ? 1 : 0;
   CHECK(changed == 11);  // 4 curve counts, 3 data lengths/offsets, 4 image sizes
+
+  // Through the library: an 8 x 8 grid whose curve c is the source's curve c % 256.
+  const layerjkr::InstrumentReader source(kSpm), made(out);
+  REQUIRE(made.size() == static_cast<std::size_t>(kCurves));
+  CHECK(made.header().grid_shape_x == kSide);
+  CHECK(made.header().grid_shape_y == kSide);
+  CHECK(made.header().grid_size_x == source.header().grid_size_x);  // the scan size is kept
+  for (std::size_t c = 0; c < kCurves; ++c) {
+    const layerjkr::InstrumentCurve a = made.curve(c), b = source.curve(c % 256);
+    INFO("curve " << c);
+    CHECK(a.grid_x == static_cast<int>(c % kSide));
+    CHECK(a.grid_y == static_cast<int>(c / kSide));
+    CHECK(a.spring_constant == b.spring_constant);
+    REQUIRE(a.segments.size() == b.segments.size());
+    for (std::size_t k = 0; k < a.segments.size(); ++k) {
+      CHECK(a.segments[k].force == b.segments[k].force);
+      CHECK(a.segments[k].height == b.segments[k].height);
+    }
+  }
 }
 
 TEST_CASE("make_instrument_map: bad arguments or an absent source exit 2 with one line", "[tools]") {
