@@ -18,8 +18,8 @@
 // with --phase): the median time is reported, and the largest peak RSS (ru_maxrss from
 // wait4), so every phase has its own peak. The maps are made first by tools/
 // make_instrument_map in a fresh temporary directory (not timed here; their generation time
-// and peak RSS are printed apart) and removed at the end. The maps are read warm: they were
-// just written, so they sit in the page cache.
+// and peak RSS are printed apart), synced to disk, and removed at the end. The maps are read
+// warm: they were just written, so they sit in the page cache.
 //
 // The scene is built here: data/scenes has no half-space scene, and neither file says its
 // tip's radius (the QI header's probe field is empty; the NanoScope header says Tip Radius:
@@ -490,9 +490,17 @@ int run(int qi_side, int nanoscope_side, int repeat, bool strict) {
       // Without ../shared there is nothing to measure: ctest counts exit 77 as skipped.
       return line.find("is absent") != std::string::npos ? kSkipped : 1;
     }
-    std::printf("Generated %s (%zu curves): %.0f MB in %.2f s, peak RSS %.0f MB (tools/make_instrument_map)\n",
-                m.label.c_str(), m.curves(), static_cast<double>(std::filesystem::file_size(m.path)) / 1e6, c.wall,
-                mb(c.rss_kb));
+    // Written to disk before anything is timed: the kernel's writeback of a fresh 0.9 GB
+    // file otherwise overlaps the first phases (it doubled the QI floor's time).
+    const auto t0 = Clock::now();
+    const int fd = ::open(m.path.c_str(), O_RDONLY);
+    if (fd < 0 || ::fsync(fd) != 0) throw std::runtime_error(m.path + ": fsync failed");
+    ::close(fd);
+    std::printf(
+        "Generated %s (%zu curves): %.0f MB in %.2f s, peak RSS %.0f MB (tools/make_instrument_map); "
+        "fsync %.2f s\n",
+        m.label.c_str(), m.curves(), static_cast<double>(std::filesystem::file_size(m.path)) / 1e6, c.wall,
+        mb(c.rss_kb), since(t0));
   }
   std::ofstream(dir.file("hertz.json")) << kHertzScene;
 
