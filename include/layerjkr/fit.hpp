@@ -159,7 +159,7 @@ struct BatchItem {
   std::string source;  ///< file name or CurveData::source
   bool ok = false;
   std::string error;   ///< the Error's message when !ok
-  FitSummary summary;  ///< without the per-sample vectors (delta, P, P_fit), to bound memory
+  FitSummary summary;  ///< without the per-sample vectors (delta, P, P_fit, excluded), to bound memory
   /// Instrument files: the curve's number in the file, map position [m] and grid pixel
   /// (-1 / NaN where the file has none, and for CSV files).
   int curve = -1;

@@ -80,9 +80,12 @@ std::vector<BatchItem> run_batch(std::vector<BatchItem> items, Load load, Unread
           unread(i);
         } else {
           item.summary = fit(load(i, item), scene, options);
-          item.summary.delta = {};
-          item.summary.P = {};
-          item.summary.P_fit = {};
+          // Move-assigned empties: `v = {}` would keep each vector's capacity, 12 bytes per
+          // sample of every curve of a map (425 MB for 16 384 curves of 2 048 samples).
+          item.summary.delta = std::vector<double>();
+          item.summary.P = std::vector<double>();
+          item.summary.P_fit = std::vector<double>();
+          item.summary.excluded = std::vector<bool>();
           item.ok = true;
         }
       } catch (const std::exception& e) {  // one bad curve never stops the batch
