@@ -125,18 +125,16 @@ struct Step {
   double multiplier, offset;
 };
 
-// Whole samples only: the caller checks that bytes.size() is a multiple of sizeof(T). Each
-// sample goes through the steps one by one, not one composed affine map, so that the values
-// stay bit for bit those of applying the steps in turn.
+// Whole samples only: the caller checks that bytes.size() is a multiple of sizeof(T). The
+// steps are applied one by one, not as one composed affine map, so that the values stay bit
+// for bit those of applying them in turn; a loop per step vectorises, one per sample not.
 template <class T>
 std::vector<double> decode(const std::string& bytes, const std::vector<Step>& steps) {
   std::vector<double> out(bytes.size() / sizeof(T));
   const auto* p = reinterpret_cast<const unsigned char*>(bytes.data());
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    auto x = static_cast<double>(big_endian<T>(p + i * sizeof(T)));
-    for (const Step& s : steps) x = s.multiplier * x + s.offset;
-    out[i] = x;
-  }
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<double>(big_endian<T>(p + i * sizeof(T)));
+  for (const Step& s : steps)
+    for (double& x : out) x = s.multiplier * x + s.offset;
   return out;
 }
 
