@@ -145,11 +145,11 @@ void split(const std::string& s, std::size_t from, std::size_t to, std::size_t& 
 
 }  // namespace
 
-std::size_t Properties::lower(std::string_view k) const {
+std::size_t Properties::lower(std::string_view key) const {
   std::size_t lo = 0, n = entries_.size();
   while (n > 0) {
     const std::size_t half = n / 2;
-    if (key(lo + half) < k) {
+    if (key_at(lo + half) < key) {
       lo += half + 1;
       n -= half + 1;
     } else {
@@ -159,21 +159,21 @@ std::size_t Properties::lower(std::string_view k) const {
   return lo;
 }
 
-std::optional<std::string_view> Properties::find(std::string_view k) const {
-  const std::size_t i = lower(k);
-  if (i == entries_.size() || key(i) != k) return std::nullopt;
+std::optional<std::string_view> Properties::find(std::string_view key) const {
+  const std::size_t i = lower(key);
+  if (i == entries_.size() || key_at(i) != key) return std::nullopt;
   return entry(i).second;
 }
 
-std::string_view Properties::at(std::string_view k) const {
-  if (const std::optional<std::string_view> v = find(k)) return *v;
-  throw std::out_of_range("Properties::at: no key '" + std::string(k) + "'");
+std::string_view Properties::at(std::string_view key) const {
+  if (const std::optional<std::string_view> v = find(key)) return *v;
+  throw std::out_of_range("Properties::at: no key '" + std::string(key) + "'");
 }
 
 Properties::Range Properties::with_prefix(std::string_view prefix) const {
   const std::size_t first = lower(prefix);
   std::size_t last = first;
-  while (last < entries_.size() && key(last).substr(0, prefix.size()) == prefix) ++last;
+  while (last < entries_.size() && key_at(last).substr(0, prefix.size()) == prefix) ++last;
   return {{this, first}, {this, last}};
 }
 

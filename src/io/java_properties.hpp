@@ -68,7 +68,7 @@ class Properties {
     std::size_t line = 0;  // order in the text, for the duplicate-key error
   };
   friend Properties parse_properties(std::string text, const std::string& where);
-  std::string_view key(std::size_t i) const { return std::string_view(text_).substr(entries_[i].key, entries_[i].key_length); }
+  std::string_view key_at(std::size_t i) const { return std::string_view(text_).substr(entries_[i].key, entries_[i].key_length); }
   value_type entry(std::size_t i) const {
     const Entry& e = entries_[i];
     const std::string_view t(text_);

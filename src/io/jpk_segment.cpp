@@ -60,7 +60,7 @@ class Key {
   }
   Key(const Key&) = delete;
   Key& operator=(const Key&) = delete;
-  operator std::string_view() const { return view_; }  // NOLINT(google-explicit-constructor): a key is a view
+  operator std::string_view() const { return view_; }
 
  private:
   char buf_[160];
