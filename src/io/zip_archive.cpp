@@ -37,10 +37,20 @@ std::uint16_t u16(const char* p) { return static_cast<std::uint16_t>(le(p, 2)); 
 std::uint32_t u32(const char* p) { return static_cast<std::uint32_t>(le(p, 4)); }
 std::uint64_t u64(const char* p) { return le(p, 8); }
 
-std::uint64_t hash_name(std::string_view s) {  // FNV-1a
-  std::uint64_t h = 1469598103934665603ULL;
-  for (const char c : s) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ULL;
-  return h;
+// A word at a time: FNV-1a's byte loop over the ~50-byte names of a map was 4 % of reading.
+std::uint64_t hash_name(std::string_view s) {
+  std::uint64_t h = 0x9E3779B97F4A7C15ULL ^ s.size();
+  std::size_t i = 0;
+  std::uint64_t w = 0;
+  for (; i + 8 <= s.size(); i += 8) {
+    std::memcpy(&w, s.data() + i, 8);
+    h = (h ^ w) * 0xFF51AFD7ED558CCDULL;
+    h ^= h >> 32;
+  }
+  w = 0;
+  if (i < s.size()) std::memcpy(&w, s.data() + i, s.size() - i);
+  h = (h ^ w) * 0xC4CEB9FE1A85EC53ULL;
+  return h ^ (h >> 29);  // the table takes the low bits: fold the well-mixed high ones in
 }
 
 // A zlib inflater per thread, reset for each entry: set-up costs more than a small entry.
@@ -242,26 +252,27 @@ std::optional<std::uint64_t> ZipArchive::declared_size(std::string_view n) const
 }
 
 std::string ZipArchive::read(std::string_view n) const {
-  const std::string where = path_ + ": entry '" + std::string(n) + "'";
+  // Built only for an error: a string per read showed in the profile of a map.
+  const auto where = [&] { return path_ + ": entry '" + std::string(n) + "'"; };
   const std::optional<std::size_t> i = find(n);
   if (!i) throw InputError(path_ + ": the archive has no entry '" + std::string(n) + "'");
   const Entry& en = entries_[*i];
-  if (en.encrypted) throw InputError(where + " is encrypted; encrypted archives are not read");
+  if (en.encrypted) throw InputError(where() + " is encrypted; encrypted archives are not read");
   if (en.method != 0 && en.method != Z_DEFLATED)
-    throw InputError(where + " is compressed with method " + std::to_string(en.method) +
+    throw InputError(where() + " is compressed with method " + std::to_string(en.method) +
                      "; only stored (0) and deflate (8) entries are read");
   // The declared size bounds the allocation: check it before allocating anything.
   if (en.size > limits_.max_member_bytes)
-    throw InputError(where + " declares " + mib(en.size) + " uncompressed, over the limit of " +
+    throw InputError(where() + " declares " + mib(en.size) + " uncompressed, over the limit of " +
                      mib(limits_.max_member_bytes) + " per entry; raise it with " + kMaxMemberEnv +
                      "=<MiB> (ReadLimits::max_member_bytes in the library) if the file is genuine");
   const std::uint64_t before = bytes_read_.fetch_add(en.size);
   if (en.size > limits_.max_archive_bytes - std::min(before, limits_.max_archive_bytes))
-    throw InputError(where + " declares " + mib(en.size) + " uncompressed, which with the " + mib(before) +
+    throw InputError(where() + " declares " + mib(en.size) + " uncompressed, which with the " + mib(before) +
                      " read before passes the limit of " + mib(limits_.max_archive_bytes) + " per archive; raise it with " +
                      kMaxArchiveEnv + "=<MiB> (ReadLimits::max_archive_bytes in the library) if the file is genuine");
   if (en.compressed > limits_.max_member_bytes + (limits_.max_member_bytes >> 6) + 4096)
-    throw InputError(where + " declares " + mib(en.compressed) + " compressed, more than any entry within the limit needs");
+    throw InputError(where() + " declares " + mib(en.compressed) + " compressed, more than any entry within the limit needs");
   // One read for the local header and the data, guessing that the local extra field is as
   // long as a zip64 one; a longer one costs a second read.
   thread_local std::string raw;
@@ -270,27 +281,27 @@ std::string ZipArchive::read(std::string_view n) const {
     const std::uint64_t want = head + extra + en.compressed;
     const std::uint64_t have = std::min<std::uint64_t>(want, bytes_->size() - en.local_offset);
     raw.resize(static_cast<std::size_t>(have));
-    if (!bytes_->read(en.local_offset, raw.size(), raw.data())) throw InputError(where + ": cannot read it");
-    if (raw.size() < head) throw InputError(where + " is truncated: its local header ends past the file");
+    if (!bytes_->read(en.local_offset, raw.size(), raw.data())) throw InputError(where() + ": cannot read it");
+    if (raw.size() < head) throw InputError(where() + " is truncated: its local header ends past the file");
   };
   fetch(32);
   if (u32(raw.data()) != kLocalSignature || u16(&raw[26]) != en.name_length ||
       std::memcmp(&raw[kLocalSize], names_.data() + en.name_offset, en.name_length) != 0)
-    throw InputError(where + " is corrupt: its local header does not match the central directory");
+    throw InputError(where() + " is corrupt: its local header does not match the central directory");
   const std::size_t extra = u16(&raw[28]);
   if (head + extra + en.compressed > raw.size()) fetch(extra);
   if (head + extra + en.compressed > raw.size())
-    throw InputError(where + " is truncated: its data end past the file");
+    throw InputError(where() + " is truncated: its data end past the file");
   const char* data = raw.data() + head + extra;
   std::string out(static_cast<std::size_t>(en.size), '\0');
   if (en.method == 0) {
     if (en.compressed != en.size)
-      throw InputError(where + " is corrupt: stored with " + std::to_string(en.compressed) + " bytes but declares " +
+      throw InputError(where() + " is corrupt: stored with " + std::to_string(en.compressed) + " bytes but declares " +
                        std::to_string(en.size));
     std::memcpy(out.data(), data, out.size());
   } else {
     thread_local Inflater inflater;
-    if (!inflater.ready) throw InputError(where + ": zlib could not start (out of memory)");
+    if (!inflater.ready) throw InputError(where() + ": zlib could not start (out of memory)");
     z_stream& z = inflater.z;
     inflateReset(&z);
     z.next_in = reinterpret_cast<const Bytef*>(data);
@@ -304,17 +315,17 @@ std::string ZipArchive::read(std::string_view n) const {
       z.avail_out = 1;
       rc = inflate(&z, Z_FINISH);
       if (z.avail_out == 0)
-        throw InputError(where + " is corrupt: it holds more than its declared " + std::to_string(out.size()) + " bytes");
+        throw InputError(where() + " is corrupt: it holds more than its declared " + std::to_string(out.size()) + " bytes");
     }
-    if (rc == Z_DATA_ERROR) throw InputError(where + " is corrupt (" + (z.msg ? z.msg : "invalid deflate data") + ")");
+    if (rc == Z_DATA_ERROR) throw InputError(where() + " is corrupt (" + (z.msg ? z.msg : "invalid deflate data") + ")");
     if (rc != Z_STREAM_END || z.total_out != out.size())
-      throw InputError(where + " is truncated: " + std::to_string(z.total_out) + " of its declared " +
+      throw InputError(where() + " is truncated: " + std::to_string(z.total_out) + " of its declared " +
                        std::to_string(out.size()) + " bytes");
   }
   if (raw.capacity() > (std::size_t{16} << 20)) std::string().swap(raw);  // keep no huge buffer per thread
   const uLong crc = crc32_z(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(out.data()), out.size());
   if (crc != en.crc)
-    throw InputError(where + " is corrupt (CRC error): its data do not match the checksum stored in the archive");
+    throw InputError(where() + " is corrupt (CRC error): its data do not match the checksum stored in the archive");
   return out;
 }
 
