@@ -122,8 +122,8 @@ std::vector<BatchItem> fit_batch(const std::vector<CurveData>& curves, const Sce
 namespace {
 
 // An instrument file of a batch: its reader while curves of it remain to be read. Opened once
-// when the batch is listed; a map stays open for its workers, a single-curve file is closed
-// and reopened by its worker, so that a directory of 10 000 files never holds 10 000 handles.
+// when the batch is listed and kept open or closed (kKeepOpen* below); closed, its worker
+// reopens it; its last curve closes it.
 class FileSlot {
  public:
   FileSlot(std::string path, std::unique_ptr<InstrumentReader> reader, std::size_t curves)
@@ -166,9 +166,12 @@ struct Slot {
   std::string error;
 };
 
-// Maps of at least this many curves stay open between listing and reading: reopening a
-// 65 536-curve archive costs as much as reading a few thousand of its curves.
-constexpr std::size_t kKeepOpenCurves = 64;
+// Which files stay open between listing and reading: maps of at least kKeepOpenCurves curves
+// (reopening a 65 536-curve archive costs as much as reading thousands of its curves) and the
+// first kKeepOpenFiles files of any size (reopening a single curve costs 10 % of its fit);
+// beyond those, small files are closed and reopened by their worker, so that a directory of
+// 10 000 curves never holds 10 000 handles.
+constexpr std::size_t kKeepOpenCurves = 64, kKeepOpenFiles = 256;
 
 }  // namespace
 
@@ -184,6 +187,7 @@ std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Sc
     slots.push_back(std::move(slot));
   };
   const CurveRange& range = batch.curves;
+  std::size_t kept_open = 0;
   for (const std::string& path : paths) {
     BatchItem file_item;
     file_item.source = path;
@@ -206,7 +210,8 @@ std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Sc
                          std::to_string(n - 1) + ")");
       std::vector<int> numbers;
       for (std::size_t i = range.begin; i < end; ++i) numbers.push_back(reader->curve_number(i));
-      if (n < kKeepOpenCurves) reader.reset();
+      if (n < kKeepOpenCurves && kept_open >= kKeepOpenFiles) reader.reset();
+      kept_open += reader ? 1 : 0;
       const auto file = std::make_shared<FileSlot>(path, std::move(reader), end - range.begin);
       for (std::size_t i = range.begin; i < end; ++i) {
         BatchItem item;
