@@ -11,6 +11,8 @@
 #include <fstream>
 #include <stdexcept>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "layerjkr/error.hpp"
 #include "layerjkr/instrument.hpp"
@@ -68,28 +70,14 @@ std::string as_zip64(const std::string& zip) {
   REQUIRE(get(zip, end, 4) == 0x06054b50);
   const std::uint64_t entries = get(zip, end + 10, 2), cd_size = get(zip, end + 12, 4), cd_offset = get(zip, end + 16, 4);
   std::string out = zip.substr(0, end);
-  put(out, 0x06064b50, 4);
-  put(out, 44, 8);
-  put(out, 45, 2);
-  put(out, 45, 2);
-  put(out, 0, 4);
-  put(out, 0, 4);
-  put(out, entries, 8);
-  put(out, entries, 8);
-  put(out, cd_size, 8);
-  put(out, cd_offset, 8);
-  put(out, 0x07064b50, 4);
-  put(out, 0, 4);
-  put(out, end, 8);
-  put(out, 1, 4);
-  put(out, 0x06054b50, 4);
-  put(out, 0, 2);
-  put(out, 0, 2);
-  put(out, 0xFFFF, 2);
-  put(out, 0xFFFF, 2);
-  put(out, 0xFFFFFFFF, 4);
-  put(out, 0xFFFFFFFF, 4);
-  put(out, 0, 2);
+  // (value, bytes): the zip64 end record, its locator, then the saturated classic end record.
+  const std::vector<std::pair<std::uint64_t, int>> fields = {
+      {0x06064b50, 4}, {44, 8},         {45, 2},           {45, 2},     {0, 4},          {0, 4},
+      {entries, 8},    {entries, 8},    {cd_size, 8},      {cd_offset, 8},
+      {0x07064b50, 4}, {0, 4},          {end, 8},          {1, 4},
+      {0x06054b50, 4}, {0, 2},          {0, 2},            {0xFFFF, 2}, {0xFFFF, 2},     {0xFFFFFFFF, 4},
+      {0xFFFFFFFF, 4}, {0, 2}};
+  for (const auto& [value, bytes] : fields) put(out, value, bytes);
   return out;
 }
 
