@@ -1,6 +1,7 @@
 // layerjkr: force curves as they come off the instrument - JPK archives (.jpk-force,
-// .jpk-force-map, .jpk-qi-data) and Asylum Research / Igor binary waves (.ibw, version 5) -
-// read in C++ with their calibration, without any Python stack.
+// .jpk-force-map, .jpk-qi-data), Asylum Research / Igor binary waves (.ibw, version 5) and
+// Bruker NanoScope files (.spm, .000) - read in C++ with their calibration, without any
+// Python stack; whole (read_instrument_file) or one curve at a time (InstrumentReader).
 //
 // JPK (zip archives of Java .properties headers and big-endian channel data): force is the
 // vDeflection channel in its `force` slot, the measured height is strainGaugeHeight,
