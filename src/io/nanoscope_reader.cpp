@@ -2,20 +2,15 @@
 // parses and checks the text header only; curve(i) then reads curve i's bytes alone (pread).
 // Conventions and their evidence: docs/instrument-files.md (NanoScope) and
 // ../shared/data/instrument/bruker/FORMAT_NOTES.md.
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <optional>
 
 #include "io/csv_rows.hpp"
 #include "io/curve_source.hpp"
 #include "io/nanoscope_header.hpp"
+#include "io/positioned_file.hpp"
 #include "io/read_file.hpp"
 #include "layerjkr/error.hpp"
 
@@ -26,65 +21,26 @@ constexpr std::int64_t kMaxSamples = 10'000'000;  // per segment: 100 s at 100 k
 constexpr std::int64_t kMaxGrid = 4096;  // per side of a force volume (16.7 M curves: an int)
 constexpr std::int64_t kMaxOffset = std::int64_t{1} << 50;
 
-// An open file descriptor, closed on destruction.
-class Fd {
- public:
-  explicit Fd(int fd) : fd_(fd) {}
-  ~Fd() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  Fd(const Fd&) = delete;
-  Fd& operator=(const Fd&) = delete;
-  int get() const { return fd_; }
-
- private:
-  int fd_;
-};
-
-// The file's bytes: an open descriptor read with pread (no shared offset, so curve() may run
-// on several threads), or the bytes in memory for open_nanoscope_bytes.
-class Storage {
- public:
-  Storage(std::string bytes, std::string path) : path_(std::move(path)), bytes_(std::move(bytes)), size_(bytes_.size()) {}
-  explicit Storage(const std::string& path) : path_(path), fd_(std::make_unique<Fd>(::open(path.c_str(), O_RDONLY | O_CLOEXEC))) {
-    if (fd_->get() < 0) throw InputError(path + ": cannot open the file: " + std::strerror(errno));
-    struct stat st {};
-    if (::fstat(fd_->get(), &st) != 0 || !S_ISREG(st.st_mode))
-      throw InputError(path + ": cannot read the file: not a regular file");
-    size_ = static_cast<std::uint64_t>(st.st_size);
-  }
-  std::uint64_t size() const { return size_; }
-  // Exactly n bytes at `offset` (the caller checked offset + n <= size()); `what` names them.
-  std::string read(std::uint64_t offset, std::size_t n, const std::string& what) const {
-    if (!fd_) return bytes_.substr(static_cast<std::size_t>(offset), n);
-    std::string out(n, '\0');
-    std::size_t got = 0;
-    while (got < n) {
-      const ssize_t r = ::pread(fd_->get(), out.data() + got, n - got, static_cast<off_t>(offset + got));
-      if (r < 0 && errno == EINTR) continue;
-      if (r <= 0)
-        throw InputError(path_ + ": " + what + ": cannot read " + std::to_string(n) + " bytes at offset " +
-                         std::to_string(offset) + " (the file ends or changed since it was opened)");
-      got += static_cast<std::size_t>(r);
-    }
-    return out;
-  }
-
- private:
-  std::string path_, bytes_;
-  std::unique_ptr<Fd> fd_;
-  std::uint64_t size_ = 0;
-};
+// Exactly n bytes at `offset` of the file (the caller checked offset + n <= size()); `what`
+// names them in the error.
+std::string read_bytes(const PositionedFile& in, const std::string& path, std::uint64_t offset, std::size_t n,
+                       const std::string& what) {
+  std::string out(n, '\0');
+  if (!in.read(offset, n, out.data()))
+    throw InputError(path + ": " + what + ": cannot read " + std::to_string(n) + " bytes at offset " +
+                     std::to_string(offset) + " (the file ends or changed since it was opened)");
+  return out;
+}
 
 // The text up to `\*File list end`, read in 64 KiB steps so that only the header is read.
-std::string read_header_text(const Storage& in, const std::string& path) {
+std::string read_header_text(const PositionedFile& in, const std::string& path) {
   constexpr std::size_t step = std::size_t{1} << 16;
   std::string text;
   for (;;) {
     const std::size_t from = text.size() >= kNanoscopeHeaderEnd.size() ? text.size() - kNanoscopeHeaderEnd.size() : 0;
     const std::uint64_t left = in.size() - text.size();
     if (left == 0 || text.size() >= kMaxNanoscopeHeader) break;
-    text += in.read(text.size(), static_cast<std::size_t>(std::min<std::uint64_t>(step, left)), "the header");
+    text += read_bytes(in, path, text.size(), static_cast<std::size_t>(std::min<std::uint64_t>(step, left)), "the header");
     if (text.size() == std::min<std::uint64_t>(in.size(), step)) {  // the first chunk: what file is this?
       if (text.compare(0, 11, "\\*File list") == 0)
         throw InputError(path + ": NanoScope image file, not force curves; unsupported (its first line is \\*File list)");
@@ -121,7 +77,7 @@ std::optional<double> unit_metres(const std::string& unit) {
 
 class NanoscopeSource final : public CurveSource {
  public:
-  NanoscopeSource(std::unique_ptr<Storage> in, const std::string& path, const ReadLimits& limits)
+  NanoscopeSource(std::unique_ptr<PositionedFile> in, const std::string& path, const ReadLimits& limits)
       : in_(std::move(in)), header_text_(read_header_text(*in_, path)), h_(header_text_, path) {
     file_.path = path;
     file_.format = InstrumentFormat::nanoscope;
@@ -304,7 +260,7 @@ class NanoscopeSource final : public CurveSource {
   std::vector<double> samples(const Channel& ch, std::size_t i) const {
     const std::size_t n = ch.n1 + ch.n2;
     const std::string what = "curve " + std::to_string(i) + " (" + ch.name + ")";
-    const std::string raw = in_->read(ch.offset + i * n * ch.bytes, n * ch.bytes, what);
+    const std::string raw = read_bytes(*in_, file_.path, ch.offset + i * n * ch.bytes, n * ch.bytes, what);
     const auto* p = reinterpret_cast<const unsigned char*>(raw.data());
     std::vector<double> out(n);
     for (std::size_t k = 0; k < n; ++k, p += ch.bytes) {
@@ -322,7 +278,7 @@ class NanoscopeSource final : public CurveSource {
     return out;
   }
 
-  std::unique_ptr<Storage> in_;
+  std::unique_ptr<PositionedFile> in_;
   std::string header_text_;
   NanoscopeHeader h_;
   InstrumentFile file_;
@@ -337,11 +293,11 @@ class NanoscopeSource final : public CurveSource {
 }  // namespace
 
 std::unique_ptr<CurveSource> open_nanoscope(const std::string& path, const ReadLimits& limits) {
-  return std::make_unique<NanoscopeSource>(std::make_unique<Storage>(path), path, limits);
+  return std::make_unique<NanoscopeSource>(PositionedFile::open(path), path, limits);
 }
 
 std::unique_ptr<CurveSource> open_nanoscope_bytes(std::string bytes, const std::string& path, const ReadLimits& limits) {
-  return std::make_unique<NanoscopeSource>(std::make_unique<Storage>(std::move(bytes), path), path, limits);
+  return std::make_unique<NanoscopeSource>(PositionedFile::of_bytes(std::move(bytes)), path, limits);
 }
 
 }  // namespace layerjkr::detail

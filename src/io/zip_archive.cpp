@@ -3,9 +3,6 @@
 // the local header and data, inflated by zlib (raw deflate) and checked against size and CRC-32.
 #include "io/zip_archive.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #define ZLIB_CONST  // next_in points to const bytes
 #include <zlib.h>
 
@@ -67,53 +64,14 @@ struct Inflater {
 
 }  // namespace
 
-// The archive's bytes: positioned reads from a file descriptor, or copies from memory.
-class ZipArchive::Bytes {
- public:
-  Bytes(int fd, std::uint64_t size) : fd_(fd), size_(size) {}
-  explicit Bytes(std::string data) : data_(std::move(data)), size_(data_.size()) {}
-  ~Bytes() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  Bytes(const Bytes&) = delete;
-  Bytes& operator=(const Bytes&) = delete;
-  std::uint64_t size() const { return size_; }
-  // Reads [offset, offset + n) (the caller keeps it within size()); false on an I/O error.
-  bool read(std::uint64_t offset, std::size_t n, char* out) const {
-    if (fd_ < 0) {
-      std::memcpy(out, data_.data() + offset, n);
-      return true;
-    }
-    std::size_t got = 0;
-    while (got < n) {
-      const ssize_t r = ::pread(fd_, out + got, n - got, static_cast<off_t>(offset + got));
-      if (r <= 0) return false;
-      got += static_cast<std::size_t>(r);
-    }
-    return true;
-  }
-
- private:
-  std::string data_;
-  int fd_ = -1;
-  std::uint64_t size_ = 0;
-};
-
-ZipArchive::ZipArchive(const std::string& path, const ReadLimits& limits) : path_(path), limits_(limits) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw InputError(path + ": cannot open it (" + std::strerror(errno) + ")");
-  struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    ::close(fd);
-    throw InputError(path + ": cannot read it as a zip archive (not a regular file)");
-  }
-  bytes_ = std::make_unique<Bytes>(fd, static_cast<std::uint64_t>(st.st_size));
+ZipArchive::ZipArchive(const std::string& path, const ReadLimits& limits)
+    : path_(path), limits_(limits), bytes_(PositionedFile::open(path)) {
   read_directory();
   index_names();
 }
 
 ZipArchive::ZipArchive(std::string bytes, const std::string& path, const ReadLimits& limits)
-    : path_(path), limits_(limits), bytes_(std::make_unique<Bytes>(std::move(bytes))) {
+    : path_(path), limits_(limits), bytes_(PositionedFile::of_bytes(std::move(bytes))) {
   read_directory();
   index_names();
 }

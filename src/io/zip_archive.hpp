@@ -17,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "io/positioned_file.hpp"
 #include "layerjkr/instrument.hpp"
 
 namespace layerjkr::detail {
@@ -58,14 +59,13 @@ class ZipArchive {
     std::uint16_t name_length = 0, method = 0;
     bool encrypted = false;
   };
-  class Bytes;
   void read_directory();
   void index_names();
   std::optional<std::size_t> find(std::string_view name) const;
 
   std::string path_;
   ReadLimits limits_;
-  std::unique_ptr<Bytes> bytes_;
+  std::unique_ptr<PositionedFile> bytes_;
   std::vector<Entry> entries_;
   std::string names_;                // every name, back to back
   std::vector<std::uint32_t> table_;  // open addressing: entry index + 1, 0 = free
