@@ -16,16 +16,7 @@ namespace {
 
 // The curve `fit` reads: a CSV file, or one curve of an instrument file (only that one is read).
 CurveData read_fit_data(const std::string& path, const Prepared& p) {
-  if (!is_instrument_file(path)) {
-    try {
-      return read_curve_csv(path, p.csv);
-    } catch (const InputError& e) {
-      // A binary file: say which formats are known rather than only that it is not text.
-      if (std::string(e.what()).find("NUL bytes") == std::string::npos) throw;
-      throw InputError(std::string(e.what()) + "; not CSV, and its name is not of a known instrument format (known: " +
-                       known_instrument_formats() + ")");
-    }
-  }
+  if (!is_instrument_file(path)) return read_curve_csv(path, p.csv);
   const InstrumentReader reader(path);
   if (p.csv.curve < 0 && reader.size() > 1)
     throw InputError(path + ": holds " + std::to_string(reader.size()) +
@@ -42,9 +33,8 @@ int run_export(const std::string& path, const std::string& out, const std::strin
   const CurveRange range = curves.empty() ? CurveRange{} : CurveRange::parse(curves, "--curves");
   OutputFile csv(out);
   const InstrumentReader reader(path);
-  const std::size_t end = std::min(range.end, reader.size());
-  if (range.begin >= end)
-    throw InputError("--curves " + curves + ": " + path + " holds " + std::to_string(reader.size()) + " curves");
+  range.require_any(reader.size(), path);
+  const std::size_t end = range.end_in(reader.size());
   csv.write("curve,segment,force,height,tip_position\n");
   // One curve at a time: a map is never held whole, in samples or in text.
   for (std::size_t k = range.begin; k < end; ++k) {

@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "io/csv_rows.hpp"
+#include "layerjkr/instrument.hpp"
 #include "io/read_file.hpp"
 #include "layerjkr/error.hpp"
 
@@ -235,7 +236,10 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
                           const CsvOptions& options) {
   options.validate();
   const Fail fail{source};
-  if (text.find('\0') != std::string::npos) fail("is not a text file (it contains NUL bytes)");
+  // A binary file: say which formats are known rather than only that it is not text.
+  if (text.find('\0') != std::string::npos)
+    fail("is not a text file (it contains NUL bytes): not CSV, and its name is not of a known instrument format "
+         "(known: " + known_instrument_formats() + ")");
   detail::CsvRows rows(text);
   std::size_t line_no = 0;
   auto next_row = [&](std::vector<std::string_view>* cells) {
