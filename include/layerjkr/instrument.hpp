@@ -110,6 +110,10 @@ struct CurveRange {
   /// Parses "A:B", "A:" or ":B" (whole numbers, A <= B); anything else is an InputError
   /// naming `what` (e.g. "--curves") and the text.
   static CurveRange parse(const std::string& text, const std::string& what);
+  /// Where the range ends in a file of `count` curves (an end past the last stops there).
+  std::size_t end_in(std::size_t count) const { return end < count ? end : count; }
+  /// Throws InputError naming `path` if the range selects none of its `count` curves.
+  void require_any(std::size_t count, const std::string& path) const;
 };
 
 /// An instrument file opened for reading its curves one at a time. Opening reads the header

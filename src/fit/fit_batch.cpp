@@ -202,12 +202,8 @@ std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Sc
     }
     try {
       auto reader = std::make_unique<InstrumentReader>(path);
-      const std::size_t n = reader->size(), end = std::min(range.end, n);
-      if (range.begin >= end)
-        throw InputError(path + ": the curve range " + std::to_string(range.begin) + ":" +
-                         (range.end == CurveRange{}.end ? std::string() : std::to_string(range.end)) +
-                         " selects none of its " + std::to_string(n) + " curves (positions 0 to " +
-                         std::to_string(n - 1) + ")");
+      const std::size_t n = reader->size(), end = range.end_in(n);
+      range.require_any(n, path);
       std::vector<int> numbers;
       for (std::size_t i = range.begin; i < end; ++i) numbers.push_back(reader->curve_number(i));
       if (n < kKeepOpenCurves && kept_open >= kKeepOpenFiles) reader.reset();

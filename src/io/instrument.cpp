@@ -45,32 +45,32 @@ std::string first_bytes(const std::string& path, std::size_t n) {
   return head;
 }
 
-// The error for a file of no known format, naming what it is where that can be told.
-[[noreturn]] void unknown_format(const std::string& path) {
+// The format of a file whose name says none: a NanoScope force file by its header (it keeps it
+// when renamed); anything else is refused, naming what it is where that can be told.
+InstrumentFormat format_by_content(const std::string& path) {
+  const std::string known = " (known: " + known_instrument_formats() + ")";
+  // Refused before its header is looked at: a .pfc's header looks like a force file's.
   if (ends_with(path, ".pfc"))
     throw InputError(path + ": Bruker PeakForce Capture (.pfc) files are not supported: their layout is not "
-                            "documented publicly (known: " + known_instrument_formats() + ")");
+                            "documented publicly" + known);
   const std::string head = first_bytes(path, 32);
+  if (head.rfind("\\*Force file list", 0) == 0) return InstrumentFormat::nanoscope;
   if (head.rfind("\\*File list", 0) == 0)
-    throw InputError(path + ": a Bruker NanoScope image file, not force curves: unsupported (known: " +
-                     known_instrument_formats() + ")");
-  throw InputError(path + ": not an instrument file (known: " + known_instrument_formats() + ")");
+    throw InputError(path + ": a Bruker NanoScope image file, not force curves: unsupported" + known);
+  throw InputError(path + ": not an instrument file" + known);
 }
 
 std::unique_ptr<detail::CurveSource> open_source(const std::string& path, const ReadLimits& limits) {
-  std::optional<InstrumentFormat> format = instrument_format(path);
-  if (ends_with(path, ".pfc")) unknown_format(path);  // its header looks like a force file's
-  // A NanoScope force file keeps its header whatever it was renamed to.
-  if (!format && first_bytes(path, 32).rfind("\\*Force file list", 0) == 0) format = InstrumentFormat::nanoscope;
-  if (!format) unknown_format(path);
-  switch (*format) {
+  const std::optional<InstrumentFormat> named = instrument_format(path);
+  const InstrumentFormat format = named ? *named : format_by_content(path);
+  switch (format) {
     case InstrumentFormat::ibw: return detail::open_ibw(path);
     case InstrumentFormat::nanoscope: return detail::open_nanoscope(path, limits);
     case InstrumentFormat::jpk_force:
     case InstrumentFormat::jpk_force_map:
-    case InstrumentFormat::jpk_qi_data: return detail::open_jpk(path, *format, limits);
+    case InstrumentFormat::jpk_qi_data: return detail::open_jpk(path, format, limits);
   }
-  unknown_format(path);
+  throw Error(path + ": InstrumentFormat " + std::to_string(static_cast<int>(format)) + " has no reader");
 }
 
 }  // namespace
@@ -121,6 +121,14 @@ CurveRange CurveRange::parse(const std::string& text, const std::string& what) {
   return r;
 }
 
+void CurveRange::require_any(std::size_t count, const std::string& path) const {
+  if (begin < end_in(count)) return;
+  throw InputError(path + ": the curve range " + std::to_string(begin) + ":" +
+                   (end == CurveRange{}.end ? std::string() : std::to_string(end)) + " selects none of its " +
+                   std::to_string(count) + " curves" +
+                   (count ? " (positions 0 to " + std::to_string(count - 1) + ")" : std::string()));
+}
+
 struct InstrumentReader::Impl {
   std::unique_ptr<detail::CurveSource> source;
 };
@@ -158,8 +166,7 @@ InstrumentCurve checked_curve(const CurveSource& source, std::size_t i) {
 
 InstrumentFile read_all(const CurveSource& source, const CurveRange& range) {
   InstrumentFile file = source.header();
-  const std::size_t end = std::min(range.end, source.size());
-  for (std::size_t i = range.begin; i < end; ++i) file.curves.push_back(checked_curve(source, i));
+  for (std::size_t i = range.begin; i < range.end_in(source.size()); ++i) file.curves.push_back(checked_curve(source, i));
   return file;
 }
 
