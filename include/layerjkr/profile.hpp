@@ -84,6 +84,11 @@ class Profile {
   /// Human-readable description, e.g. "paraboloid(R=0.01)".
   virtual std::string describe() const = 0;
 
+  /// Set where the profile only approximates the indenter the user named (a pyramid by its
+  /// equivalent cone): one line saying so, with the estimated relative error it brings. Every
+  /// answer and fit of the profile carries it as a warning.
+  virtual std::optional<std::string> approximation() const { return std::nullopt; }
+
   /// Throws DomainError naming `function` unless a > 0 and contains(a).
   void require_contact_radius(const char* function, double a) const;
 };
@@ -98,6 +103,26 @@ ProfilePtr make_sphere(double R);
 
 /// Cone f = r cot(alpha) with semi-angle alpha [rad] in (0, pi/2).
 ProfilePtr make_cone(double semi_angle_rad);
+
+/// A regular pyramid with `sides` faces and its axisymmetric equivalent cone.
+struct PyramidEquivalence {
+  int sides = 4;
+  double face_semi_angle_rad = 0.0;  ///< the angle between a face and the axis, as vendors quote it
+  double cone_semi_angle_rad = 0.0;  ///< the equivalent cone's semi-angle beta
+  /// The estimated relative error [-] of the force the cone gives for the real pyramid on a
+  /// half-space (the spread of the published pyramid solutions; docs/models.md).
+  double relative_error = 0.0;
+};
+
+/// The cone whose Sneddon force F = (2/pi) E* tan(beta) delta^2 equals the pyramid's
+/// F = c_n E* tan(theta) delta^2 on a half-space: tan(beta) = (pi/2) c_n tan(theta), with
+/// theta the face semi-angle [rad] in (0, pi/2) and c_n of docs/models.md (sides 3 or 4).
+/// Approximate: a pyramid's contact is not axisymmetric. Throws DomainError for other sides
+/// or angles.
+PyramidEquivalence pyramid_equivalent_cone(double face_semi_angle_rad, int sides);
+
+/// The pyramid as its equivalent cone (pyramid_equivalent_cone); its approximation() says so.
+ProfilePtr make_pyramid(double face_semi_angle_rad, int sides);
 
 /// Power law f = B r^d with B > 0 [m^(1-d)] and d in [1, 50] (beyond, a flat punch).
 ProfilePtr make_power_law(double B, double d);

@@ -75,7 +75,9 @@ struct ResolvedModel {
   std::optional<double> G;  ///< [N/m] shear modulus, or the tension T (see g_is_tension)
   bool g_is_tension = false;  ///< Filonenko-Borodich: G holds the membrane tension T
   std::optional<double> E_star;  ///< plane-strain modulus [Pa]: layers and the half-space
-  std::vector<std::string> warnings;  ///< the thin-layer constants' validity warnings
+  /// The thin-layer constants' validity warnings, and the note of an indenter the profile only
+  /// approximates (Profile::approximation: a pyramid).
+  std::vector<std::string> warnings;
 };
 ResolvedModel resolve_model(const Scene& scene);
 

@@ -86,6 +86,19 @@ def test_summary_warns_through_model_warning(source):
                                 warning_threshold=0.99).warnings == []
 
 
+def test_pyramid_scene_states_its_approximation():
+    # A four-sided pyramid is its equivalent cone: Bilodeau's F = 0.7453 E* tan(theta) delta^2.
+    scene = {"indenter": {"shape": "pyramid", "semi_angle_deg": 35.0, "sides": 4},
+             "medium": {"type": "half_space", "E": 1500.0, "nu": 0.5}, "w": 0.0}
+    with pytest.warns(layerjkr.ModelWarning, match="4-sided pyramid is modelled by its axisymmetric equivalent cone"):
+        c = layerjkr.curve(scene, [1e-7, 1e-6])
+    e_star = 1500.0 / 0.75
+    expected = 0.7453 * e_star * np.tan(np.radians(35.0)) * c["delta_H"] ** 2
+    np.testing.assert_allclose(c["P_H"], expected, rtol=1e-12)
+    with pytest.raises(ValueError, match="indenter.sides"):
+        layerjkr.curve(dict(scene, indenter={"shape": "pyramid", "semi_angle_deg": 35.0, "sides": 6}), [1e-7])
+
+
 def test_auto_curve_reports_its_choice(source):
     c = layerjkr.curve(str(source / "data/scenes/hydrogel_film_auto.json"), [2e-7, 1e-6])
     assert c.choice is not None and c.model == c.choice.model

@@ -108,6 +108,7 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
     out.warnings.push_back("solver 'ode' verifies the closed forms; the fit evaluates the same "
                            "foundation in closed form");
   out.warnings.insert(out.warnings.end(), fixed.warnings.begin(), fixed.warnings.end());
+  if (std::optional<std::string> note = scene.profile->approximation()) out.warnings.push_back(*note);
   for (const auto& note : model->notes()) out.warnings.push_back(note);
 
   std::vector<double> x(options.free.size(), 0.0);

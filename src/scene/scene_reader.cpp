@@ -180,6 +180,17 @@ ProfilePtr read_indenter(const Reader& in, const json& root) {
       in.fail("indenter.semi_angle_deg", "= " + format_double(deg) + " is invalid; valid range: (0, 90)");
     return make_cone(deg * boost::math::constants::degree<double>());
   }
+  if (shape == "pyramid") {
+    in.only_keys(ind, "indenter", {"shape", "semi_angle_deg", "sides"});
+    const double deg = in.number(ind, "semi_angle_deg", "indenter");
+    if (!(deg > 0.0 && deg < 90.0))
+      in.fail("indenter.semi_angle_deg", "= " + format_double(deg) + " is invalid; valid range: (0, 90), the "
+                                         "angle between a face and the axis");
+    const double sides = in.number(ind, "sides", "indenter");
+    if (!(sides == 3.0 || sides == 4.0))
+      in.fail("indenter.sides", "= " + format_double(sides) + " is invalid; valid: 3 or 4");
+    return make_pyramid(deg * boost::math::constants::degree<double>(), static_cast<int>(sides));
+  }
   if (shape == "power_law") {
     in.only_keys(ind, "indenter", {"shape", "B", "d"});
     const double B = in.number(ind, "B", "indenter"), d = in.number(ind, "d", "indenter");
@@ -192,7 +203,7 @@ ProfilePtr read_indenter(const Reader& in, const json& root) {
     return in.checked("indenter", [&] { return make_table_profile(std::move(r), std::move(z)); });
   }
   in.fail("indenter.shape", "= \"" + shape +
-                                "\" is unknown (known: paraboloid, sphere, cone, power_law, table)");
+                                "\" is unknown (known: paraboloid, sphere, cone, pyramid, power_law, table)");
 }
 
 // An enum spelled by the registry (types.hpp), or a failure naming the key and the known values.

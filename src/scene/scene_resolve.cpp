@@ -78,9 +78,7 @@ void resolve_layer(const Scene& s, ResolvedModel& r) {
   r.reference = exact_layer_spec(layer);
 }
 
-}  // namespace
-
-ResolvedModel resolve_model(const Scene& s) {
+ResolvedModel resolve_medium(const Scene& s) {
   ResolvedModel r;
   r.spec.ode = s.solver == Solver::ode;
   switch (s.medium.type) {
@@ -94,6 +92,16 @@ ResolvedModel resolve_model(const Scene& s) {
     case MediumType::filonenko_borodich: resolve_foundation(s, r); break;
     case MediumType::layer: resolve_layer(s, r); break;
   }
+  return r;
+}
+
+}  // namespace
+
+ResolvedModel resolve_model(const Scene& s) {
+  ResolvedModel r = resolve_medium(s);
+  // An indenter the profile only approximates (a pyramid) is stated on every answer.
+  if (s.profile)
+    if (std::optional<std::string> note = s.profile->approximation()) r.warnings.push_back(*note);
   return r;
 }
 
