@@ -105,8 +105,8 @@ void add_fit_options(CLI::App& c, FitArguments& a) {
   c.add_option("--branch", a.branch, "approach | retract | all (default approach)");
   c.add_option("--units", a.units, "Units of the CSV: LENGTH,FORCE, e.g. nm,nN (default m,N)");
   c.add_option("--spring-constant", a.spring_constant, "Cantilever stiffness [N/m] for z,deflection data");
-  c.add_option("--z-sign", a.z_sign, "+1 if z grows towards the sample, -1 if it decreases");
-  c.add_option("--deflection-sign", a.deflection_sign, "+1 if deflection > 0 means repulsion, else -1");
+  c.add_option("--z-sign", a.z_sign, "z,deflection data: +1 if z grows as the tip approaches the sample, -1 if it decreases");
+  c.add_option("--deflection-sign", a.deflection_sign, "z,deflection data: +1 if deflection > 0 when the sample pushes the tip away, else -1");
   c.add_option("--starts", a.extra_starts, "Extra starts around the data-driven guess (default 0)");
   c.add_option("--max-iterations", a.max_iterations, "Ceres iteration limit (default 200)");
   c.add_option("--curve", a.curve, "Which curve of a file holding several (instrument map or export)");

@@ -108,7 +108,7 @@ static int run_main(int argc, char** argv) {
   CLI::App* fit = app.add_subcommand(
       "fit", "Fit a measured curve (CSV or instrument file) with a scene's model: estimates, errors, identifiability");
   fit->add_option("data", data_path, "Curve CSV (delta,P[,a][,weight][,segment] | tip_position,force | z,deflection | "
-                                     "an export) or an instrument file (JPK, Igor, Bruker NanoScope)")
+                                     "an export; columns, units and signs: docs/fitting.md) or an instrument file (JPK, Igor, Bruker NanoScope)")
       ->required();
   layerjkr::cli::add_fit_options(*fit, fit_args);
   fit->add_option("--out", report_path, "Write the JSON report here");
