@@ -50,6 +50,9 @@ json report_json(const FitSummary& s, Branch branch) {
   j["baseline_slope_stderr"] = s.baseline_slope_stderr;
   j["points"] = s.points;
   j["points_in_contact"] = s.points_in_contact;
+  j["identifiable"] = s.identifiable;
+  j["unidentifiable"] = s.unidentifiable;
+  j["warnings"] = s.warnings;
   const ContactPointReport& c = s.contact_point;
   j["contact_point"] = {{"method", to_string(c.method)},
                         {"value", finite_or_null(c.value)},
@@ -58,9 +61,6 @@ json report_json(const FitSummary& s, Branch branch) {
                         {"range_reference", finite_or_null(c.range_reference)},
                         {"approach_samples", c.approach_samples},
                         {"samples_in_range", c.samples_in_range}};
-  j["identifiable"] = s.identifiable;
-  j["unidentifiable"] = s.unidentifiable;
-  j["warnings"] = s.warnings;
   return j;
 }
 
