@@ -26,8 +26,10 @@
 //     in (P0, k); the contact point is the candidate of least chi^2, P0 its fitted baseline.
 //     m is the Hertz exponent of the indenter: 1 + 1/d for a profile r^d (paraboloid 3/2,
 //     cone 2), 3/2 for any other profile (a sphere or a rounded tip at small depth).
-//     Uncertainty: half the extent of the candidates with chi^2 - chi^2_min <= s^2, s^2 the
-//     residual variance chi^2_min / (n - 3) (a profile-likelihood 1-sigma interval).
+//     The point is refined to the vertex of the parabola through chi^2 at the best sample and
+//     its neighbours. Uncertainty: the profile-likelihood 1-sigma half-width, Delta chi^2 = s^2
+//     with s^2 = chi^2_min / (n - 3) the residual variance: the larger of the parabola's
+//     sqrt(2 s^2 / chi'') and half the extent of the samples with chi^2 - chi^2_min <= s^2.
 // Uncertainties are at least half the median sample spacing.
 #pragma once
 

@@ -164,6 +164,19 @@ ContactPoint gof_point(const Sorted& s, double m) {
   ContactPoint out;
   out.delta = s.d[best];
   out.uncertainty = 0.5 * (s.d[b] - s.d[a]);
+  // Between samples: the parabola through chi^2 at the best candidate and its neighbours puts
+  // the point at its vertex, and its curvature gives the Delta chi^2 = s^2 half-width
+  // sqrt(2 s^2 / chi''), which is finer than the sample spacing when the data are good.
+  if (best > 0 && best < last) {
+    const double x0 = s.d[best - 1], x1 = s.d[best], x2 = s.d[best + 1];
+    const double y0 = eval(best - 1), y1 = eval(best), y2 = eval(best + 1);
+    const double d01 = (y1 - y0) / (x1 - x0), d12 = (y2 - y1) / (x2 - x1), curv = 2.0 * (d12 - d01) / (x2 - x0);
+    if (curv > 0.0) {
+      const double slope = d01 + 0.5 * curv * (x1 - x0);  // of the parabola, at x1
+      out.delta = std::clamp(x1 - slope / curv, x0, x2);
+      out.uncertainty = std::max(out.uncertainty, std::sqrt(2.0 * s2 / curv));
+    }
+  }
   chi2(best, &out.baseline);
   return out;
 }
