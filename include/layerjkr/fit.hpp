@@ -90,7 +90,8 @@ struct FitOptions {
   /// one beyond `second` (1: no end). Combined with indentation_range, a sample needs both.
   std::optional<Interval> force_range;
   /// Delta range [m] of the baseline samples (baseline and noise of the start and of the
-  /// contact-point methods); nullopt: the quarter of the samples with the smallest delta.
+  /// contact-point methods); nullopt: the quarter of the samples with the smallest delta. With
+  /// a range it serves before the selection (the method, or the first fit of `fit`).
   std::optional<Interval> baseline_window;
   /// Robust loss on force residuals; loss_scale [N] > 0 is where it departs from
   /// least squares (required for huber and cauchy).

@@ -197,6 +197,9 @@ FitSummary fit_steered(const CurveData& curve, const Scene& scene, const FitOpti
     work = std::move(sub);
     report.range_reference = d_c;
   }
+  // The baseline was measured before the ranges selected samples: a window the selection
+  // emptied has done its work.
+  if (ranged) plain.baseline_window.reset();
   const bool shifted = method != ContactPointMethod::fit;
   if (shifted) {
     for (double& d : work.delta) d -= d_c;
