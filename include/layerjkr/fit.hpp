@@ -82,7 +82,7 @@ struct FitOptions {
   /// Approach samples whose indentation delta - delta_c [m] from the contact point lies in
   /// [first, second] (first may be negative: it keeps that much baseline; second > first);
   /// nullopt keeps all. delta_c is the method's point, or for `fit` the fitted delta0 of a first
-  /// fit on all samples, after which the fit is repeated on the kept ones.
+  /// fit on all samples, after which the kept ones are fitted again from its delta0 and P0.
   std::optional<Interval> indentation_range;
   /// Approach samples by force, as fractions of the approach's largest force above the baseline,
   /// 0 <= first < second <= 1: the kept window of delta begins at the first sample past the

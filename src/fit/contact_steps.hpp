@@ -33,7 +33,8 @@ void report_fitted_contact(const CurveData& curve, const FitOptions& options, Fi
 FitSummary fit_steered(const CurveData& curve, const Scene& scene, const FitOptions& options);
 
 /// fit() itself. contact_given: the data were shifted so that the found contact point and
-/// baseline are 0; a free delta0 and P0 start there instead of at the data-driven scan.
+/// baseline (or a first fit's delta0 and P0) are 0; a free delta0 and P0 start there instead
+/// of at the data-driven scan.
 FitSummary fit_core(const CurveData& curve, const Scene& scene, const FitOptions& options, bool contact_given);
 
 }  // namespace layerjkr::detail

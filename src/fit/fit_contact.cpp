@@ -1,6 +1,7 @@
-// fit() with a chosen contact point and range: find the point on the approach samples, keep
-// the samples the ranges select, shift the data so that the point and its baseline are 0 (the
-// values fit_core gives a fixed delta0 and P0), fit, and shift the answer back.
+// fit() with a chosen contact point and range: find the point on the approach samples (or fit
+// once for method fit), keep the samples the ranges select, shift the data so that the point
+// and its baseline are 0 (the values fit_core gives a fixed delta0 and P0, and the start of a
+// free one), fit, and shift the answer back.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -200,27 +201,23 @@ FitSummary fit_steered(const CurveData& curve, const Scene& scene, const FitOpti
   // The baseline was measured before the ranges selected samples: a window the selection
   // emptied has done its work.
   if (ranged) plain.baseline_window.reset();
-  const bool shifted = method != ContactPointMethod::fit;
-  if (shifted) {
-    for (double& d : work.delta) d -= d_c;
-    for (double& p : work.P) p -= P_c;
-    if (plain.baseline_window) plain.baseline_window = Interval{plain.baseline_window->first - d_c, plain.baseline_window->second - d_c};
+  // Shifted to the found point and baseline (for fit: the first fit's delta0 and P0, so the
+  // refit starts where the first ended instead of scanning the window for a point of its own).
+  for (double& d : work.delta) d -= d_c;
+  for (double& p : work.P) p -= P_c;
+  if (plain.baseline_window) plain.baseline_window = Interval{plain.baseline_window->first - d_c, plain.baseline_window->second - d_c};
+  FitSummary s = fit_core(work, scene, plain, true);
+  for (double& d : s.delta) d += d_c;
+  for (double& p : s.P) p += P_c;
+  for (double& p : s.P_fit) p += P_c;
+  for (ParameterEstimate& e : s.parameters) {
+    const double shift = e.parameter == FitParameter::delta0 ? d_c : e.parameter == FitParameter::P0 ? P_c : 0.0;
+    e.value += shift;
+    e.initial += shift;
   }
-  FitSummary s = fit_core(work, scene, plain, shifted);
-  if (shifted) {
-    for (double& d : s.delta) d += d_c;
-    for (double& p : s.P) p += P_c;
-    for (double& p : s.P_fit) p += P_c;
-    for (ParameterEstimate& e : s.parameters) {
-      const double shift = e.parameter == FitParameter::delta0 ? d_c : e.parameter == FitParameter::P0 ? P_c : 0.0;
-      e.value += shift;
-      e.initial += shift;
-    }
-  } else if (has(options, FitParameter::delta0)) {
-    report.value = s[FitParameter::delta0].value;
-    report.standard_error = s[FitParameter::delta0].standard_error;
-  } else {
-    report.value = 0.0;
+  if (method == ContactPointMethod::fit) {
+    report.value = has(options, FitParameter::delta0) ? s[FitParameter::delta0].value : 0.0;
+    if (has(options, FitParameter::delta0)) report.standard_error = s[FitParameter::delta0].standard_error;
   }
   report.samples_in_range = kept;
   s.contact_point = report;
