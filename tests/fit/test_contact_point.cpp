@@ -4,6 +4,7 @@
 // ../shared/data/real (nanite's fitted contact points).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -203,6 +204,16 @@ TEST_CASE("the baseline window sets the baseline the methods use", "[fit][contac
   CHECK(far.baseline > 0.1 * hertz(8e-7));
   CHECK_THROWS_WITH(find_contact_point(c.delta, c.P, ContactPointMethod::threshold, 1.5, Interval{5e-6, 6e-6}),
                     Catch::Contains("the baseline window [5e-06, 6e-06] m holds 0 samples"));
+  // The plain fit's start takes its baseline from the window too: P0 starts at the median there.
+  FitOptions o;
+  o.branch = Branch::approach;
+  o.free = {FitParameter::E, FitParameter::delta0, FitParameter::P0};
+  o.baseline_window = Interval{-4e-7, 0.0};
+  std::vector<double> window;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (c.delta[i] >= -4e-7 && c.delta[i] <= 0.0) window.push_back(c.P[i]);
+  std::nth_element(window.begin(), window.begin() + window.size() / 2, window.end());
+  CHECK(fit(c, hertz_scene(), o)[FitParameter::P0].initial == window[window.size() / 2]);
 }
 
 TEST_CASE("contact-point options are checked and a retract fit refuses them", "[fit][contact][errors]") {
