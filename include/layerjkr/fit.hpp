@@ -37,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "layerjkr/contact_point.hpp"
 #include "layerjkr/curve_data.hpp"
 #include "layerjkr/instrument.hpp"
 #include "layerjkr/scene.hpp"
@@ -73,6 +74,25 @@ struct FitOptions {
   /// two-point analyses use. Approach samples are not affected.
   RetractWindow retract_window = RetractWindow::all;
   double window_fraction = 0.5;  ///< in (0, 1], for force_fraction
+  /// How an approach fit finds the contact point (contact_point.hpp). `fit`: delta0 is a
+  /// fitted parameter (free) or 0. Any other method finds it from the approach samples first;
+  /// delta0 and P0 are then fixed at the found point and baseline, unless freed, in which case
+  /// the found values are their start. Needs approach samples (branch approach or all).
+  ContactPointMethod contact_point = ContactPointMethod::fit;
+  /// Approach samples whose indentation delta - delta_c [m] from the contact point lies in
+  /// [first, second] (first may be negative: it keeps that much baseline; second > first);
+  /// nullopt keeps all. delta_c is the method's point, or for `fit` the fitted delta0 of a first
+  /// fit on all samples, after which the kept ones are fitted again from its delta0 and P0.
+  std::optional<Interval> indentation_range;
+  /// Approach samples by force, as fractions of the approach's largest force above the baseline,
+  /// 0 <= first < second <= 1: the kept window of delta begins at the first sample past the
+  /// contact point whose force reaches `first` (0: the baseline stays) and ends before the first
+  /// one beyond `second` (1: no end). Combined with indentation_range, a sample needs both.
+  std::optional<Interval> force_range;
+  /// Delta range [m] of the baseline samples (baseline and noise of the start and of the
+  /// contact-point methods); nullopt: the quarter of the samples with the smallest delta. With
+  /// a range it serves before the selection (the method, or the first fit of `fit`).
+  std::optional<Interval> baseline_window;
   /// Robust loss on force residuals; loss_scale [N] > 0 is where it departs from
   /// least squares (required for huber and cauchy).
   LossType loss = LossType::none;
@@ -137,6 +157,8 @@ struct FitSummary {
   /// (NaN without retract samples).
   double pull_off_force = std::numeric_limits<double>::quiet_NaN();
   double solve_seconds = 0.0;
+  /// The contact point: method, value and error, and the samples the ranges kept.
+  ContactPointReport contact_point;
 
   /// The estimate for p; throws Error if p was not free.
   const ParameterEstimate& operator[](FitParameter p) const;

@@ -4,6 +4,7 @@
 #include "layerjkr/answer.hpp"
 #include "layerjkr/built_scene.hpp"
 #include "layerjkr/contact.hpp"
+#include "layerjkr/contact_point.hpp"
 #include "layerjkr/context.hpp"
 #include "layerjkr/curve_data.hpp"
 #include "layerjkr/discrete.hpp"

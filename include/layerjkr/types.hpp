@@ -73,6 +73,11 @@ enum class RetractControl {
 /// The baseline a fit subtracts (fit.hpp): "constant" (P0), "tilt" (P0 + slope delta).
 enum class Baseline { constant, tilt };
 
+/// How an approach fit finds the contact point (contact_point.hpp): "fit" (delta0 is a
+/// fitted parameter), "threshold" (baseline deviation), "rov" (ratio of variances), "gof"
+/// (goodness-of-fit scan of a power law).
+enum class ContactPointMethod { fit, threshold, rov, gof };
+
 /// How a fit evaluates its model (fit.hpp): "foundation" (closed forms in K, G or E),
 /// "hertz" (half-space with a paraboloid), "tabulated" (a spline of any other model).
 enum class FitFamily { foundation, hertz, tabulated };
@@ -109,6 +114,7 @@ LAYERJKR_REGISTERED_ENUM(LossType)
 LAYERJKR_REGISTERED_ENUM(RetractWindow)
 LAYERJKR_REGISTERED_ENUM(RetractControl)
 LAYERJKR_REGISTERED_ENUM(Baseline)
+LAYERJKR_REGISTERED_ENUM(ContactPointMethod)
 LAYERJKR_REGISTERED_ENUM(FitFamily)
 LAYERJKR_REGISTERED_ENUM(SegmentStyle)
 LAYERJKR_REGISTERED_ENUM(InstrumentFormat)

@@ -45,6 +45,7 @@ Control = Literal["auto", "load", "cantilever", "grips"]
 BaselineKind = Literal["constant", "tilt"]
 Window = Literal["all", "pull_off", "fraction"]
 Loss = Literal["none", "huber", "cauchy"]
+ContactPointMethod = Literal["fit", "threshold", "rov", "gof"]
 CurveRangeLike = Union[slice, Tuple[int, int]]
 
 
@@ -635,7 +636,8 @@ class FitResult:
                                                      "rms_residual", "excluded_count", "pull_off_force",
                                                      "baseline_slope", "baseline_slope_stderr", "points",
                                                      "points_in_contact", "identifiable", "unidentifiable",
-                                                     "warnings", "initial_cost", "final_cost", "solve_seconds")}
+                                                     "warnings", "initial_cost", "final_cost", "solve_seconds",
+                                                     "contact_point")}
         self._params = {p.name: _Parameter(p.value, p.standard_error, p.initial, p.at_bound, p.identifiable)
                         for p in s.parameters}
         self._corr = s.correlation
@@ -754,6 +756,15 @@ class FitResult:
         return self._fields["rms_residual"]
 
     @property
+    def contact_point(self) -> Dict[str, Any]:
+        """The contact point the fit used: ``method``; ``value`` [m] (the fitted delta0 for
+        "fit", else the method's point) and ``stderr`` [m] (delta0's standard error, or the
+        method's uncertainty; NaN when delta0 was fixed with "fit"); ``baseline`` [N] the
+        method found (NaN for "fit"); ``range_reference`` [m], the point the ranges were
+        measured from (NaN without a range); ``approach_samples`` and ``samples_in_range``."""
+        return dict(self._fields["contact_point"])
+
+    @property
     def residuals(self) -> npt.NDArray[np.float64]:
         """``P - P_fit`` [N]."""
         return self.P - self.P_fit
@@ -781,6 +792,8 @@ class FitResult:
             "baseline_slope_stderr": f["baseline_slope_stderr"], "points": f["points"],
             "points_in_contact": f["points_in_contact"], "identifiable": f["identifiable"],
             "unidentifiable": list(f["unidentifiable"]), "warnings": list(f["warnings"]),
+            "contact_point": {k: _finite_or_none(v) if isinstance(v, float) else v
+                              for k, v in f["contact_point"].items()},
         }
 
     def __repr__(self) -> str:
@@ -822,13 +835,27 @@ def _free(free: Union[str, Sequence[str]]) -> List[str]:
 
 def _options(free: Union[str, Sequence[str]], branch: str, control: str, spring_constant: Optional[float],
              baseline: str, window: str, window_fraction: float, loss: str, loss_scale: Optional[float], starts: int,
-             max_iterations: int) -> Any:
+             max_iterations: int, contact_point: str = "fit",
+             indentation_range: Optional[Tuple[float, float]] = None, force_range: Optional[Tuple[float, float]] = None,
+             baseline_window: Optional[Tuple[float, float]] = None) -> Any:
     return _core.fit_options(free=_free(free), branch=_text("branch", branch), control=_text("control", control),
                              spring_constant=None if spring_constant is None else _number("spring_constant", spring_constant),
                              baseline=_text("baseline", baseline), window=_text("window", window),
                              window_fraction=_number("window_fraction", window_fraction), loss=_text("loss", loss),
                              loss_scale=None if loss_scale is None else _number("loss_scale", loss_scale),
-                             starts=_integer("starts", starts), max_iterations=_integer("max_iterations", max_iterations))
+                             starts=_integer("starts", starts), max_iterations=_integer("max_iterations", max_iterations),
+                             contact_point=_text("contact_point", contact_point),
+                             indentation_range=_range("indentation_range", indentation_range),
+                             force_range=_range("force_range", force_range),
+                             baseline_window=_range("baseline_window", baseline_window))
+
+
+def _range(name: str, value: Optional[Tuple[float, float]]) -> Optional[Tuple[float, float]]:
+    if value is None:
+        return None
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
+        raise InputError("%s = %r is invalid; give (min, max) or None" % (name, value))
+    return (_number(name, value[0]), _number(name, value[1]))
 
 
 _FIT_PARAMETERS_DOC = """
@@ -858,7 +885,24 @@ _FIT_PARAMETERS_DOC = """
     starts : int, default 0
         Extra starts around the data-driven guess (0 .. 100); the lowest cost wins.
     max_iterations : int, default 200
-        Trust-region iteration limit, >= 1."""
+        Trust-region iteration limit, >= 1.
+    contact_point : {"fit", "threshold", "rov", "gof"}, default "fit"
+        How an approach fit finds the contact point: fitted as delta0 (fit), where the force
+        leaves the baseline + 5 sigma band (threshold), the ratio of variances (rov) or a
+        goodness-of-fit scan of a power law (gof); docs/fitting.md defines them. With a method
+        other than fit, delta0 and P0 are fixed at the found point and baseline unless freed,
+        in which case the found values are their start. Needs approach samples.
+    indentation_range : (float, float), optional
+        (min, max) [m]: fit only the approach samples whose indentation from the contact
+        point lies in the range (min < 0 keeps that much baseline). With contact_point="fit"
+        the curve is fitted, the samples selected from its delta0, and fitted again.
+    force_range : (float, float), optional
+        (min, max), 0 <= min < max <= 1: approach samples by force, as fractions of the
+        largest force above the baseline, from the first sample past the contact point that
+        reaches min up to the first that exceeds max.
+    baseline_window : (float, float), optional
+        (min, max) [m]: the delta range of the baseline samples (baseline and noise of the
+        start and of the contact-point methods); None: the quarter with the smallest delta."""
 
 
 def _with_fit_parameters(function: Callable[..., Any]) -> None:
@@ -871,7 +915,10 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
         branch: Branch = "approach", control: Control = "auto", spring_constant: Optional[float] = None,
         baseline: BaselineKind = "constant", window: Window = "all", window_fraction: float = 0.5,
         loss: Loss = "none", loss_scale: Optional[float] = None, starts: int = 0,
-        max_iterations: int = 200) -> FitResult:
+        max_iterations: int = 200,
+        contact_point: ContactPointMethod = "fit", indentation_range: Optional[Tuple[float, float]] = None,
+        force_range: Optional[Tuple[float, float]] = None,
+        baseline_window: Optional[Tuple[float, float]] = None) -> FitResult:
     """Fit one measured curve with the model of a scene.
 
     Parameters
@@ -907,7 +954,7 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
         Each of the fit's warnings (a convergence failure is reported, not raised).
     """
     options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
-                       starts, max_iterations)
+                       starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
     seg = None if segment is None else _segments(segment)
     s = _core.fit(np.asarray(delta, dtype=np.float64), np.asarray(P, dtype=np.float64), seg, _as_scene(scene), options)
     result = FitResult(s, options.branch)
@@ -946,7 +993,10 @@ def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: Scen
               control: Control = "auto", spring_constant: Optional[float] = None,
               baseline: BaselineKind = "constant", window: Window = "all", window_fraction: float = 0.5,
               loss: Loss = "none", loss_scale: Optional[float] = None, starts: int = 0,
-              max_iterations: int = 200) -> List[BatchResult]:
+              max_iterations: int = 200,
+              contact_point: ContactPointMethod = "fit", indentation_range: Optional[Tuple[float, float]] = None,
+              force_range: Optional[Tuple[float, float]] = None,
+              baseline_window: Optional[Tuple[float, float]] = None) -> List[BatchResult]:
     """Fit many curves with the same scene and options on ``jobs`` threads.
 
     Parameters
@@ -980,7 +1030,7 @@ def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: Scen
         An unknown keyword.
     """
     options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
-                       starts, max_iterations)
+                       starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
     pairs = [(np.asarray(d, dtype=np.float64), np.asarray(p, dtype=np.float64)) for d, p in curves]
     with _keep_finished(options.branch):
         return _batch(_core.fit_batch(pairs, _as_scene(scene), options, _integer("jobs", jobs)), options.branch)
@@ -995,7 +1045,10 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
               baseline: BaselineKind = "constant", window: Window = "all", window_fraction: float = 0.5,
               loss: Loss = "none", loss_scale: Optional[float] = None, starts: int = 0, max_iterations: int = 200,
               units: str = "m,N", z_sign: float = 1.0, deflection_sign: float = 1.0,
-              curve: Optional[int] = None, curves: Optional[CurveRangeLike] = None) -> List[BatchResult]:
+              curve: Optional[int] = None, curves: Optional[CurveRangeLike] = None,
+              contact_point: ContactPointMethod = "fit", indentation_range: Optional[Tuple[float, float]] = None,
+              force_range: Optional[Tuple[float, float]] = None,
+              baseline_window: Optional[Tuple[float, float]] = None) -> List[BatchResult]:
     """Fit CSV and instrument files on ``jobs`` threads, as ``layerjkr fit-map``.
 
     Parameters
@@ -1050,7 +1103,7 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
         An unknown keyword; a ``curves`` that is not a slice or a pair of integers.
     """
     options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
-                       starts, max_iterations)
+                       starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
     selection = None
     if curves is not None:
         begin, end = _curve_range(curves)

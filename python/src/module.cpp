@@ -122,8 +122,13 @@ SummaryAnswer summary(const Scene& scene, double warning_threshold) {
 FitOptions fit_options(const std::vector<std::string>& free, const std::string& branch, const std::string& control,
                        std::optional<double> spring_constant, const std::string& baseline, const std::string& window,
                        double window_fraction, const std::string& loss, std::optional<double> loss_scale, int starts,
-                       int max_iterations) {
+                       int max_iterations, const std::string& contact_point, std::optional<Interval> indentation_range,
+                       std::optional<Interval> force_range, std::optional<Interval> baseline_window) {
   FitOptions o;
+  o.contact_point = parse_enum<ContactPointMethod>(contact_point, "contact_point");
+  o.indentation_range = indentation_range;
+  o.force_range = force_range;
+  o.baseline_window = baseline_window;
   for (const std::string& f : free) o.free.push_back(parse_enum<FitParameter>(f, "free"));
   o.branch = parse_enum<Branch>(branch, "branch");
   o.retract_control = parse_enum<RetractControl>(control, "control");
@@ -324,7 +329,8 @@ PYBIND11_MODULE(_core, m) {
       });
   m.def("fit_options", &fit_options, py::kw_only(), py::arg("free"), py::arg("branch"), py::arg("control"),
         py::arg("spring_constant"), py::arg("baseline"), py::arg("window"), py::arg("window_fraction"), py::arg("loss"),
-        py::arg("loss_scale"), py::arg("starts"), py::arg("max_iterations"));
+        py::arg("loss_scale"), py::arg("starts"), py::arg("max_iterations"), py::arg("contact_point"),
+        py::arg("indentation_range"), py::arg("force_range"), py::arg("baseline_window"));
   py::class_<CsvOptions>(m, "CsvOptions", "The library's CsvOptions; make them with csv_options().");
   m.def("csv_options", &csv_options, py::kw_only(), py::arg("units"), py::arg("spring_constant"), py::arg("z_sign"),
         py::arg("deflection_sign"), py::arg("curve"));
@@ -370,6 +376,18 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("baseline_slope_stderr", &FitSummary::baseline_slope_stderr)
       .def_readonly("pull_off_force", &FitSummary::pull_off_force)
       .def_readonly("solve_seconds", &FitSummary::solve_seconds)
+      .def_property_readonly("contact_point", [](const FitSummary& s) {
+        const ContactPointReport& c = s.contact_point;
+        py::dict d;
+        d["method"] = std::string(to_string(c.method));
+        d["value"] = c.value;
+        d["stderr"] = c.standard_error;
+        d["baseline"] = c.baseline;
+        d["range_reference"] = c.range_reference;
+        d["approach_samples"] = c.approach_samples;
+        d["samples_in_range"] = c.samples_in_range;
+        return d;
+      })
       .def("brief_report", &FitSummary::brief_report);
 
   py::class_<BatchItem>(m, "BatchItem", "One curve of a batch (BatchItem).")

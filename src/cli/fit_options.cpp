@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -64,6 +66,23 @@ void parse_window(const std::string& text, FitOptions& o) {
   }
 }
 
+// "MIN:MAX" with MIN < MAX, both finite and within [lo, hi]; "" leaves the range unset.
+std::optional<Interval> parse_range(const std::string& text, const char* flag, double lo, double hi,
+                                    const char* valid) {
+  if (text.empty()) return std::nullopt;
+  const auto colon = text.find(':');
+  auto number = [&](const std::string& t, double* v) {
+    char* end = nullptr;
+    *v = std::strtod(t.c_str(), &end);
+    return !t.empty() && *end == '\0' && std::isfinite(*v) && *v >= lo && *v <= hi;
+  };
+  double a = 0.0, b = 0.0;
+  if (colon == std::string::npos || !number(text.substr(0, colon), &a) || !number(text.substr(colon + 1), &b) ||
+      !(a < b))
+    throw InputError(std::string(flag) + " = \"" + text + "\" is invalid; use MIN:MAX with " + valid);
+  return Interval{a, b};
+}
+
 }  // namespace
 
 Prepared prepare_options(const FitArguments& a) {
@@ -83,6 +102,12 @@ Prepared prepare_options(const FitArguments& a) {
   p.options.retract_control = parse_enum<RetractControl>(a.control, "--control");
   p.options.baseline = parse_enum<Baseline>(a.baseline, "--baseline");
   parse_window(a.window, p.options);
+  p.options.contact_point = parse_enum<ContactPointMethod>(a.contact_point, "--contact-point");
+  const double inf = std::numeric_limits<double>::max();
+  p.options.indentation_range =
+      parse_range(a.indentation_range, "--indentation-range", -inf, inf, "MIN < MAX, finite, in m");
+  p.options.force_range = parse_range(a.force_range, "--force-range", 0.0, 1.0, "0 <= MIN < MAX <= 1 (fractions)");
+  p.options.baseline_window = parse_range(a.baseline_window, "--baseline-window", -inf, inf, "MIN < MAX, finite, in m");
   try {
     p.options.validate();
     p.csv.validate();
@@ -117,6 +142,15 @@ void add_fit_options(CLI::App& c, FitArguments& a) {
   c.add_option("--control", a.control,
                "Retract control: auto (cantilever when the spring constant is known, else load) | load | "
                "cantilever | grips");
+  c.add_option("--contact-point", a.contact_point,
+               "Contact point on approach: fit (delta0 fitted, default) | threshold (baseline + 5 sigma) | rov "
+               "(ratio of variances) | gof (goodness-of-fit scan); docs/fitting.md");
+  c.add_option("--indentation-range", a.indentation_range,
+               "MIN:MAX [m]: fit the approach samples whose indentation from the contact point is in the range");
+  c.add_option("--force-range", a.force_range,
+               "MIN:MAX: approach samples by force, as fractions of the largest force above the baseline (0 <= MIN < MAX <= 1)");
+  c.add_option("--baseline-window", a.baseline_window,
+               "MIN:MAX [m]: the delta range of the baseline samples (default: the quarter with the smallest delta)");
 }
 
 }  // namespace layerjkr::cli

@@ -23,6 +23,9 @@ struct FitArguments {
   std::string control = "auto";  ///< --control: auto | load | cantilever | grips
   std::string baseline = "constant";  ///< --baseline: constant | tilt
   std::string window = "all";    ///< --window: all | pull-off | fraction:F
+  std::string contact_point = "fit";  ///< --contact-point: fit | threshold | rov | gof
+  /// --indentation-range [m], --force-range (fractions), --baseline-window [m]: MIN:MAX ("" unset)
+  std::string indentation_range, force_range, baseline_window;
 };
 
 /// The arguments as library options.

@@ -53,6 +53,14 @@ json report_json(const FitSummary& s, Branch branch) {
   j["identifiable"] = s.identifiable;
   j["unidentifiable"] = s.unidentifiable;
   j["warnings"] = s.warnings;
+  const ContactPointReport& c = s.contact_point;
+  j["contact_point"] = {{"method", to_string(c.method)},
+                        {"value", finite_or_null(c.value)},
+                        {"stderr", finite_or_null(c.standard_error)},
+                        {"baseline", finite_or_null(c.baseline)},
+                        {"range_reference", finite_or_null(c.range_reference)},
+                        {"approach_samples", c.approach_samples},
+                        {"samples_in_range", c.samples_in_range}};
   return j;
 }
 

@@ -44,6 +44,8 @@ LAYERJKR_NAMES(RetractWindow, {RetractWindow::all, "all"}, {RetractWindow::to_pu
 LAYERJKR_NAMES(RetractControl, {RetractControl::automatic, "auto"}, {RetractControl::load, "load"},
                {RetractControl::cantilever, "cantilever"}, {RetractControl::fixed_grips, "grips"})
 LAYERJKR_NAMES(Baseline, {Baseline::constant, "constant"}, {Baseline::tilt, "tilt"})
+LAYERJKR_NAMES(ContactPointMethod, {ContactPointMethod::fit, "fit"}, {ContactPointMethod::threshold, "threshold"},
+               {ContactPointMethod::rov, "rov"}, {ContactPointMethod::gof, "gof"})
 LAYERJKR_NAMES(FitFamily, {FitFamily::foundation, "foundation"}, {FitFamily::hertz, "hertz"},
                {FitFamily::tabulated, "tabulated"})
 LAYERJKR_NAMES(SegmentStyle, {SegmentStyle::extend, "extend"}, {SegmentStyle::retract, "retract"},
@@ -108,6 +110,7 @@ LAYERJKR_INSTANTIATE(LossType)
 LAYERJKR_INSTANTIATE(RetractWindow)
 LAYERJKR_INSTANTIATE(RetractControl)
 LAYERJKR_INSTANTIATE(Baseline)
+LAYERJKR_INSTANTIATE(ContactPointMethod)
 LAYERJKR_INSTANTIATE(FitFamily)
 LAYERJKR_INSTANTIATE(SegmentStyle)
 LAYERJKR_INSTANTIATE(InstrumentFormat)

@@ -45,6 +45,9 @@ struct FitData {
   double baseline = 0.0, noise = 0.0;
   /// The retract is controlled by a cantilever (FitOptions::cantilever_stiffness > 0).
   bool cantilever = false;
+  /// The contact point and baseline were found beforehand and the data shifted there: a free
+  /// delta0 and P0 start at 0 instead of the scan's values (FitOptions::contact_point).
+  bool contact_given = false;
   std::size_t residuals() const;
 };
 

@@ -9,6 +9,7 @@
 #include <memory>
 #include <limits>
 
+#include "contact_steps.hpp"
 #include "fit_run.hpp"
 #include "fit_steps.hpp"
 #include "layerjkr/error.hpp"
@@ -93,9 +94,22 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   options.validate();
   curve.validate();
   if (!scene.profile) throw InputError("fit: the scene has no indenter profile");
+  FitSummary out = detail::steered_contact(options) ? detail::fit_steered(curve, scene, options)
+                                                    : detail::fit_core(curve, scene, options, false);
+  if (!detail::steered_contact(options)) detail::report_fitted_contact(curve, options, &out);
+  out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+  return out;
+}
+
+FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const FitOptions& options,
+                            bool contact_given) {
 
   double span = 0.0, force_span = 0.0;
   FitData data = detail::select_fit_data(curve, options, &span, &force_span);
+  if (contact_given) {
+    data.contact_given = true;
+    data.baseline = 0.0;  // the data were shifted to the found baseline
+  }
   FitSummary out;
   detail::SceneParameters fixed;
   const ResolvedModel resolved = resolve_model(scene);
@@ -148,7 +162,6 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   if (options.branch == Branch::approach && has(options, FitParameter::w))
     out.warnings.push_back("on approach the model snaps in at zero load, so w is identified only "
                            "through the shape of the loading curve; fit the retract branch for w");
-  out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   return out;
 }
 

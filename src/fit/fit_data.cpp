@@ -4,6 +4,7 @@
 #include <limits>
 #include <numeric>
 
+#include "contact_steps.hpp"
 #include "fit_steps.hpp"
 #include "layerjkr/error.hpp"
 
@@ -82,9 +83,13 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
     for (std::size_t k = 0; k < m20; ++k) deep += data.P[by_delta[by_delta.size() - 1 - k]];
     deep /= static_cast<double>(m20);
     for (std::size_t k = 0; k < std::max<std::size_t>(1, by_delta.size() / 4); ++k) shallow.push_back(data.P[by_delta[k]]);
-    data.baseline = median(shallow);
-    for (auto& v : shallow) v = std::abs(v - data.baseline);
-    data.noise = kMadToSigma * median(shallow);
+    if (options.baseline_window) {
+      baseline_of(data.delta, data.P, options.baseline_window, curve.source, &data.baseline, &data.noise);
+    } else {
+      data.baseline = median(shallow);
+      for (auto& v : shallow) v = std::abs(v - data.baseline);
+      data.noise = kMadToSigma * median(shallow);
+    }
     if (!(deep - *std::min_element(data.P.begin(), data.P.end()) > kSignificantSigmas * data.noise))
       throw InputError(curve.source + ": no contact region - the force does not grow with delta on the " +
                        to_string(options.branch) + " branch (check the sign conventions: delta grows "

@@ -5,6 +5,7 @@
 
 #include "layerjkr/error.hpp"
 #include "layerjkr/fit.hpp"
+#include "contact_steps.hpp"
 
 namespace layerjkr {
 
@@ -31,6 +32,7 @@ void FitOptions::validate() const {
                       "finite and > 0 (unset: the curve's own spring constant)");
   if (!(window_fraction > 0.0 && window_fraction <= 1.0))
     throw DomainError(fn, "window_fraction", window_fraction, "(0, 1]");
+  detail::validate_contact_options(*this);
   if (!(exclusion_sigmas >= 0.0) || !std::isfinite(exclusion_sigmas))
     throw DomainError(fn, "exclusion_sigmas", exclusion_sigmas, "finite and >= 0 (0: keep every sample)");
 }
@@ -48,6 +50,7 @@ std::string FitSummary::brief_report() const {
   if (excluded_count > 0)
     o << "  excluded " << excluded_count << " retract samples after the model's jump that had not "
       << "returned to the baseline (not JKR: peeling, necking, viscoelastic tail)\n";
+  o << detail::contact_point_line(contact_point);
   for (std::size_t j = 0; j < parameters.size(); ++j) {
     const ParameterEstimate& e = parameters[j];
     o << "  " << to_string(e.parameter) << " = " << e.value;

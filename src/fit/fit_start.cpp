@@ -97,7 +97,7 @@ Start scan_start(const FitData& d, const MasterCurve& approach, const MasterCurv
   };
   Start best;
   best.P0 = P0;
-  if (!free_d0) {
+  if (!free_d0 || d.contact_given) {
     trial(0.0, &best);
     return best;
   }

@@ -102,6 +102,17 @@ TEST_CASE("fit rejects bad curves and arguments with one message and exit 2", "[
       {"negative spring constant", "z,deflection\n1,2\n", "--free E --spring-constant -1", "spring_constant"},
       {"bad z sign", "z,deflection\n1,2\n", "--free E --spring-constant 0.1 --z-sign 2", "z_sign"},
       {"zero iterations", "delta,P\n1,2\n", "--free E --max-iterations 0", "max_iterations"},
+      {"unknown contact point", "delta,P\n1,2\n", "--free E --contact-point poc", "--contact-point = \"poc\" is unknown (known: fit, threshold, rov, gof)"},
+      {"indentation range reversed", "delta,P\n1,2\n", "--free E --indentation-range 1e-6:0",
+       "--indentation-range = \"1e-6:0\" is invalid; use MIN:MAX with MIN < MAX"},
+      {"indentation range one number", "delta,P\n1,2\n", "--free E --indentation-range 1e-6",
+       "--indentation-range = \"1e-6\" is invalid"},
+      {"force range above 1", "delta,P\n1,2\n", "--free E --force-range 0:1.5",
+       "--force-range = \"0:1.5\" is invalid; use MIN:MAX with 0 <= MIN < MAX <= 1"},
+      {"baseline window not a number", "delta,P\n1,2\n", "--free E --baseline-window a:b",
+       "--baseline-window = \"a:b\" is invalid"},
+      {"contact point on retract", "delta,P\n1e-7,1e-9\n2e-7,2e-9\n3e-7,4e-9\n4e-7,6e-9\n5e-7,9e-9\n",
+       "--free E --branch retract --contact-point rov", "contact point 'rov' needs approach samples"},
   };
   for (const auto& c : cases) {
     const std::string path = write_file("bad_curve.csv", c.text);

@@ -1,6 +1,9 @@
 // layerjkr fit and fit-map: report contract, plot, batches with failures, bad data.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
@@ -85,7 +88,7 @@ TEST_CASE("fit-map fits a directory in parallel and reports a bad curve without 
   const auto rows = lines(slurp(out));
   REQUIRE(rows.size() == 8);
   CHECK(rows[0] == "file,curve,x,y,grid_x,grid_y,status,error,model,converged,iterations,rms_residual,identifiable,"
-                   "E,E_stderr,w,w_stderr,delta0,delta0_stderr,P0,P0_stderr");
+                   "contact_point,contact_point_err,range_samples,E,E_stderr,w,w_stderr,delta0,delta0_stderr,P0,P0_stderr");
   CHECK(rows[1].find("broken.csv,,,,,,error,") != std::string::npos);
   CHECK(rows[1].find("abc") != std::string::npos);
   for (std::size_t k = 2; k < rows.size(); ++k) CHECK(rows[k].find(",ok,,two_term,1,") != std::string::npos);
@@ -153,4 +156,56 @@ TEST_CASE("fit-map draws a progress bar with curves per second and time left on 
   CHECK(r.out.find("fit-map [##############################] 1/1") != std::string::npos);
   CHECK(r.out.find("curves/s") != std::string::npos);
   CHECK(r.out.find("s left") != std::string::npos);
+}
+
+TEST_CASE("fit and fit-map take a contact-point method and an indentation range and report them",
+          "[cli][fit][contact]") {
+  // A Hertz approach (paraboloid R = 5 um, E* = 2 kPa / 0.75, contact at 100 nm, a deterministic
+  // wobble of 0.5 % of the largest force as noise): the report's point and kept samples.
+  const fs::path dir = unique("contact");
+  fs::create_directories(dir);
+  std::string csv = "delta,P,segment\n";
+  std::vector<double> delta;
+  for (int i = 0; i < 400; ++i) {
+    const double d = -1e-6 + 2e-6 * i / 399.0, t = std::max(d - 1e-7, 0.0);
+    const double P = 4.0 / 3.0 * 2e3 / 0.75 * std::sqrt(5e-6) * std::pow(t, 1.5) + 2.5e-11 * std::sin(1.3 * i);
+    delta.push_back(d);
+    char line[96];
+    std::snprintf(line, sizeof line, "%.17g,%.17g,0\n", d, P);
+    csv += line;
+  }
+  std::ofstream(dir / "a.csv") << csv;
+  std::ofstream(dir / "b.csv") << csv;
+  const std::string scene = write_file("hertz.json", R"({"indenter": {"shape": "paraboloid", "R": 5e-6},
+      "medium": {"type": "half_space", "E": 1e3, "nu": 0.5}})");
+  const std::string report = unique("contact.json");
+  const Run r = run("fit " + (dir / "a.csv").string() + " --scene " + scene +
+                    " --free E --contact-point gof --indentation-range -1e-7:4e-7 --out " + report);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("contact point (gof)") != std::string::npos);
+  const auto j = nlohmann::json::parse(slurp(report));
+  const double point = j["contact_point"]["value"];
+  CHECK(j["contact_point"]["method"] == "gof");
+  CHECK(std::abs(point - 1e-7) < 4.0 * j["contact_point"]["stderr"].get<double>());
+  std::size_t kept = 0;
+  for (double d : delta) kept += d >= point - 1e-7 && d <= point + 4e-7 ? 1 : 0;
+  CHECK(j["contact_point"]["samples_in_range"] == kept);
+  CHECK(j["points"] == kept);
+
+  const std::string table = unique("contact.csv");
+  const Run m = run("fit-map " + dir.string() + " --scene " + scene +
+                    " --free E --contact-point gof --indentation-range -1e-7:4e-7 --out " + table);
+  INFO(m.err);
+  REQUIRE(m.code == 0);
+  const auto rows = lines(slurp(table));
+  REQUIRE(rows.size() == 3);
+  CHECK(rows[0].find(",identifiable,contact_point,contact_point_err,range_samples,E,E_stderr") != std::string::npos);
+  char cells[64];
+  std::snprintf(cells, sizeof cells, ",%.17g,", point);
+  CHECK(rows[1].find(cells) != std::string::npos);
+  CHECK(rows[1].find("," + std::to_string(kept) + ",") != std::string::npos);
+  fs::remove_all(dir);
+  std::remove(report.c_str());
+  std::remove(table.c_str());
 }
