@@ -1,6 +1,6 @@
 // How the fitted modulus moves with the contact-point method and the indentation range, on
 // the bundled real approach curves (../shared/data/real, tip radii from reference_fits.json)
-// and the Bruker NanoScope curve (../shared/data/instrument/bruker, a 35 degree cone).
+// and the Bruker NanoScope curve (../shared/data/instrument/bruker, a 35 degree 4-sided pyramid).
 // Prints the Markdown table of docs/fitting.md:
 //   build/bin/contact_point_study [shared-data-dir]
 // Method fit frees E, delta0 and P0; the other methods free E only (delta0 and P0 fixed at the
@@ -108,9 +108,9 @@ int main(int argc, char** argv) {
       Curve c;
       c.name = "bruker_Egel4-Z1.0_00025";
       c.data = to_curve_data(file.curves.at(0), spm);
-      c.scene = parse_scene(R"({"indenter": {"shape": "cone", "semi_angle_deg": 35},
+      c.scene = parse_scene(R"({"indenter": {"shape": "pyramid", "semi_angle_deg": 35, "sides": 4},
           "medium": {"type": "half_space", "E": 3e3, "nu": 0.5}})");
-      c.tip = "cone 35 deg";
+      c.tip = "4-sided pyramid 35 deg";
       curves.push_back(std::move(c));
     }
   }
