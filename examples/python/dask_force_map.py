@@ -104,7 +104,7 @@ def rows_for(items, free):
     """The header and rows of `layerjkr fit-map`, as its text: numbers as C's %.17g (fit-map's
     format_double), non-finite and absent values empty."""
     header = ["file", "curve", "x", "y", "grid_x", "grid_y", "status", "error", "model", "converged", "iterations",
-              "rms_residual", "identifiable"]
+              "rms_residual", "identifiable", "identifiability"]
     for p in free:
         header += [p, p + "_stderr"]
     rows = []
@@ -116,11 +116,13 @@ def rows_for(items, free):
         if it.ok:
             r = it.result
             row += [r.model, str(int(r.converged)), str(r.iterations), "%.17g" % r.rms_residual,
-                    str(int(r.identifiable))]
+                    str(int(r.identifiable)),
+                    csv_cell("yes" if r.identifiable else
+                             ("no: " if r.identifiability_known else "unknown: ") + r.identifiability_reason)]
             for p in free:
                 row += [num(r.values[p]), num(r.errors[p])]
         else:
-            row += [""] * (5 + 2 * len(free))
+            row += [""] * (6 + 2 * len(free))
         rows.append(row)
     return header, rows
 

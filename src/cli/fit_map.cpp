@@ -30,7 +30,7 @@ std::string num(double v) { return std::isfinite(v) ? format_double(v) : ""; }
 std::string index(int v) { return v >= 0 ? std::to_string(v) : std::string(); }
 
 std::string header(const std::vector<FitParameter>& free) {
-  std::string h = "file,curve,x,y,grid_x,grid_y,status,error,model,converged,iterations,rms_residual,identifiable";
+  std::string h = "file,curve,x,y,grid_x,grid_y,status,error,model,converged,iterations,rms_residual,identifiable,identifiability";
   for (FitParameter q : free) h += std::string(",") + to_string(q) + "," + to_string(q) + "_stderr";
   return h + "\n";
 }
@@ -42,10 +42,11 @@ std::string row(const BatchItem& it, std::size_t free) {
   if (it.ok) {
     const FitSummary& s = it.summary;
     csv << "," << s.model << "," << (s.converged ? 1 : 0) << "," << s.iterations << ","
-        << format_double(s.rms_residual) << "," << (s.identifiable ? 1 : 0);
+        << format_double(s.rms_residual) << "," << (s.identifiable ? 1 : 0) << ","
+        << csv_cell(s.identifiable ? "yes" : (s.identifiability_known ? "no: " : "unknown: ") + s.identifiability_reason);
     for (const auto& e : s.parameters) csv << "," << num(e.value) << "," << num(e.standard_error);
   } else {
-    csv << ",,,,,";
+    csv << ",,,,,,";
     for (std::size_t k = 0; k < free; ++k) csv << ",,";
   }
   csv << "\n";

@@ -45,6 +45,13 @@ struct FitData {
   double baseline = 0.0, noise = 0.0;
   /// The retract is controlled by a cantilever (FitOptions::cantilever_stiffness > 0).
   bool cantilever = false;
+  /// The contact region was found on the unloading samples before the observed pull-off
+  /// (retract data without a baseline; fit_data.cpp), and noise is their second-difference noise.
+  bool unloading_only = false;
+  /// The deepest retract force below the starting baseline [N] (<= 0), and whether it exceeds
+  /// the noise: the adhesive signal the start found (find_start).
+  double dip = 0.0;
+  bool adhesive = false;
   std::size_t residuals() const;
 };
 

@@ -16,6 +16,54 @@ double median(std::vector<double> v) {
   return *mid;
 }
 
+namespace {
+
+// Noise of samples on a smooth curve, from the MAD of their second differences in acquisition
+// order: a trend (a necking tail, the unloading curve itself) cancels, white noise of sigma
+// gives differences of sigma sqrt(6). 0 for fewer than 3 samples.
+double second_difference_noise(const std::vector<double>& P, const std::vector<std::size_t>& idx) {
+  if (idx.size() < 3) return 0.0;
+  std::vector<double> d2;
+  d2.reserve(idx.size() - 2);
+  for (std::size_t k = 2; k < idx.size(); ++k) d2.push_back(P[idx[k]] - 2.0 * P[idx[k - 1]] + P[idx[k - 2]]);
+  const double m = median(d2);
+  for (auto& v : d2) v = std::abs(v - m);
+  return kMadToSigma * median(d2) / std::sqrt(6.0);
+}
+
+}  // namespace
+
+// Retract-only data need not hold a baseline: a tension-only unloading curve, or one around the
+// pull-off with a necking tail, has no shallow samples at rest, and the spread of the shallowest
+// quarter is the tail's shape, not noise. The contact region is then looked for on the
+// unloading branch itself: the retract samples before the observed pull-off (the force minimum,
+// in acquisition order) are on the stable JKR branch, where dP/d delta > 0 even in tension; they
+// must rise from the minimum towards their deepest ones by more than kSignificantSigmas x the
+// second-difference noise. If so, that noise becomes the data's noise (the shallowest quarter's
+// spread would call every later feature insignificant).
+bool unloading_contact_region(FitData& data, double force_span) {
+  std::vector<std::size_t> unloading;
+  for (std::size_t i = 0; i < data.P.size(); ++i)
+    if (data.retract[i]) unloading.push_back(i);
+  if (unloading.size() < 3) return false;
+  const auto bottom = std::min_element(unloading.begin(), unloading.end(),
+                                       [&](auto i, auto j) { return data.P[i] < data.P[j]; });
+  std::vector<std::size_t> before(unloading.begin(), bottom + 1);  // up to the pull-off, inclusive
+  if (before.size() < 3) return false;
+  const double noise = second_difference_noise(data.P, unloading);
+  std::vector<std::size_t> by_delta = before;
+  std::sort(by_delta.begin(), by_delta.end(), [&](auto i, auto j) { return data.delta[i] > data.delta[j]; });
+  const std::size_t m20 = std::max<std::size_t>(1, by_delta.size() / 20);
+  double deep = 0.0;
+  for (std::size_t k = 0; k < m20; ++k) deep += data.P[by_delta[k]];
+  deep /= static_cast<double>(m20);
+  if (!(deep - data.P[*bottom] > std::max(kSignificantSigmas * noise, kSignificantForceFraction * force_span)))
+    return false;
+  data.noise = noise;
+  data.unloading_only = true;
+  return true;
+}
+
 FitData select_fit_data(const CurveData& curve, const FitOptions& options, double* span,
                         double* force_span) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -85,9 +133,11 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
     data.baseline = median(shallow);
     for (auto& v : shallow) v = std::abs(v - data.baseline);
     data.noise = kMadToSigma * median(shallow);
-    if (!(deep - *std::min_element(data.P.begin(), data.P.end()) > kSignificantSigmas * data.noise))
+    if (!(deep - *std::min_element(data.P.begin(), data.P.end()) > kSignificantSigmas * data.noise) &&
+        !unloading_contact_region(data, *force_span))
       throw InputError(curve.source + ": no contact region - the force does not grow with delta on the " +
-                       to_string(options.branch) + " branch (check the sign conventions: delta grows "
+                       to_string(options.branch) + " branch, neither over the whole branch nor over the unloading "
+                       "samples before the observed pull-off (check the sign conventions: delta grows "
                        "towards the sample, P is positive when repulsive)");
   }
   return data;

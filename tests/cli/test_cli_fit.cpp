@@ -26,8 +26,12 @@ TEST_CASE("fit recovers the bundled sample and writes the documented report", "[
   CHECK(r.out.find("converged") != std::string::npos);
   const auto j = nlohmann::json::parse(slurp(report));
   for (const char* key : {"converged", "parameters", "correlation", "rms_residual", "iterations",
-                          "identifiable", "warnings"})
+                          "identifiable", "identifiability_known", "identifiability_reason", "no_move_reason",
+                          "warnings"})
     CHECK(j.contains(key));
+  CHECK(j["identifiability_reason"] == "");
+  CHECK(j["parameters"]["E"]["reason"] == "");
+  CHECK(j["parameters"]["w"]["upper_bound"].is_null());
   CHECK(j["converged"] == true);
   CHECK(j["identifiable"] == true);
   // The sample was made with E = 50 kPa, w = 1 mJ/m^2, delta0 = 2.5 um (make_sample_curve).
@@ -49,7 +53,10 @@ TEST_CASE("fit reports an unidentifiable G with null error bars", "[cli][fit]") 
   REQUIRE(r.code == 0);
   const auto j = nlohmann::json::parse(slurp(report));
   CHECK(j["identifiable"] == false);
+  CHECK(j["identifiability_known"] == true);
   CHECK(j["parameters"]["G"]["stderr"].is_null());
+  CHECK(j["parameters"]["G"]["identifiable"] == false);
+  CHECK(j["parameters"]["G"]["reason"].get<std::string>().find("not separable") != std::string::npos);
   CHECK(j["unidentifiable"][0].get<std::string>().find("G") != std::string::npos);
   CHECK(r.out.find("cannot separate") != std::string::npos);
   std::remove(report.c_str());
@@ -85,10 +92,11 @@ TEST_CASE("fit-map fits a directory in parallel and reports a bad curve without 
   const auto rows = lines(slurp(out));
   REQUIRE(rows.size() == 8);
   CHECK(rows[0] == "file,curve,x,y,grid_x,grid_y,status,error,model,converged,iterations,rms_residual,identifiable,"
-                   "E,E_stderr,w,w_stderr,delta0,delta0_stderr,P0,P0_stderr");
+                   "identifiability,E,E_stderr,w,w_stderr,delta0,delta0_stderr,P0,P0_stderr");
   CHECK(rows[1].find("broken.csv,,,,,,error,") != std::string::npos);
   CHECK(rows[1].find("abc") != std::string::npos);
   for (std::size_t k = 2; k < rows.size(); ++k) CHECK(rows[k].find(",ok,,two_term,1,") != std::string::npos);
+  for (std::size_t k = 2; k < rows.size(); ++k) CHECK(rows[k].find(",1,yes,") != std::string::npos);
   CHECK(rows[2].substr(rows[2].find(",two_term,")) == rows[7].substr(rows[7].find(",two_term,")));
   fs::remove_all(dir);
   std::remove(out.c_str());
