@@ -18,6 +18,9 @@ double median(std::vector<double> v) {
 
 namespace {
 
+// The fewest samples a baseline and its noise are taken from.
+constexpr std::size_t kMinBaselineSamples = 3;
+
 // Noise of samples on a smooth curve, from the MAD of their second differences in acquisition
 // order: a trend (a necking tail, the unloading curve itself) cancels, white noise of sigma
 // gives differences of sigma sqrt(6). 0 for fewer than 3 samples.
@@ -129,12 +132,32 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
     std::vector<double> shallow;
     for (std::size_t k = 0; k < m20; ++k) deep += data.P[by_delta[by_delta.size() - 1 - k]];
     deep /= static_cast<double>(m20);
-    for (std::size_t k = 0; k < std::max<std::size_t>(1, by_delta.size() / 4); ++k) shallow.push_back(data.P[by_delta[k]]);
+    // The baseline comes from the shallowest quarter, but never from retract samples up to the
+    // observed pull-off (the force minimum, in acquisition order): those are in contact. An
+    // unloading curve with a few samples at rest after its pull-off would otherwise take the
+    // pull-off force for the baseline. With too few other samples the data hold no sample at
+    // rest: only the unloading rule can find their contact region.
+    const std::size_t quarter = std::max<std::size_t>(1, by_delta.size() / 4);
+    std::vector<char> candidate(data.P.size(), 1);
+    std::size_t bottom = data.P.size();
+    for (std::size_t i = 0; i < data.P.size(); ++i)
+      if (data.retract[i] && (bottom == data.P.size() || data.P[i] < data.P[bottom])) bottom = i;
+    std::size_t candidates = data.P.size();
+    for (std::size_t i = 0; i <= bottom && i < data.P.size(); ++i)
+      if (data.retract[i]) {
+        candidate[i] = 0;
+        --candidates;
+      }
+    const bool restrict = candidates >= kMinBaselineSamples;
+    for (std::size_t k = 0; k < by_delta.size() && shallow.size() < quarter; ++k)
+      if (!restrict || candidate[by_delta[k]]) shallow.push_back(data.P[by_delta[k]]);
     data.baseline = median(shallow);
     for (auto& v : shallow) v = std::abs(v - data.baseline);
     data.noise = kMadToSigma * median(shallow);
-    if (!(deep - *std::min_element(data.P.begin(), data.P.end()) > kSignificantSigmas * data.noise) &&
-        !unloading_contact_region(data, *force_span))
+    const bool at_rest = restrict || bottom == data.P.size();
+    const bool whole_branch =
+        at_rest && deep - *std::min_element(data.P.begin(), data.P.end()) > kSignificantSigmas * data.noise;
+    if (!whole_branch && !unloading_contact_region(data, *force_span))
       throw InputError(curve.source + ": no contact region - the force does not grow with delta on the " +
                        to_string(options.branch) + " branch, neither over the whole branch nor over the unloading "
                        "samples before the observed pull-off (check the sign conventions: delta grows "

@@ -230,6 +230,16 @@ TEST_CASE("tension-only unloading data are fitted: alone, with a necking tail, w
     if (after == After::necking_tail) CHECK(s.excluded_count >= 10);
     if (after != After::necking_tail) CHECK(s.excluded_count == 0);
   }
+  // A few samples at rest after the pull-off determine the baseline too: they, not the flat
+  // pull-off region, are the shallowest samples the baseline is started from.
+  const Unloading u = tension_only(After::baseline, noise, 7);
+  const FitSummary s = fit(u.curve, sphere(25e-6, 3e5, 0.0),
+                           retract({FitParameter::E, FitParameter::w, FitParameter::delta0, FitParameter::P0}));
+  INFO(s.brief_report());
+  check_consistent(s);
+  CHECK(std::abs(s[FitParameter::w].value - 0.027) < 4 * s[FitParameter::w].standard_error);
+  CHECK(std::abs(s[FitParameter::E].value - 1e6) < 4 * s[FitParameter::E].standard_error);
+  CHECK(std::abs(s[FitParameter::P0].value) < 4 * s[FitParameter::P0].standard_error);
 }
 
 TEST_CASE("retract data with no contact region are still refused, with the reason", "[fit][tension][errors]") {
