@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "layerjkr/error.hpp"
+#include "layerjkr/simulate.hpp"
 #include "support/cli_support.hpp"
 
 using namespace test::cli;
@@ -60,6 +62,47 @@ TEST_CASE("fit reports an unidentifiable G with null error bars", "[cli][fit]") 
   CHECK(j["unidentifiable"][0].get<std::string>().find("G") != std::string::npos);
   CHECK(r.out.find("cannot separate") != std::string::npos);
   std::remove(report.c_str());
+}
+
+TEST_CASE("fit and fit-map report w without adhesion at its bound, with its upper bound and reasons", "[cli][fit]") {
+  const std::string scene_json = R"({"indenter": {"shape": "paraboloid", "R": 1e-5},
+      "medium": {"type": "half_space", "E": 1e6, "nu": 0.5}})";
+  layerjkr::SimulationOptions so;
+  so.branch = layerjkr::Branch::retract;
+  so.max_indentation = 1e-6;
+  so.noise = 1e-7;
+  so.seed = 1;
+  const layerjkr::CurveData c = layerjkr::simulate_curve(layerjkr::parse_scene(scene_json, "scene"), so);
+  std::string csv = "delta,P,segment\n";
+  for (std::size_t i = 0; i < c.size(); ++i)
+    csv += layerjkr::format_double(c.delta[i]) + "," + layerjkr::format_double(c.P[i]) + ",1\n";
+  const std::string curve = write_file("no_adhesion.csv", csv), scene = write_file("hertz.json", scene_json);
+  const std::string report = unique("w0.json"), table = unique("w0_map.csv");
+  const std::string args = " --scene " + scene + " --branch retract --free E,w,delta0,P0 --out ";
+  const Run r = run("fit " + curve + args + report);
+  INFO(r.err << r.out);
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(slurp(report));
+  const auto& w = j["parameters"]["w"];
+  CHECK(w["at_bound"] == true);
+  CHECK(w["stderr"].is_null());
+  CHECK(w["upper_bound"].get<double>() > 0.0);
+  CHECK(w["identifiable"] == true);
+  CHECK(w["reason"].get<std::string>().find("no adhesive signal") != std::string::npos);
+  CHECK_FALSE(j["parameters"]["E"]["stderr"].is_null());
+  CHECK(j["identifiable"] == true);
+  CHECK(r.out.find("identifiable: yes") != std::string::npos);
+  const Run m = run("fit-map " + curve + args + table);
+  INFO(m.err);
+  REQUIRE(m.code == 0);
+  const auto rows = lines(slurp(table));
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[1].find(",1,yes,") != std::string::npos);
+  CHECK(rows[1].find(",0,,") != std::string::npos);  // w = 0 with no standard error
+  std::remove(report.c_str());
+  std::remove(table.c_str());
+  std::remove(curve.c_str());
+  std::remove(scene.c_str());
 }
 
 TEST_CASE("fit --plot writes a PNG through gnuplot", "[cli][fit][plot]") {
