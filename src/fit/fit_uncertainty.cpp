@@ -331,7 +331,10 @@ void assess_uncertainty(FitRun& run, CurveEvaluator& ev, const ParameterMap& map
       w.upper_bound = options.compute_covariance ? w_upper_bound(run, map, C0, dof, &no_bound) : kNaN;
       std::string why = at_zero ? "the solver ended at w = 0" : "holding w at 0 raises the deviance by " +
                                                                     short_number(deviance) + ", below 1e-6";
-      std::string adhesive = data.adhesive ? "" : "the retract shows no force below the baseline beyond noise; ";
+      const bool any_retract = std::find(data.retract.begin(), data.retract.end(), true) != data.retract.end();
+      std::string adhesive = !any_retract   ? "no retract samples, and the loading curve's shape does not call for w; "
+                             : data.adhesive ? ""
+                                             : "the retract shows no force below the baseline beyond noise; ";
       w.identifiable = std::isfinite(w.upper_bound);
       w.reason = "at its lower bound 0: no adhesive signal (" + adhesive + why + "); the error bar is one-sided: " +
                  (w.identifiable ? "w < " + short_number(w.upper_bound) + " J/m^2 (95 %, profile likelihood)"
@@ -350,7 +353,8 @@ void assess_uncertainty(FitRun& run, CurveEvaluator& ev, const ParameterMap& map
 void explain_no_move(const FitRun& run, const FitData& data, const ParameterMap& map, FitSummary* out) {
   if (run.moved_from_start()) return;
   std::string why;
-  if (map.is_free(FitParameter::w) && !data.adhesive)
+  const bool any_retract = std::find(data.retract.begin(), data.retract.end(), true) != data.retract.end();
+  if (map.is_free(FitParameter::w) && !data.adhesive && any_retract)
     why = "no adhesive signal for w: the retract shows no force below the baseline beyond noise (deepest " +
           short_number(-data.dip) + " N below it, noise " + short_number(data.noise) +
           " N), so w starts at its bound 0, where the cost does not depend on sqrt(w) to first order; ";
