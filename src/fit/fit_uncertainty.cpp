@@ -55,12 +55,11 @@ std::string short_number(double v) {
 }
 
 // What the Jacobian says at the solution: which free parameters it can separate (false: in a
-// null direction, or a zero column) and, for a covariance that fails, the direction it is
-// weakest in. w held at its bound is left out (its row and column are the identity).
+// null direction, or a zero column), and J^T J to say, for a covariance that fails, the
+// direction it is weakest in. w held at its bound is left out (its row and column are the identity).
 struct Conditioning {
   std::vector<bool> separable;
-  double reciprocal_condition = 1.0;  ///< of the unscaled J^T J, as ceres::Covariance checks it
-  std::string weakest;                ///< "w (1.00), P0 (0.12)": the smallest eigenvector's large components
+  Eigen::MatrixXd JtJ;  ///< unscaled, as ceres::Covariance sees it (held w: a unit direction)
 };
 
 std::string direction(const Eigen::VectorXd& v, const FitOptions& options, std::size_t held_slot) {
@@ -91,12 +90,7 @@ Conditioning condition(const CurveEvaluator& ev, const FitOptions& options, std:
     JtJ.col(h).setZero();
     JtJ(h, h) = JtJ.diagonal().maxCoeff() > 0.0 ? JtJ.diagonal().maxCoeff() : 1.0;
   }
-  {
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> raw(JtJ);
-    const Eigen::VectorXd& l = raw.eigenvalues();  // ascending
-    c.reciprocal_condition = l[l.size() - 1] > 0.0 ? std::max(l[0], 0.0) / l[l.size() - 1] : 0.0;
-    c.weakest = direction(raw.eigenvectors().col(0), options, held_slot);
-  }
+  c.JtJ = JtJ;
   Eigen::VectorXd norms = JtJ.diagonal().cwiseSqrt();
   for (Eigen::Index j = 0; j < norms.size(); ++j) {
     if (norms[j] == 0.0) {
@@ -165,10 +159,16 @@ std::string compute_error_bars(ceres::Problem* problem, double final_cost, const
   ceres::Covariance cov(co);
   std::vector<const double*> blocks{x.data()};
   if (!cov.Compute(blocks, problem)) {
+    // Why, as ceres::Covariance judged it: the unscaled J^T J's reciprocal condition number and
+    // its smallest eigenvector (computed only here: a fit whose covariance succeeds pays nothing).
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> raw(cond.JtJ);
+    const Eigen::VectorXd& l = raw.eigenvalues();  // ascending
+    const double rc = l[l.size() - 1] > 0.0 ? std::max(l[0], 0.0) / l[l.size() - 1] : 0.0;
+    const std::string weakest = direction(raw.eigenvectors().col(0), options, held_slot);
     std::string why = "the covariance could not be computed: J^T J is singular to working precision (reciprocal "
-                      "condition number " + short_number(cond.reciprocal_condition) + ", below " +
+                      "condition number " + short_number(rc) + ", below " +
                       short_number(kCovarianceMinReciprocalCondition) + ")";
-    if (!cond.weakest.empty()) why += " in the direction of " + cond.weakest;
+    if (!weakest.empty()) why += " in the direction of " + weakest;
     return why;
   }
   std::vector<double> C(p_free * p_free);
