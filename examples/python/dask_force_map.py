@@ -104,7 +104,8 @@ def rows_for(items, free):
     """The header and rows of `layerjkr fit-map`, as its text: numbers as C's %.17g (fit-map's
     format_double), non-finite and absent values empty."""
     header = ["file", "curve", "x", "y", "grid_x", "grid_y", "status", "error", "model", "converged", "iterations",
-              "rms_residual", "identifiable", "contact_point", "contact_point_err", "range_samples"]
+              "rms_residual", "identifiable", "identifiability", "contact_point", "contact_point_err",
+              "range_samples"]
     for p in free:
         header += [p, p + "_stderr"]
     rows = []
@@ -116,13 +117,15 @@ def rows_for(items, free):
         if it.ok:
             r = it.result
             row += [r.model, str(int(r.converged)), str(r.iterations), "%.17g" % r.rms_residual,
-                    str(int(r.identifiable))]
+                    str(int(r.identifiable)),
+                    csv_cell("yes" if r.identifiable else
+                             ("no: " if r.identifiability_known else "unknown: ") + r.identifiability_reason)]
             c = r.contact_point
             row += [num(c["value"]), num(c["stderr"]), str(c["samples_in_range"])]
             for p in free:
                 row += [num(r.values[p]), num(r.errors[p])]
         else:
-            row += [""] * (8 + 2 * len(free))
+            row += [""] * (9 + 2 * len(free))
         rows.append(row)
     return header, rows
 

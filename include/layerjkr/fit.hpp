@@ -118,20 +118,38 @@ struct FitOptions {
 };
 
 /// One parameter of the fitted model, in SI units.
+///
+/// Identifiability is never claimed without evidence: `identifiable` is true only when the
+/// data were shown to determine the parameter - a standard error was computed, or (w at its
+/// bound) its one-sided upper bound was. Otherwise it is false and `reason` says whether the
+/// data cannot separate it (a null direction of the Jacobian, a correlation above the limit)
+/// or whether that is unknown (the covariance could not be computed or was not asked for), and why.
 struct ParameterEstimate {
   FitParameter parameter = FitParameter::K;
   double value = 0.0;
   /// Standard error scaled by the residual variance (as lmfit / nanite do); NaN when not
-  /// identifiable or not computed.
+  /// identifiable, at its bound, or not computed (`reason` says which).
   double standard_error = 0.0;
   double initial = 0.0;   ///< the data-driven start
-  bool at_bound = false;  ///< w ended at 0: its error bar is one-sided
-  bool identifiable = true;  ///< false: in a group the data cannot separate (see FitSummary)
+  /// w ended at 0 because the data show no adhesive signal (fixing w = 0 raises the cost by a
+  /// deviance below 1e-6, or the solver stopped there): the other parameters and their error
+  /// bars come from the fit with w held at 0; w's error bar is one-sided (upper_bound).
+  bool at_bound = false;
+  /// at_bound: the 95 % one-sided upper bound on w [J/m^2] from the profile likelihood (the w at
+  /// which refitting the other parameters with w held there raises the deviance
+  /// 2 delta cost / s^2 by 2.706, the chi^2(1) 90 % point); NaN otherwise or if it was not found.
+  double upper_bound = std::numeric_limits<double>::quiet_NaN();
+  bool identifiable = false;  ///< true only when shown (see above)
+  /// Empty when the parameter has its error bar; else why not (not separable, at its bound, or
+  /// identifiability unknown and why), one sentence.
+  std::string reason;
 };
 
 struct FitSummary {
   bool converged = false;
   std::string termination;  ///< Ceres' termination message
+  /// Trust-region iterations summed over the solves that produced the result (the solve from the
+  /// start, or the winning extra start, then the refits after exclusion, detilt and holding w).
   int iterations = 0;
   std::string model;        ///< the contact model that was fitted (e.g. "two_term")
   FitFamily family = FitFamily::foundation;  ///< how the model was evaluated
@@ -142,13 +160,25 @@ struct FitSummary {
   double initial_cost = 0.0, final_cost = 0.0;  ///< Ceres costs (dimensionless)
   std::size_t points = 0;             ///< samples on the branch
   std::size_t points_in_contact = 0;  ///< of which the model puts in contact
-  bool identifiable = true;
+  /// True only when every free parameter is identifiable (ParameterEstimate::identifiable).
+  bool identifiable = false;
+  /// False when identifiability could not be decided (the covariance failed or was not
+  /// computed): then `identifiable` is false and identifiability_reason says why.
+  bool identifiability_known = false;
+  /// Empty when identifiable; else why not, or why it is unknown (one sentence).
+  std::string identifiability_reason;
   /// Groups of parameters that cannot be separated (empty when identifiable).
   std::vector<std::string> unidentifiable;
+  /// Non-empty when the solver did not move from its start (0 iterations, or the cost unchanged
+  /// to function_tolerance): why, e.g. no adhesive signal for w, or the start is already a
+  /// minimum.
+  std::string no_move_reason;
   std::vector<std::string> warnings;
   /// The data used and the fitted model at the same samples (for plots and residuals).
   std::vector<double> delta, P, P_fit;
-  /// Per sample (aligned with delta, P): excluded by the rule of FitOptions::exclusion_sigmas.
+  /// Per sample (aligned with delta, P): excluded by the rule of FitOptions::exclusion_sigmas
+  /// (the retract samples the model has let go of, up to the first back at the baseline: a
+  /// necking tail, peeling, a viscoelastic tail after the observed pull-off).
   std::vector<bool> excluded;
   std::size_t excluded_count = 0;
   /// Baseline::tilt: the baseline's slope [N/m] and its standard error (0 without).
@@ -167,9 +197,18 @@ struct FitSummary {
 };
 
 /// Fits `curve` with the model of `scene`. Throws InputError for data that cannot be
-/// fitted (fewer samples than free parameters, no sample beyond the estimated contact
-/// point, a parameter the model does not have) and DomainError for invalid options.
-/// Convergence failures are reported in the summary, not thrown.
+/// fitted (fewer samples than free parameters, no contact region, a parameter the model
+/// does not have) and DomainError for invalid options. Convergence failures are reported in
+/// the summary, not thrown.
+///
+/// The contact region: the deepest 5 % of the branch's samples must lie 5 noise sigmas above
+/// its lowest force (noise: the MAD of the shallowest quarter). Retract data without a
+/// baseline - tension-only unloading, a necking tail - are judged on the unloading branch
+/// itself: the retract samples up to the observed pull-off (the force minimum, in acquisition
+/// order) are on the stable JKR branch (dP/d delta > 0 even in tension), and their deepest
+/// 5 % must lie 5 sigmas above the minimum, sigma from the second differences of the retract
+/// samples. Then P0 starts at 0, and samples after the pull-off the model cannot describe are
+/// excluded by the rule of FitOptions::exclusion_sigmas (docs/fitting.md).
 FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& options);
 
 }  // namespace layerjkr

@@ -619,6 +619,8 @@ class _Parameter(NamedTuple):
     initial: float
     at_bound: bool
     identifiable: bool
+    upper_bound: float
+    reason: str
 
 
 class FitResult:
@@ -635,10 +637,12 @@ class FitResult:
         self._fields = {k: getattr(s, k) for k in ("converged", "termination", "iterations", "model", "family",
                                                      "rms_residual", "excluded_count", "pull_off_force",
                                                      "baseline_slope", "baseline_slope_stderr", "points",
-                                                     "points_in_contact", "identifiable", "unidentifiable",
+                                                     "points_in_contact", "identifiable", "identifiability_known",
+                                                     "identifiability_reason", "unidentifiable", "no_move_reason",
                                                      "warnings", "initial_cost", "final_cost", "solve_seconds",
                                                      "contact_point")}
-        self._params = {p.name: _Parameter(p.value, p.standard_error, p.initial, p.at_bound, p.identifiable)
+        self._params = {p.name: _Parameter(p.value, p.standard_error, p.initial, p.at_bound, p.identifiable,
+                                              p.upper_bound, p.reason)
                         for p in s.parameters}
         self._corr = s.correlation
         self._delta, self._P, self._P_fit, self._excluded = s.delta, s.P, s.P_fit, s.excluded
@@ -716,9 +720,39 @@ class FitResult:
         return {k: p.at_bound for k, p in self._params.items()}
 
     @property
+    def upper_bound(self) -> Dict[str, float]:
+        """Per parameter: for w at its bound, its 95 % one-sided upper bound [J/m^2] from the
+        profile likelihood; NaN otherwise."""
+        return {k: p.upper_bound for k, p in self._params.items()}
+
+    @property
     def identifiable(self) -> bool:
-        """False if the data cannot separate some parameters (see :attr:`unidentifiable`)."""
+        """True only when every parameter was shown identifiable (an error bar, or w's upper
+        bound, was computed). False if the data cannot separate some parameters (see
+        :attr:`unidentifiable`) or if that is unknown (:attr:`identifiability_known` is False);
+        :attr:`identifiability_reason` says which and why."""
         return self._fields["identifiable"]
+
+    @property
+    def identifiability_known(self) -> bool:
+        """False when identifiability could not be decided (the covariance failed or was not
+        computed)."""
+        return self._fields["identifiability_known"]
+
+    @property
+    def identifiability_reason(self) -> str:
+        """Why the fit is not identifiable, or why that is unknown; empty when identifiable."""
+        return self._fields["identifiability_reason"]
+
+    @property
+    def reasons(self) -> Dict[str, str]:
+        """Per parameter: why it has no error bar or is not identifiable (empty when it has both)."""
+        return {k: p.reason for k, p in self._params.items()}
+
+    @property
+    def no_move_reason(self) -> str:
+        """Why the solver did not move from its start (empty when it did)."""
+        return self._fields["no_move_reason"]
 
     @property
     def unidentifiable(self) -> List[str]:
@@ -783,7 +817,8 @@ class FitResult:
             "converged": f["converged"], "termination": f["termination"], "iterations": f["iterations"],
             "model": f["model"], "family": f["family"], "branch": self._branch,
             "parameters": {k: {"value": p.value, "stderr": _finite_or_none(p.standard_error), "initial": p.initial,
-                               "at_bound": p.at_bound, "identifiable": p.identifiable}
+                               "at_bound": p.at_bound, "upper_bound": _finite_or_none(p.upper_bound),
+                               "identifiable": p.identifiable, "reason": p.reason}
                            for k, p in self._params.items()},
             "correlation": {a: {b: _finite_or_none(float(corr[i, k])) for k, b in enumerate(names)}
                             for i, a in enumerate(names)},
@@ -791,7 +826,10 @@ class FitResult:
             "pull_off_force": _finite_or_none(f["pull_off_force"]), "baseline_slope": f["baseline_slope"],
             "baseline_slope_stderr": f["baseline_slope_stderr"], "points": f["points"],
             "points_in_contact": f["points_in_contact"], "identifiable": f["identifiable"],
-            "unidentifiable": list(f["unidentifiable"]), "warnings": list(f["warnings"]),
+            "identifiability_known": f["identifiability_known"],
+            "identifiability_reason": f["identifiability_reason"],
+            "unidentifiable": list(f["unidentifiable"]), "no_move_reason": f["no_move_reason"],
+            "warnings": list(f["warnings"]),
             "contact_point": {k: _finite_or_none(v) if isinstance(v, float) else v
                               for k, v in f["contact_point"].items()},
         }

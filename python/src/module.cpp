@@ -341,7 +341,9 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("standard_error", &ParameterEstimate::standard_error)
       .def_readonly("initial", &ParameterEstimate::initial)
       .def_readonly("at_bound", &ParameterEstimate::at_bound)
-      .def_readonly("identifiable", &ParameterEstimate::identifiable);
+      .def_readonly("upper_bound", &ParameterEstimate::upper_bound)
+      .def_readonly("identifiable", &ParameterEstimate::identifiable)
+      .def_readonly("reason", &ParameterEstimate::reason);
 
   py::class_<FitSummary>(m, "FitSummary", "A fit's summary (FitSummary).")
       .def_readonly("converged", &FitSummary::converged)
@@ -365,7 +367,10 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("points", &FitSummary::points)
       .def_readonly("points_in_contact", &FitSummary::points_in_contact)
       .def_readonly("identifiable", &FitSummary::identifiable)
+      .def_readonly("identifiability_known", &FitSummary::identifiability_known)
+      .def_readonly("identifiability_reason", &FitSummary::identifiability_reason)
       .def_readonly("unidentifiable", &FitSummary::unidentifiable)
+      .def_readonly("no_move_reason", &FitSummary::no_move_reason)
       .def_readonly("warnings", &FitSummary::warnings)
       .def_property_readonly("delta", [](const FitSummary& s) { return to_array(s.delta); })
       .def_property_readonly("P", [](const FitSummary& s) { return to_array(s.P); })

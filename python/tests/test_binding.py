@@ -373,3 +373,32 @@ def test_ctrl_c_stops_a_batch_and_keeps_its_results(source, kind):
     assert 0 < int(words[1]) < 400
     assert words[2] == "True"
     print("KeyboardInterrupt %.3f s after SIGINT, %s fits kept" % (float(words[3]) - sent, words[1]))
+
+
+def test_no_adhesion_reports_w_at_its_bound_with_an_upper_bound_and_the_reasons():
+    # A Hertz retract without adhesion (closed form, 1e-7 N noise): before #23, w stopped at
+    # ~1e-18 J/m^2 with every error bar NaN and identifiable True. Noise alone makes about half of
+    # the realisations favour a small interior w (with its error bar); the first realisation
+    # that ends at the bound is checked.
+    E, R, nu = 1e6, 1e-5, 0.5
+    d = np.linspace(1e-6, -0.5e-6, 500)
+    scene = {"indenter": {"shape": "paraboloid", "R": R}, "medium": {"type": "half_space", "E": E, "nu": nu}}
+    for seed in range(1, 21):
+        rng = np.random.default_rng(seed)
+        P = 4.0 / 3.0 * E / (1 - nu**2) * np.sqrt(R) * np.clip(d, 0, None)**1.5 + rng.normal(0, 1e-7, d.size)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            r = layerjkr.fit(d, P, scene, free="E,w,delta0,P0", segment=np.ones(d.size, dtype=int), branch="retract")
+        assert all(np.isfinite(r.errors[k]) for k in ("E", "delta0", "P0"))
+        if not r.at_bound["w"]:
+            assert np.isfinite(r.errors["w"]) and r.identifiable and np.isnan(r.upper_bound["w"])
+            continue
+        assert any("w = 0 at its lower bound" in str(c.message) for c in caught)
+        break
+    assert r.at_bound["w"] and r.values["w"] == 0.0 and np.isnan(r.errors["w"])
+    assert r.upper_bound["w"] > 0.0 and np.isnan(r.upper_bound["E"])
+    assert abs(r.values["E"] - E) < 4 * r.errors["E"]
+    assert r.identifiable and r.identifiability_known and r.identifiability_reason == ""
+    assert "no adhesive signal" in r.reasons["w"] and r.reasons["E"] == ""
+    d_ = r.as_dict()
+    assert d_["parameters"]["w"]["upper_bound"] == r.upper_bound["w"] and d_["no_move_reason"] == r.no_move_reason

@@ -31,7 +31,7 @@ std::string index(int v) { return v >= 0 ? std::to_string(v) : std::string(); }
 
 std::string header(const std::vector<FitParameter>& free) {
   std::string h = "file,curve,x,y,grid_x,grid_y,status,error,model,converged,iterations,rms_residual,identifiable,"
-                    "contact_point,contact_point_err,range_samples";
+                  "identifiability,contact_point,contact_point_err,range_samples";
   for (FitParameter q : free) h += std::string(",") + to_string(q) + "," + to_string(q) + "_stderr";
   return h + "\n";
 }
@@ -43,11 +43,13 @@ std::string row(const BatchItem& it, std::size_t free) {
   if (it.ok) {
     const FitSummary& s = it.summary;
     csv << "," << s.model << "," << (s.converged ? 1 : 0) << "," << s.iterations << ","
-        << format_double(s.rms_residual) << "," << (s.identifiable ? 1 : 0) << "," << num(s.contact_point.value)
-        << "," << num(s.contact_point.standard_error) << "," << s.contact_point.samples_in_range;
+        << format_double(s.rms_residual) << "," << (s.identifiable ? 1 : 0) << ","
+        << csv_cell(s.identifiable ? "yes" : (s.identifiability_known ? "no: " : "unknown: ") + s.identifiability_reason)
+        << "," << num(s.contact_point.value) << "," << num(s.contact_point.standard_error) << ","
+        << s.contact_point.samples_in_range;
     for (const auto& e : s.parameters) csv << "," << num(e.value) << "," << num(e.standard_error);
   } else {
-    csv << ",,,,,,,,";
+    csv << ",,,,,,,,,";
     for (std::size_t k = 0; k < free; ++k) csv << ",,";
   }
   csv << "\n";

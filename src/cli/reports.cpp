@@ -33,7 +33,9 @@ json report_json(const FitSummary& s, Branch branch) {
                                       {"stderr", finite_or_null(e.standard_error)},
                                       {"initial", e.initial},
                                       {"at_bound", e.at_bound},
-                                      {"identifiable", e.identifiable}};
+                                      {"upper_bound", finite_or_null(e.upper_bound)},
+                                      {"identifiable", e.identifiable},
+                                      {"reason", e.reason}};
   j["parameters"] = params;
   json corr = json::object();
   for (std::size_t i = 0; i < s.parameters.size(); ++i) {
@@ -51,7 +53,10 @@ json report_json(const FitSummary& s, Branch branch) {
   j["points"] = s.points;
   j["points_in_contact"] = s.points_in_contact;
   j["identifiable"] = s.identifiable;
+  j["identifiability_known"] = s.identifiability_known;
+  j["identifiability_reason"] = s.identifiability_reason;
   j["unidentifiable"] = s.unidentifiable;
+  j["no_move_reason"] = s.no_move_reason;
   j["warnings"] = s.warnings;
   const ContactPointReport& c = s.contact_point;
   j["contact_point"] = {{"method", to_string(c.method)},

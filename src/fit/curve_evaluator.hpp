@@ -48,6 +48,13 @@ struct FitData {
   /// The contact point and baseline were found beforehand and the data shifted there: a free
   /// delta0 and P0 start at 0 instead of the scan's values (FitOptions::contact_point).
   bool contact_given = false;
+  /// The contact region was found on the unloading samples before the observed pull-off
+  /// (retract data without a baseline; fit_data.cpp), and noise is their second-difference noise.
+  bool unloading_only = false;
+  /// The deepest retract force below the starting baseline [N] (<= 0), and whether it exceeds
+  /// the noise: the adhesive signal the start found (find_start).
+  double dip = 0.0;
+  bool adhesive = false;
   std::size_t residuals() const;
 };
 

@@ -154,11 +154,16 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   }
   run.record(&out);
   out.excluded = excluded;
+  out.excluded_count = static_cast<std::size_t>(std::count(excluded.begin(), excluded.end(), true));
+  detail::assess_uncertainty(run, ev, map, x, options, data, &out);
+  detail::explain_no_move(run, data, map, &out);
   const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;
   for (std::size_t i = 0; i < data.P.size(); ++i)
     if (data.retract[i] && !(data.P[i] - P0 >= out.pull_off_force)) out.pull_off_force = data.P[i] - P0;  // NaN at first
-  out.excluded_count = static_cast<std::size_t>(std::count(excluded.begin(), excluded.end(), true));
-  detail::assess_uncertainty(ev, run.problem(), run.final_cost(), map, x, options, data.residuals(), &out);
+  if (data.unloading_only)
+    out.warnings.push_back("no baseline in the data: the contact region was found on the unloading samples before "
+                           "the observed pull-off, the noise from their second differences" +
+                           std::string(has(options, FitParameter::P0) ? ", and P0 started at 0" : ""));
   if (options.branch == Branch::approach && has(options, FitParameter::w))
     out.warnings.push_back("on approach the model snaps in at zero load, so w is identified only "
                            "through the shape of the loading curve; fit the retract branch for w");

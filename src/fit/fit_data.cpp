@@ -17,6 +17,57 @@ double median(std::vector<double> v) {
   return *mid;
 }
 
+namespace {
+
+// The fewest samples a baseline and its noise are taken from.
+constexpr std::size_t kMinBaselineSamples = 3;
+
+// Noise of samples on a smooth curve, from the MAD of their second differences in acquisition
+// order: a trend (a necking tail, the unloading curve itself) cancels, white noise of sigma
+// gives differences of sigma sqrt(6). 0 for fewer than 3 samples.
+double second_difference_noise(const std::vector<double>& P, const std::vector<std::size_t>& idx) {
+  if (idx.size() < 3) return 0.0;
+  std::vector<double> d2;
+  d2.reserve(idx.size() - 2);
+  for (std::size_t k = 2; k < idx.size(); ++k) d2.push_back(P[idx[k]] - 2.0 * P[idx[k - 1]] + P[idx[k - 2]]);
+  const double m = median(d2);
+  for (auto& v : d2) v = std::abs(v - m);
+  return kMadToSigma * median(d2) / std::sqrt(6.0);
+}
+
+}  // namespace
+
+// Retract-only data need not hold a baseline: a tension-only unloading curve, or one around the
+// pull-off with a necking tail, has no shallow samples at rest, and the spread of the shallowest
+// quarter is the tail's shape, not noise. The contact region is then looked for on the
+// unloading branch itself: the retract samples before the observed pull-off (the force minimum,
+// in acquisition order) are on the stable JKR branch, where dP/d delta > 0 even in tension; they
+// must rise from the minimum towards their deepest ones by more than kSignificantSigmas x the
+// second-difference noise. If so, that noise becomes the data's noise (the shallowest quarter's
+// spread would call every later feature insignificant).
+bool unloading_contact_region(FitData& data, double force_span) {
+  std::vector<std::size_t> unloading;
+  for (std::size_t i = 0; i < data.P.size(); ++i)
+    if (data.retract[i]) unloading.push_back(i);
+  if (unloading.size() < 3) return false;
+  const auto bottom = std::min_element(unloading.begin(), unloading.end(),
+                                       [&](auto i, auto j) { return data.P[i] < data.P[j]; });
+  std::vector<std::size_t> before(unloading.begin(), bottom + 1);  // up to the pull-off, inclusive
+  if (before.size() < 3) return false;
+  const double noise = second_difference_noise(data.P, unloading);
+  std::vector<std::size_t> by_delta = before;
+  std::sort(by_delta.begin(), by_delta.end(), [&](auto i, auto j) { return data.delta[i] > data.delta[j]; });
+  const std::size_t m20 = std::max<std::size_t>(1, by_delta.size() / 20);
+  double deep = 0.0;
+  for (std::size_t k = 0; k < m20; ++k) deep += data.P[by_delta[k]];
+  deep /= static_cast<double>(m20);
+  if (!(deep - data.P[*bottom] > std::max(kSignificantSigmas * noise, kSignificantForceFraction * force_span)))
+    return false;
+  data.noise = noise;
+  data.unloading_only = true;
+  return true;
+}
+
 FitData select_fit_data(const CurveData& curve, const FitOptions& options, double* span,
                         double* force_span) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -82,7 +133,25 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
     std::vector<double> shallow;
     for (std::size_t k = 0; k < m20; ++k) deep += data.P[by_delta[by_delta.size() - 1 - k]];
     deep /= static_cast<double>(m20);
-    for (std::size_t k = 0; k < std::max<std::size_t>(1, by_delta.size() / 4); ++k) shallow.push_back(data.P[by_delta[k]]);
+    // The baseline comes from the shallowest quarter, but never from retract samples up to the
+    // observed pull-off (the force minimum, in acquisition order): those are in contact. An
+    // unloading curve with a few samples at rest after its pull-off would otherwise take the
+    // pull-off force for the baseline. With too few other samples the data hold no sample at
+    // rest: only the unloading rule can find their contact region.
+    const std::size_t quarter = std::max<std::size_t>(1, by_delta.size() / 4);
+    std::vector<char> candidate(data.P.size(), 1);
+    std::size_t bottom = data.P.size();
+    for (std::size_t i = 0; i < data.P.size(); ++i)
+      if (data.retract[i] && (bottom == data.P.size() || data.P[i] < data.P[bottom])) bottom = i;
+    std::size_t candidates = data.P.size();
+    for (std::size_t i = 0; i <= bottom && i < data.P.size(); ++i)
+      if (data.retract[i]) {
+        candidate[i] = 0;
+        --candidates;
+      }
+    const bool restrict = candidates >= kMinBaselineSamples;
+    for (std::size_t k = 0; k < by_delta.size() && shallow.size() < quarter; ++k)
+      if (!restrict || candidate[by_delta[k]]) shallow.push_back(data.P[by_delta[k]]);
     if (options.baseline_window) {
       baseline_of(data.delta, data.P, options.baseline_window, curve.source, &data.baseline, &data.noise);
     } else {
@@ -90,9 +159,13 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
       for (auto& v : shallow) v = std::abs(v - data.baseline);
       data.noise = kMadToSigma * median(shallow);
     }
-    if (!(deep - *std::min_element(data.P.begin(), data.P.end()) > kSignificantSigmas * data.noise))
+    const bool at_rest = restrict || bottom == data.P.size();
+    const bool whole_branch =
+        at_rest && deep - *std::min_element(data.P.begin(), data.P.end()) > kSignificantSigmas * data.noise;
+    if (!whole_branch && !unloading_contact_region(data, *force_span))
       throw InputError(curve.source + ": no contact region - the force does not grow with delta on the " +
-                       to_string(options.branch) + " branch (check the sign conventions: delta grows "
+                       to_string(options.branch) + " branch, neither over the whole branch nor over the unloading "
+                       "samples before the observed pull-off (check the sign conventions: delta grows "
                        "towards the sample, P is positive when repulsive)");
   }
   return data;

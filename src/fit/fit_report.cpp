@@ -51,21 +51,23 @@ std::string FitSummary::brief_report() const {
     o << "  excluded " << excluded_count << " retract samples after the model's jump that had not "
       << "returned to the baseline (not JKR: peeling, necking, viscoelastic tail)\n";
   o << detail::contact_point_line(contact_point);
+  if (!no_move_reason.empty()) o << "  did not move from the start: " << no_move_reason << "\n";
   for (std::size_t j = 0; j < parameters.size(); ++j) {
     const ParameterEstimate& e = parameters[j];
     o << "  " << to_string(e.parameter) << " = " << e.value;
     if (std::isfinite(e.standard_error))
       o << " +- " << e.standard_error;
-    else if (e.at_bound)
-      o << " (at its bound)";
-    else if (!e.identifiable)
-      o << " (no error bar: not identifiable)";
+    else if (e.at_bound && std::isfinite(e.upper_bound))
+      o << " (at its bound; < " << e.upper_bound << " at 95 %)";
     else
-      o << " (no error bar: covariance not computed)";
+      o << " (no error bar)";
+    if (!e.reason.empty()) o << "\n      " << e.reason;
     o << "\n";
   }
-  o << "  identifiable: " << (identifiable ? "yes" : "no") << "\n";
-  for (const auto& u : unidentifiable) o << "    cannot separate: " << u << "\n";
+  // Three states: shown identifiable, shown not separable, or not decided (and why).
+  o << "  identifiable: " << (identifiable ? "yes" : identifiability_known ? "no" : "unknown");
+  if (!identifiable) o << " - " << identifiability_reason;
+  o << "\n";
   for (const auto& w : warnings) o << "  warning: " << w << "\n";
   return o.str();
 }

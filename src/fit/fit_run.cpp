@@ -55,7 +55,8 @@ FitRun::FitRun(CurveEvaluator& ev, const ParameterMap& map, const FitOptions& op
 
 // One Ceres trust-region solve from xs; one residual block, or one per sample when a
 // robust loss needs it.
-std::unique_ptr<ceres::Problem> FitRun::solve_from(std::vector<double>& xs, ceres::Solver::Summary* summary) const {
+std::unique_ptr<ceres::Problem> FitRun::solve_from(std::vector<double>& xs, ceres::Solver::Summary* summary,
+                                                   int held) const {
   // One Ceres context per thread: creating it per fit costs more than a small fit. It must come
   // from Context::Create(): a default-constructed ceres::Context is only the opaque base, and
   // Ceres casts it to its implementation (whose thread pool mutex then lay in zeroed TLS in the
@@ -80,7 +81,10 @@ std::unique_ptr<ceres::Problem> FitRun::solve_from(std::vector<double>& xs, cere
       problem->AddResidualBlock(new BlockCost(&ev_, ev_.row(i), ev_.row(i) + ev_.rows(i), n), loss, xs.data());
     }
   }
-  if (map_.is_free(FitParameter::w)) problem->SetParameterLowerBound(xs.data(), map_.index(FitParameter::w), 0.0);
+  if (held >= 0)
+    problem->SetManifold(xs.data(), new ceres::SubsetManifold(n, {held}));
+  else if (map_.is_free(FitParameter::w))
+    problem->SetParameterLowerBound(xs.data(), map_.index(FitParameter::w), 0.0);
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   so.logging_type = options_.trace ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
@@ -96,7 +100,48 @@ std::unique_ptr<ceres::Problem> FitRun::solve_from(std::vector<double>& xs, cere
   return problem;
 }
 
-void FitRun::solve() { problem_ = solve_from(x_, &summary_); }
+void FitRun::solve() {
+  const bool first = !problem_;
+  problem_ = solve_from(x_, &summary_, held_);
+  iterations_ += static_cast<int>(summary_.iterations.size()) - 1;
+  if (first) {
+    moved_ = summary_.iterations.size() > 1 &&
+             summary_.initial_cost - summary_.final_cost > options_.function_tolerance * summary_.initial_cost;
+    first_termination_ = summary_.termination_type;
+    first_message_ = summary_.message;
+  }
+}
+
+bool FitRun::hold_w(double xw) {
+  const int slot = map_.index(FitParameter::w);
+  const std::vector<double> before = x_;
+  const int held_before = held_;
+  x_[static_cast<std::size_t>(slot)] = xw;
+  held_ = slot;
+  if (!ev_.evaluate(x_.data(), false) || (x_.size() > 1 && !resolve_in_place())) {
+    x_ = before;
+    held_ = held_before;
+    return false;
+  }
+  return true;
+}
+
+double FitRun::cost_with_w_held(double xw) {
+  std::vector<double> xs = x_;
+  xs[static_cast<std::size_t>(map_.index(FitParameter::w))] = xw;
+  if (!ev_.evaluate(xs.data(), false)) return kNaN;
+  if (xs.size() == 1) {  // nothing else to refit: the cost at xw (least squares; robust losses refit below)
+    if (options_.loss == LossType::none) {
+      double c = 0.0;
+      for (double r : ev_.residuals()) c += 0.5 * r * r;
+      return c;
+    }
+    return kNaN;
+  }
+  ceres::Solver::Summary s2;
+  solve_from(xs, &s2, map_.index(FitParameter::w));
+  return s2.IsSolutionUsable() ? s2.final_cost : kNaN;
+}
 
 void FitRun::try_extra_starts() {
   const auto at = [&](std::vector<double>& v, FitParameter q) -> double& {
@@ -113,11 +158,12 @@ void FitRun::try_extra_starts() {
       if (map_.is_free(q)) at(xs, q) = sign * std::log(kExtraStartStiffnessFactor) * ring;
     if (!ev_.evaluate(xs.data(), false)) continue;
     ceres::Solver::Summary s2;
-    solve_from(xs, &s2);
+    solve_from(xs, &s2, held_);
     if (s2.IsSolutionUsable() && s2.final_cost < summary_.final_cost) {
       summary_ = s2;
       x_ = xs;
       moved = true;
+      iterations_ = static_cast<int>(s2.iterations.size()) - 1;
     }
   }
   // The covariance needs a problem built on x itself, not on a start's copy: solve once
@@ -132,11 +178,12 @@ bool FitRun::resolve_in_place() {
   ev_.invalidate();
   ceres::Solver::Summary s2;
   const std::vector<double> before = x_;
-  auto p2 = solve_from(x_, &s2);
+  auto p2 = solve_from(x_, &s2, held_);
   if (!s2.IsSolutionUsable()) {
     x_ = before;
     return false;
   }
+  iterations_ += static_cast<int>(s2.iterations.size()) - 1;
   summary_ = s2;
   problem_ = std::move(p2);
   return true;
@@ -195,7 +242,7 @@ void FitRun::detilt_baseline(FitSummary* out) {
 void FitRun::record(FitSummary* out) {
   out->converged = summary_.termination_type == ceres::CONVERGENCE;
   out->termination = summary_.message;
-  out->iterations = static_cast<int>(summary_.iterations.size()) - 1;
+  out->iterations = iterations_;
   out->initial_cost = summary_.initial_cost;
   out->final_cost = summary_.final_cost;
   if (!ev_.evaluate(x_.data(), true)) throw NumericalError("fit: the model cannot be evaluated at the solution");

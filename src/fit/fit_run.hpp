@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <ceres/ceres.h>
@@ -34,11 +35,26 @@ class FitRun {
   /// The solution, the fitted curve and its rms into `out` (errors: NaN until assessed).
   void record(FitSummary* out);
 
+  /// Holds w (its internal coordinate) at xw from now on and solves again in place, without its
+  /// bound; false if that solve is not usable (then nothing changed).
+  bool hold_w(double xw);
+  /// The cost with w held at xw and the other parameters refitted from the current solution;
+  /// the run's state is unchanged. NaN if that solve is not usable.
+  double cost_with_w_held(double xw);
+  /// The slot of x held fixed (w at its bound), or -1.
+  int held_slot() const { return held_; }
+
   ceres::Problem* problem() { return problem_.get(); }
   double final_cost() const { return summary_.final_cost; }
+  /// The first solve from the data-driven start: did it move (>= 1 iteration and a cost
+  /// decrease beyond function_tolerance), and its Ceres termination.
+  bool moved_from_start() const { return moved_; }
+  ceres::TerminationType first_termination() const { return first_termination_; }
+  const std::string& first_message() const { return first_message_; }
 
  private:
-  std::unique_ptr<ceres::Problem> solve_from(std::vector<double>& xs, ceres::Solver::Summary* summary) const;
+  std::unique_ptr<ceres::Problem> solve_from(std::vector<double>& xs, ceres::Solver::Summary* summary,
+                                             int held) const;
   bool resolve_in_place();
 
   CurveEvaluator& ev_;
@@ -48,6 +64,11 @@ class FitRun {
   std::vector<double>& x_;
   ceres::Solver::Summary summary_;
   std::unique_ptr<ceres::Problem> problem_;
+  int held_ = -1;
+  int iterations_ = 0;  ///< summed over the solves that produced x (record() reports it)
+  bool moved_ = true;
+  ceres::TerminationType first_termination_ = ceres::CONVERGENCE;
+  std::string first_message_;
 };
 
 }  // namespace layerjkr::detail

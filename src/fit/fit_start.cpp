@@ -133,7 +133,9 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
   const double span = map.L, force_span = map.F;
   // Data-driven start: the baseline of the shallowest quarter (select_fit_data), then a
   // contact-point scan with the stiffness solved linearly at each trial.
-  const double P0_start = map.is_free(FitParameter::P0) ? data.baseline : 0.0;
+  // Unloading-only data hold no samples at rest: their shallowest quarter is the pull-off or a
+  // tail, not a baseline, so P0 starts at 0 (the force's own zero).
+  const double P0_start = map.is_free(FitParameter::P0) && !data.unloading_only ? data.baseline : 0.0;
   // Alternate the contact-point scan (at the current w) and the adhesion estimate: w from
   // the deepest force dip on retract, where the model's pull-off must match it.
   double dip = 0.0;
@@ -141,16 +143,23 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
     if (data.retract[i]) dip = std::min(dip, data.P[i] - P0_start);
   const bool adhesive_data =
       dip < -std::max(kSignificantSigmas * data.noise, kSignificantForceFraction * force_span);
+  data.dip = dip;
+  data.adhesive = adhesive_data;
   const bool estimate_w = map.is_free(FitParameter::w) && adhesive_data;
   if (adhesive_data) {
-    // Retract samples are in contact until the observed pull-off: the first sample after
-    // the deepest force that is back above half the dip (P(delta) is flat at pull-off, so
-    // the deepest sample itself may come a few samples early).
+    // Retract samples are in contact until the observed pull-off: up to the first sample after
+    // the deepest force that is back above half the dip, or more than the significance band
+    // above the deepest force (P(delta) is flat at pull-off, so the deepest sample itself may
+    // come a few samples early, but only by noise; a force relaxing gradually - a necking
+    // tail - is not the JKR branch and is left to the model and the exclusion rule).
     std::size_t deepest = data.P.size();
     for (std::size_t i = 0; i < data.P.size(); ++i)
       if (data.retract[i] && (deepest == data.P.size() || data.P[i] < data.P[deepest])) deepest = i;
+    const double band = std::max(kSignificantSigmas * data.noise, kSignificantForceFraction * force_span);
     std::size_t jump = deepest;
-    while (jump < data.P.size() && (!data.retract[jump] || data.P[jump] < P0_start + 0.5 * dip)) ++jump;
+    while (jump < data.P.size() &&
+           (!data.retract[jump] || (data.P[jump] < P0_start + 0.5 * dip && data.P[jump] <= data.P[deepest] + band)))
+      ++jump;
     data.contact.assign(data.P.size(), -1);
     // Under a cantilever the tip stays on the branch past the deepest force, to where the
     // model lets go: those samples are the model's to place (-1).

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "layerjkr/error.hpp"
+#include "layerjkr/simulate.hpp"
 #include "support/cli_support.hpp"
 
 using namespace test::cli;
@@ -29,8 +31,12 @@ TEST_CASE("fit recovers the bundled sample and writes the documented report", "[
   CHECK(r.out.find("converged") != std::string::npos);
   const auto j = nlohmann::json::parse(slurp(report));
   for (const char* key : {"converged", "parameters", "correlation", "rms_residual", "iterations",
-                          "identifiable", "warnings"})
+                          "identifiable", "identifiability_known", "identifiability_reason", "no_move_reason",
+                          "warnings"})
     CHECK(j.contains(key));
+  CHECK(j["identifiability_reason"] == "");
+  CHECK(j["parameters"]["E"]["reason"] == "");
+  CHECK(j["parameters"]["w"]["upper_bound"].is_null());
   CHECK(j["converged"] == true);
   CHECK(j["identifiable"] == true);
   // The sample was made with E = 50 kPa, w = 1 mJ/m^2, delta0 = 2.5 um (make_sample_curve).
@@ -52,10 +58,54 @@ TEST_CASE("fit reports an unidentifiable G with null error bars", "[cli][fit]") 
   REQUIRE(r.code == 0);
   const auto j = nlohmann::json::parse(slurp(report));
   CHECK(j["identifiable"] == false);
+  CHECK(j["identifiability_known"] == true);
   CHECK(j["parameters"]["G"]["stderr"].is_null());
+  CHECK(j["parameters"]["G"]["identifiable"] == false);
+  CHECK(j["parameters"]["G"]["reason"].get<std::string>().find("not separable") != std::string::npos);
   CHECK(j["unidentifiable"][0].get<std::string>().find("G") != std::string::npos);
   CHECK(r.out.find("cannot separate") != std::string::npos);
   std::remove(report.c_str());
+}
+
+TEST_CASE("fit and fit-map report w without adhesion at its bound, with its upper bound and reasons", "[cli][fit]") {
+  const std::string scene_json = R"({"indenter": {"shape": "paraboloid", "R": 1e-5},
+      "medium": {"type": "half_space", "E": 1e6, "nu": 0.5}})";
+  layerjkr::SimulationOptions so;
+  so.branch = layerjkr::Branch::retract;
+  so.max_indentation = 1e-6;
+  so.noise = 1e-7;
+  so.seed = 1;
+  const layerjkr::CurveData c = layerjkr::simulate_curve(layerjkr::parse_scene(scene_json, "scene"), so);
+  std::string csv = "delta,P,segment\n";
+  for (std::size_t i = 0; i < c.size(); ++i)
+    csv += layerjkr::format_double(c.delta[i]) + "," + layerjkr::format_double(c.P[i]) + ",1\n";
+  const std::string curve = write_file("no_adhesion.csv", csv), scene = write_file("hertz.json", scene_json);
+  const std::string report = unique("w0.json"), table = unique("w0_map.csv");
+  const std::string args = " --scene " + scene + " --branch retract --free E,w,delta0,P0 --out ";
+  const Run r = run("fit " + curve + args + report);
+  INFO(r.err << r.out);
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(slurp(report));
+  const auto& w = j["parameters"]["w"];
+  CHECK(w["at_bound"] == true);
+  CHECK(w["stderr"].is_null());
+  CHECK(w["upper_bound"].get<double>() > 0.0);
+  CHECK(w["identifiable"] == true);
+  CHECK(w["reason"].get<std::string>().find("no adhesive signal") != std::string::npos);
+  CHECK_FALSE(j["parameters"]["E"]["stderr"].is_null());
+  CHECK(j["identifiable"] == true);
+  CHECK(r.out.find("identifiable: yes") != std::string::npos);
+  const Run m = run("fit-map " + curve + args + table);
+  INFO(m.err);
+  REQUIRE(m.code == 0);
+  const auto rows = lines(slurp(table));
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[1].find(",1,yes,") != std::string::npos);
+  CHECK(rows[1].find(",0,,") != std::string::npos);  // w = 0 with no standard error
+  std::remove(report.c_str());
+  std::remove(table.c_str());
+  std::remove(curve.c_str());
+  std::remove(scene.c_str());
 }
 
 TEST_CASE("fit --plot writes a PNG through gnuplot", "[cli][fit][plot]") {
@@ -88,10 +138,12 @@ TEST_CASE("fit-map fits a directory in parallel and reports a bad curve without 
   const auto rows = lines(slurp(out));
   REQUIRE(rows.size() == 8);
   CHECK(rows[0] == "file,curve,x,y,grid_x,grid_y,status,error,model,converged,iterations,rms_residual,identifiable,"
-                   "contact_point,contact_point_err,range_samples,E,E_stderr,w,w_stderr,delta0,delta0_stderr,P0,P0_stderr");
+                   "identifiability,contact_point,contact_point_err,range_samples,E,E_stderr,w,w_stderr,delta0,"
+                   "delta0_stderr,P0,P0_stderr");
   CHECK(rows[1].find("broken.csv,,,,,,error,") != std::string::npos);
   CHECK(rows[1].find("abc") != std::string::npos);
   for (std::size_t k = 2; k < rows.size(); ++k) CHECK(rows[k].find(",ok,,two_term,1,") != std::string::npos);
+  for (std::size_t k = 2; k < rows.size(); ++k) CHECK(rows[k].find(",1,yes,") != std::string::npos);
   CHECK(rows[2].substr(rows[2].find(",two_term,")) == rows[7].substr(rows[7].find(",two_term,")));
   fs::remove_all(dir);
   std::remove(out.c_str());
@@ -200,7 +252,7 @@ TEST_CASE("fit and fit-map take a contact-point method and an indentation range 
   REQUIRE(m.code == 0);
   const auto rows = lines(slurp(table));
   REQUIRE(rows.size() == 3);
-  CHECK(rows[0].find(",identifiable,contact_point,contact_point_err,range_samples,E,E_stderr") != std::string::npos);
+  CHECK(rows[0].find(",identifiable,identifiability,contact_point,contact_point_err,range_samples,E,E_stderr") != std::string::npos);
   char cells[64];
   std::snprintf(cells, sizeof cells, ",%.17g,", point);
   CHECK(rows[1].find(cells) != std::string::npos);

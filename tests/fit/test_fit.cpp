@@ -189,7 +189,9 @@ TEST_CASE("a paraboloid with a free contact point cannot identify G (theory.md s
   CHECK(std::isnan(s[FitParameter::delta0].standard_error));
   CHECK(std::isfinite(s[FitParameter::K].standard_error));  // K and w stay determined
   CHECK(rel_err(s[FitParameter::K].value, 1e12) < 0.01);
-  CHECK(s.brief_report().find("not identifiable") != std::string::npos);
+  CHECK(s.identifiability_known);
+  CHECK(s.brief_report().find("identifiable: no - the data cannot separate") != std::string::npos);
+  CHECK_THAT(s[FitParameter::G].reason, Catch::Contains("not separable"));
 
   // With the contact point known, G is determined by the same data.
   const FitSummary fixed = fit(data, truth, options({FitParameter::K, FitParameter::G, FitParameter::w}));
