@@ -23,10 +23,6 @@
 #include "instrument.hpp"
 #include "layerjkr/layerjkr.hpp"
 
-#ifndef LAYERJKR_VERSION
-#error "LAYERJKR_VERSION (the CMake project version) must be defined"
-#endif
-
 namespace py = pybind11;
 using namespace layerjkr;
 
@@ -248,7 +244,7 @@ std::vector<BatchItem> fit_files_py(const std::vector<std::string>& paths, const
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "layerjkr C++ core (use the layerjkr package, not this module)";
-  m.attr("__version__") = LAYERJKR_VERSION;
+  m.attr("__version__") = layerjkr::version();  // the library's, by construction
   Exceptions& e = exceptions();
   e.error = new_exception(m, "Error", py::handle(PyExc_Exception), "Base class of everything layerjkr raises.");
   e.domain = new_exception(m, "DomainError", py::make_tuple(e.error, py::handle(PyExc_ValueError)).release(),
