@@ -11,6 +11,7 @@
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -21,6 +22,7 @@
 #include "layerjkr/layerjkr.hpp"
 #include "limits.hpp"
 #include "plots.hpp"
+#include "reports.hpp"
 #include "results_table.hpp"
 
 namespace layerjkr::cli {
@@ -105,10 +107,60 @@ class StopOnSignals {
   struct sigaction old_int_ {}, old_term_ {};
 };
 
+using json = nlohmann::ordered_json;
+
+// --resume keeps rows made earlier: only if they were made from the same scene and options, and
+// every input both runs name still has the bytes it had (the sidecar says what they were made from).
+// Returns the earlier record.
+json check_resumable(const std::string& sidecar, const json& now) {
+  std::ifstream f(sidecar, std::ios::binary);
+  if (!f)
+    throw InputError("--resume: " + sidecar + ", the record of how the earlier table was made, is missing; "
+                     "without it its rows cannot be checked against this run (rerun without --resume)");
+  json earlier;
+  try {
+    earlier = json::parse(f);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError("--resume: " + sidecar + " is not a fit-map record (" + e.what() + ")");
+  }
+  const auto differs = [&](const char* key, const char* sub = nullptr) {
+    if (!earlier.contains(key)) return true;
+    return sub ? !earlier[key].contains(sub) || earlier[key][sub] != now[key][sub] : earlier[key] != now[key];
+  };
+  if (differs("scene", "json") || differs("scene", "description"))
+    throw InputError("--resume: the earlier table was made with another scene (" + sidecar + "); it is not resumed");
+  if (differs("options") || differs("csv"))
+    throw InputError("--resume: the earlier table was made with other fit options (" + sidecar + ": " +
+                     (earlier.contains("options") ? earlier["options"].dump() : std::string("none")) +
+                     "); it is not resumed");
+  std::map<std::string, std::string> hashes;
+  if (earlier.contains("inputs") && earlier["inputs"].is_array())
+    for (const auto& in : earlier["inputs"])
+      if (in.contains("path") && in["path"].is_string()) hashes[in["path"].get<std::string>()] = in.value("sha256", json()).dump();
+  for (const auto& in : now["inputs"]) {
+    const auto found = hashes.find(in["path"].get<std::string>());
+    if (found != hashes.end() && found->second != in["sha256"].dump())
+      throw InputError("--resume: " + in["path"].get<std::string>() + " changed since the earlier table was made: SHA-256 " +
+                       in["sha256"].dump() + ", " + sidecar + " says " + found->second + "; it is not resumed");
+  }
+  if (earlier.value("layerjkr_version", std::string()) != version())
+    std::cerr << "layerjkr: warning: --resume: the earlier rows were made by layerjkr "
+              << earlier.value("layerjkr_version", std::string("(unknown)")) << ", the new ones by " << version() << "\n";
+  return earlier;
+}
+
 }  // namespace
 
+std::string sidecar_path(const std::string& out) {
+  const std::string ext = ".csv";
+  if (out.size() > ext.size() && out.compare(out.size() - ext.size(), ext.size(), ext) == 0)
+    return out.substr(0, out.size() - ext.size()) + ".json";
+  return out + ".json";
+}
+
 int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
-                const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves) {
+                const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
+                const std::vector<std::string>& command_line) {
   const Prepared p = prepare(args);
   check_count("--jobs", jobs, 1, kMaxJobs);
   if (resume && !plot_dir.empty())
@@ -117,12 +169,30 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
   std::vector<std::string> all_inputs = files;
   all_inputs.push_back(args.scene);
   check_not_input(out, "--out", all_inputs);
+  const std::string sidecar = sidecar_path(out);
+  check_not_input(sidecar, "--out's record", all_inputs);
   const std::string head = header(p.options.free);
   Earlier earlier;
   if (resume) read_earlier(out, head, earlier);
   // Every output is created before the first fit: a bad path fails now, not after the work.
   OutputFile table(out);
+  OutputFile record(sidecar);
   if (!plot_dir.empty()) prepare_plot_dir(plot_dir);
+  // What the rows are made from, hashed before any is read (docs/provenance.md has the cost).
+  std::vector<InputRecord> hashed;
+  for (const std::string& f : files) hashed.push_back(record_file(f));
+  json made_from = provenance_record(p.scene, p.options, p.csv, hashed, command_line);
+  made_from["table"] = out;
+  made_from["curves"] = curves.empty() ? json(nullptr) : json(curves);
+  if (!earlier.rows.empty()) {
+    const json earlier_record = check_resumable(sidecar, made_from);
+    // The earlier inputs this run does not name keep their rows, so their records stay too.
+    std::set<std::string> named;
+    for (const InputRecord& r : hashed) named.insert(r.path);
+    for (const auto& in : earlier_record.value("inputs", json::array()))
+      if (!named.count(in.value("path", std::string()))) made_from["inputs"].push_back(in);
+  }
+  record.write(made_from.dump(2) + "\n");
   table.write(head);
 
   std::size_t rows = 0, failed = 0, skipped = 0;
@@ -187,6 +257,7 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
       ++kept;
     }
   table.commit();
+  record.commit();
   if (drawn) std::cerr << "\n";
   const std::string kept_note = kept ? "; " + std::to_string(kept) + " earlier row(s) for other inputs kept at the end" : "";
   if (const int sig = stop_signal.load()) {
