@@ -42,6 +42,13 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
                 const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
                 const std::vector<std::string>& command_line);
 
+/// `layerjkr fit-map --from-report OUT.json --out NEW.csv [--jobs N] [--plot-dir DIR]`: the map a
+/// record describes, rerun with its scene, options, inputs (each input's SHA-256 checked first) and
+/// curve range. Inputs are named as the first run named them where that still resolves to the
+/// recorded file, so rerun from the same directory the table is the same, byte for byte.
+int run_fit_map_from_report(const std::string& from, int jobs, const std::string& out, const std::string& plot_dir,
+                            const std::vector<std::string>& command_line);
+
 /// fit-map's record beside its table: OUT.csv -> OUT.json; a name not ending in .csv gets .json
 /// appended (OUT.txt -> OUT.txt.json).
 std::string sidecar_path(const std::string& out);

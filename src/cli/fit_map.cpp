@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <mutex>
 #include <set>
@@ -158,16 +159,16 @@ std::string sidecar_path(const std::string& out) {
   return out + ".json";
 }
 
-int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
-                const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
-                const std::vector<std::string>& command_line) {
-  const Prepared p = prepare(args);
+namespace {
+
+// fit-map from prepared options and expanded inputs: the command and its --from-report share it.
+// `all_inputs`: every file the outputs must not be; `extra`: added to the sidecar.
+int map_and_record(const Prepared& p, const std::vector<std::string>& files, const std::vector<std::string>& all_inputs,
+                   int jobs, const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
+                   const std::vector<std::string>& command_line, const json& extra) {
   check_count("--jobs", jobs, 1, kMaxJobs);
   if (resume && !plot_dir.empty())
     throw InputError("--plot-dir needs every fit, and --resume does not redo the earlier ones: run them apart");
-  const std::vector<std::string> files = expand_inputs(inputs);
-  std::vector<std::string> all_inputs = files;
-  all_inputs.push_back(args.scene);
   check_not_input(out, "--out", all_inputs);
   const std::string sidecar = sidecar_path(out);
   check_not_input(sidecar, "--out's record", all_inputs);
@@ -182,8 +183,11 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
   std::vector<InputRecord> hashed;
   for (const std::string& f : files) hashed.push_back(record_file(f));
   json made_from = provenance_record(p.scene, p.options, p.csv, hashed, command_line);
+  // Each input also as it was named (the table's file column), so a rerun can name it the same way.
+  for (std::size_t k = 0; k < files.size(); ++k) made_from["inputs"][k]["named"] = files[k];
   made_from["table"] = out;
   made_from["curves"] = curves.empty() ? json(nullptr) : json(curves);
+  for (const auto& item : extra.items()) made_from[item.key()] = item.value();
   if (!earlier.rows.empty()) {
     const json earlier_record = check_resumable(sidecar, made_from);
     // The earlier inputs this run does not name keep their rows, so their records stay too.
@@ -271,6 +275,57 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
   if (failed) std::cerr << "; " << failed << " failed (see the error column of " << out << ")";
   std::cerr << kept_note << "\n";
   return 0;
+}
+
+}  // namespace
+
+int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
+                const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
+                const std::vector<std::string>& command_line) {
+  const Prepared p = prepare(args);
+  const std::vector<std::string> files = expand_inputs(inputs);
+  std::vector<std::string> all_inputs = files;
+  all_inputs.push_back(args.scene);
+  return map_and_record(p, files, all_inputs, jobs, out, plot_dir, resume, curves, command_line, json::object());
+}
+
+int run_fit_map_from_report(const std::string& from, int jobs, const std::string& out, const std::string& plot_dir,
+                            const std::vector<std::string>& command_line) {
+  std::ifstream f(from, std::ios::binary);
+  if (!f) throw InputError("--from-report: cannot open " + from);
+  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(from + ": not a fit-map record (" + e.what() + ")");
+  }
+  if (!j.is_object() || !j.contains("table"))
+    throw InputError(from + ": is not a fit-map record (the OUT.json fit-map writes beside its table)");
+  const ProvenanceRecord r = parse_provenance(text, from);
+  if (r.version != version())
+    std::cerr << "layerjkr: warning: " << from << " was written by layerjkr " << r.version << ", this is "
+              << version() << ": the numbers may differ\n";
+  if (!r.scene) throw InputError(from + ": cannot be rerun: its scene was " + r.scene_note);
+  std::vector<std::string> files;
+  for (std::size_t k = 0; k < r.inputs.size(); ++k) {
+    const InputRecord& in = r.inputs[k];
+    // An input recorded as not a file (a FIFO, a directory) gave a failed row; it is named again.
+    if (in.error.empty()) verify_input(in);
+    // As the first run named it where that still names the same file (from the same directory):
+    // the table's file column is then the same too.
+    const std::string named = j["inputs"][k].value("named", std::string());
+    std::error_code ec;
+    const bool same = !named.empty() && std::filesystem::absolute(named, ec).lexically_normal().string() == in.path;
+    files.push_back(same && !ec ? named : in.path);
+  }
+  const std::string curves = j.value("curves", json()).is_string() ? j["curves"].get<std::string>() : std::string();
+  std::vector<std::string> all_inputs = files;
+  all_inputs.push_back(from);
+  json extra;
+  extra["rerun_of"] = {{"record", record_file(from).path}, {"sha256", sha256_hex(text.data(), text.size())}};
+  const Prepared p{*r.scene, r.options, r.csv.value_or(CsvOptions{})};
+  return map_and_record(p, files, all_inputs, jobs, out, plot_dir, false, curves, command_line, extra);
 }
 
 }  // namespace layerjkr::cli

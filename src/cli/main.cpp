@@ -141,6 +141,11 @@ static int run_main(int argc, char** argv) {
   fit_map->add_option("--curves", map_curves,
                       "Fit only the curves at positions A to B - 1 of each map (A:B, A: or :B; 0-based, file order); "
                       "the rest are not read");
+  std::string map_from_report;
+  fit_map->add_option("--from-report", map_from_report,
+                      "Rerun the map a record (OUT.json) describes: its scene, options, inputs (SHA-256 checked) and "
+                      "--curves, instead of INPUTS, --scene and the fit flags; give --out, and --jobs, --plot-dir");
+  for (const char* name : {"inputs", "--scene", "--free"}) fit_map->get_option(name)->required(false);
   fit_map->add_flag("--resume", map_resume,
                     "Keep the rows of an existing --out table (same header) and fit only the curves it lacks; refused when its "
                     "record names another scene or options, or an input whose SHA-256 changed");
@@ -168,15 +173,24 @@ static int run_main(int argc, char** argv) {
     app.parse(argc, argv);
     if (*curve && at.empty() && !*max_opt)
       throw CLI::RequiredError("curve needs --at or --a-max with --points");
-    if (*fit && from_report.empty()) {
-      for (const std::string& name : fit_required)
-        if (fit->get_option(name)->count() == 0) throw CLI::RequiredError(name);
-    } else if (*fit) {
-      for (const CLI::Option* o : fit->get_options())
-        if (o->count() > 0 && o->get_name() != "--from-report" && o->get_name() != "--out" && o->get_name() != "--plot")
-          throw CLI::ValidationError("--from-report takes the data, scene and every fit option from the report; "
-                                     "give only --out and --plot with it, not " + o->get_name());
-    }
+    // With --from-report the report gives the inputs, scene and fit flags; without it they are required.
+    const auto check_from_report = [&](CLI::App* command, const std::string& report, const std::vector<std::string>& required,
+                                       const std::vector<std::string>& allowed) {
+      if (report.empty()) {
+        for (const std::string& name : required)
+          if (command->get_option(name)->count() == 0) throw CLI::RequiredError(name);
+        return;
+      }
+      std::string list;
+      for (const std::string& name : allowed) list += (list.empty() ? "" : ", ") + name;
+      for (const CLI::Option* o : command->get_options())
+        if (o->count() > 0 && o->get_name() != "--from-report" &&
+            std::find(allowed.begin(), allowed.end(), o->get_name()) == allowed.end())
+          throw CLI::ValidationError("--from-report takes the inputs, scene and every fit option from the report; "
+                                     "give only " + list + " with it, not " + o->get_name());
+    };
+    if (*fit) check_from_report(fit, from_report, fit_required, {"--out", "--plot"});
+    if (*fit_map) check_from_report(fit_map, map_from_report, {"inputs", "--scene", "--free"}, {"--out", "--jobs", "--plot-dir"});
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -191,6 +205,8 @@ static int run_main(int argc, char** argv) {
     if (*fit && !from_report.empty())
       return layerjkr::cli::run_fit_from_report(from_report, report_path, plot_path, command_line);
     if (*fit) return layerjkr::cli::run_fit(fit_args, data_path, report_path, plot_path, command_line);
+    if (*fit_map && !map_from_report.empty())
+      return layerjkr::cli::run_fit_map_from_report(map_from_report, jobs, map_out, map_plot_dir, command_line);
     if (*fit_map)
       return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out, map_plot_dir, map_resume, map_curves,
                                         command_line);

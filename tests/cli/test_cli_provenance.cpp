@@ -241,3 +241,39 @@ TEST_CASE("fit-map --resume refuses rows made from other options, another scene,
   CHECK(count_lines(bare.err) == 1);
   CHECK(bare.err.find("is missing") != std::string::npos);
 }
+
+TEST_CASE("fit-map --from-report reruns a map to the same table byte for byte", "[cli][fit-map][provenance]") {
+  const fs::path dir = unique("rerun_in");
+  fs::create_directories(dir);
+  for (int i = 0; i < 3; ++i) fs::copy_file(kCurve, dir / ("c" + std::to_string(i) + ".csv"));
+  std::ofstream(dir / "c1.csv", std::ios::app) << "3.1e-6,2e-9,1\n";  // one curve not like the others
+  std::ofstream(dir / "bad.csv") << "delta,P\n1,abc\n";              // a failed row, rerun as failed
+  const std::string out = unique("first_map.csv"), again = unique("second_map.csv");
+  const Run r = run("fit-map " + dir.string() + kFree + " --starts 1 --jobs 2 --out " + out);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const Run rerun = run("fit-map --from-report " + unique("first_map.json") + " --jobs 1 --out " + again);
+  INFO(rerun.err);
+  REQUIRE(rerun.code == 0);
+  CHECK(slurp(again) == slurp(out));  // every cell, every digit
+  const json a = json::parse(slurp(unique("first_map.json"))), b = json::parse(slurp(unique("second_map.json")));
+  for (const char* key : {"layerjkr_version", "scene", "options", "csv", "inputs", "curves"}) {
+    INFO(key);
+    CHECK(a[key] == b[key]);
+  }
+  CHECK(b["rerun_of"]["sha256"] == file_sha256(unique("first_map.json")));
+  // A changed input is refused before anything is written; flags beside --from-report too.
+  std::ofstream(dir / "c2.csv", std::ios::app) << "3.2e-6,2e-9,1\n";
+  const Run changed = run("fit-map --from-report " + unique("first_map.json") + " --out " + unique("never_map.csv"));
+  CHECK(changed.code == 2);
+  CHECK(count_lines(changed.err) == 1);
+  CHECK(changed.err.find((dir / "c2.csv").string()) != std::string::npos);
+  CHECK_FALSE(fs::exists(unique("never_map.csv")));
+  const Run flags = run("fit-map --from-report " + unique("first_map.json") + " --starts 2 --out " + unique("never_map.csv"));
+  CHECK(flags.code == 2);
+  CHECK(flags.err.find("give only --out, --jobs, --plot-dir with it, not --starts") != std::string::npos);
+  const Run report = run("fit-map --from-report " + write_file("fit_report.json", "{\"provenance\": {}}") + " --out " +
+                         unique("never_map.csv"));
+  CHECK(report.code == 2);
+  CHECK(report.err.find("is not a fit-map record") != std::string::npos);
+}
