@@ -181,6 +181,7 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
   if (!plot_dir.empty()) prepare_plot_dir(plot_dir);
   // What the rows are made from, hashed before any is read (docs/provenance.md has the cost).
   std::vector<InputRecord> hashed;
+  hashed.reserve(files.size());
   for (const std::string& f : files) hashed.push_back(record_file(f));
   json made_from = provenance_record(p.scene, p.options, p.csv, hashed, command_line);
   // Each input also as it was named (the table's file column), so a rerun can name it the same way.
