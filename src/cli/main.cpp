@@ -4,6 +4,7 @@
 //   layerjkr fit DATA.csv --scene S.json --free E,w,delta0 [--out R.json] [--plot F.png] ...
 //   layerjkr fit --from-report R.json [--out R2.json] [--plot F.png]
 //   layerjkr fit-map DIR_OR_GLOB... --scene S.json --free ... --jobs N --out RESULTS.csv [--resume]
+//   layerjkr fit-map --from-report RESULTS.json --out AGAIN.csv [--jobs N]
 //   layerjkr export FILE.jpk-force|.jpk-force-map|.jpk-qi-data|.ibw|.spm|.000 --out OUT.csv [--curves A:B]
 // Exit codes: 0 success, 2 invalid scene or arguments, 1 internal failure, 130 / 143 fit-map
 // stopped by SIGINT / SIGTERM. Every error is one line on stderr.
