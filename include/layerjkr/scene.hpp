@@ -44,6 +44,7 @@ struct SceneOrigin {
   std::string json;         ///< the JSON parse_scene read, compact (nlohmann's dump: doubles exact)
   std::string file;         ///< load_scene: the path, as given
   std::string file_sha256;  ///< load_scene: SHA-256 of the bytes parsed (64 lowercase hex digits)
+  std::string description;  ///< the parsed fields, described when parsed (what "stale" is judged by)
 };
 
 struct Scene {

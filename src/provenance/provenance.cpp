@@ -16,6 +16,7 @@
 #include "layerjkr/error.hpp"
 #include "layerjkr/provenance.hpp"
 #include "layerjkr/types.hpp"
+#include "provenance/scene_description.hpp"
 
 #ifndef LAYERJKR_VERSION
 #error "LAYERJKR_VERSION (the CMake project version) must be defined"
@@ -216,7 +217,10 @@ json scene_record(const Scene& s) {
     note = "built in code, not parsed from JSON: recorded by its description only, not reproducible";
   } else {
     // Tables are described by their size and range only; their points are in the JSON.
-    if (describe(parse_scene(s.origin.json, "the scene's recorded JSON")) == description)
+    const std::string parsed_as = s.origin.description.empty()
+                                      ? describe(parse_scene(s.origin.json, "the scene's recorded JSON")).dump()
+                                      : s.origin.description;
+    if (parsed_as == description.dump())
       parsed = parse_json(s.origin.json, "the scene's recorded JSON");
     else
       note = "changed in code after it was parsed: its JSON no longer describes it; recorded by its description "
@@ -251,6 +255,8 @@ std::string string_member(const json& j, const char* key, const std::string& sou
 }
 
 }  // namespace
+
+std::string detail::describe_scene(const Scene& scene) { return describe(scene).dump(); }
 
 const char* version() { return LAYERJKR_VERSION; }
 

@@ -16,6 +16,7 @@
 #include "layerjkr/error.hpp"
 #include "layerjkr/exact_layer.hpp"
 #include "layerjkr/provenance.hpp"
+#include "provenance/scene_description.hpp"
 
 namespace layerjkr {
 namespace {
@@ -340,6 +341,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   in.checked("medium", [&] { validate(resolve_model(s).spec); });
   check_scales(in, s);
   s.origin.json = root.dump();
+  s.origin.description = detail::describe_scene(s);
   return s;
 }
 
