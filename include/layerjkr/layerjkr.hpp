@@ -18,6 +18,7 @@
 #include "layerjkr/model_error.hpp"
 #include "layerjkr/model_spec.hpp"
 #include "layerjkr/profile.hpp"
+#include "layerjkr/provenance.hpp"
 #include "layerjkr/scene.hpp"
 #include "layerjkr/simulate.hpp"
 #include "layerjkr/types.hpp"

@@ -37,6 +37,16 @@ struct MediumSpec {
   Base base = Base::bonded;
 };
 
+/// Where a scene came from, for provenance (provenance.hpp): set by parse_scene and load_scene,
+/// empty for a scene built in code. Code that changes a parsed scene's fields makes it stale;
+/// provenance compares the fields with the JSON and records a stale scene as not reproducible.
+struct SceneOrigin {
+  std::string json;         ///< the JSON parse_scene read, compact (nlohmann's dump: doubles exact)
+  std::string file;         ///< load_scene: the path, as given
+  std::string file_sha256;  ///< load_scene: SHA-256 of the bytes parsed (64 lowercase hex digits)
+  std::string description;  ///< the parsed fields, described when parsed (what "stale" is judged by)
+};
+
 struct Scene {
   ProfilePtr profile;
   MediumSpec medium;
@@ -44,6 +54,7 @@ struct Scene {
   Solver solver = Solver::closed_form;
   double w = 0.0;                     ///< [J/m^2]
   double tolerance = 0.0;             ///< relative error target of model "auto", in (0, 1)
+  SceneOrigin origin;                 ///< the JSON and file it was read from (empty: built in code)
 };
 
 /// Parses a scene from JSON text; `source` names it in error messages.

@@ -156,6 +156,12 @@ def scene(spec: SceneLike, profile: Optional[Callable[[Any], Any]] = None, r_max
         z = np.array([float(profile(x)) for x in r])
     if not np.all(np.isfinite(z)):
         raise InputError("scene: the profile callable returned a non-finite height at r = %r m" % r[~np.isfinite(z)][0])
+    if s.json:
+        # The sampled profile as the scene's table indenter, parsed like any scene: the scene's
+        # JSON keeps describing it, so a fit's provenance records it (json writes doubles exactly).
+        spec_json = json.loads(s.json)
+        spec_json["indenter"] = {"shape": "table", "r": r.tolist(), "z": z.tolist()}
+        return _core.parse_scene(json.dumps(spec_json), "scene with a callable profile")
     return _core.with_table_profile(s, r.tolist(), z.tolist())
 
 
@@ -628,12 +634,14 @@ class FitResult:
     covariance and correlation, identifiability, warnings, and the data with the fitted curve.
 
     ``values``, ``errors``, ``covariance`` and ``correlation`` are :class:`NamedArray`
-    indexed by the names in ``parameters``. Picklable (plain Python and numpy values).
+    indexed by the names in ``parameters``; ``provenance`` says what the fit was made from
+    (version, scene, options, the inputs' SHA-256). Picklable (plain Python and numpy values).
     """
 
-    __slots__ = ("_fields", "_params", "_corr", "_delta", "_P", "_P_fit", "_excluded", "_brief", "_branch")
+    __slots__ = ("_fields", "_params", "_corr", "_delta", "_P", "_P_fit", "_excluded", "_brief", "_branch",
+                 "_provenance")
 
-    def __init__(self, s: Any, branch: str) -> None:
+    def __init__(self, s: Any, branch: str, provenance: Optional[Dict[str, Any]] = None) -> None:
         self._fields = {k: getattr(s, k) for k in ("converged", "termination", "iterations", "model", "family",
                                                      "rms_residual", "excluded_count", "pull_off_force",
                                                      "baseline_slope", "baseline_slope_stderr", "points",
@@ -648,6 +656,7 @@ class FitResult:
         self._delta, self._P, self._P_fit, self._excluded = s.delta, s.P, s.P_fit, s.excluded
         self._brief = s.brief_report()
         self._branch = branch
+        self._provenance = provenance if provenance is not None else {}
 
     def __getstate__(self) -> Any:
         return {k: getattr(self, k) for k in self.__slots__}
@@ -807,9 +816,22 @@ class FitResult:
         """The brief report the CLI prints (FitSummary::brief_report)."""
         return self._brief
 
+    @property
+    def provenance(self) -> Dict[str, Any]:
+        """What the fit was made from, as ``layerjkr fit --out`` records it (docs/provenance.md):
+        ``layerjkr_version``; ``scene`` (its JSON as parsed, its file and that file's SHA-256, or
+        for a scene built in code a description and a note); ``options`` (every FitOptions field);
+        ``csv`` (every CsvOptions field; files only); ``inputs``, each with ``path``, ``size``
+        [bytes] and ``sha256``: a file's bytes, or for arrays given directly the bytes of the
+        float64 arrays the library fitted (``"delta (float64 array)"``, ``"P (float64 array)"``,
+        ``"segment (int64 array)"``: native little-endian, C order, so
+        ``hashlib.sha256(np.ascontiguousarray(delta, dtype=np.float64).tobytes())`` gives it).
+        The nested dicts of a batch's results are shared between them: do not change them."""
+        return self._provenance
+
     def as_dict(self) -> Dict[str, Any]:
         """The keys and values of ``layerjkr fit --out``'s JSON report, in its order (None for
-        NaN)."""
+        NaN), but its provenance (see :attr:`provenance`)."""
         f = self._fields
         names = self.parameters
         corr = np.asarray(self._corr)
@@ -994,8 +1016,11 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
     options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
                        starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
     seg = None if segment is None else _segments(segment)
-    s = _core.fit(np.asarray(delta, dtype=np.float64), np.asarray(P, dtype=np.float64), seg, _as_scene(scene), options)
-    result = FitResult(s, options.branch)
+    d, p = _float64(delta), _float64(P)
+    s_ = _as_scene(scene)
+    s = _core.fit(d, p, seg, s_, options)
+    inputs = _array_inputs(d, p, seg)
+    result = FitResult(s, options.branch, _provenance(s_, options, None, inputs))
     _warn(result.warnings, 2)
     return result
 
@@ -1003,12 +1028,40 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
 _with_fit_parameters(fit)
 
 
-def _batch(items: Sequence[Any], branch: str) -> List[BatchResult]:
+def _float64(a: npt.ArrayLike) -> npt.NDArray[np.float64]:
+    """The float64 C-ordered array the library fits (and provenance hashes)."""
+    return np.asarray(a, dtype=np.float64, order="C")
+
+
+def _array_inputs(delta: npt.NDArray[np.float64], P: npt.NDArray[np.float64],
+                  segment: Optional[List[int]]) -> List[Any]:
+    inputs = [_core.record_bytes("delta (float64 array)", delta), _core.record_bytes("P (float64 array)", P)]
+    if segment is not None:
+        inputs.append(_core.record_bytes("segment (int64 array)", np.asarray(segment, dtype=np.int64)))
+    return inputs
+
+
+def _provenance(scene: Scene, options: Any, csv: Any, inputs: Sequence[Any]) -> Dict[str, Any]:
+    record: Dict[str, Any] = json.loads(_core.provenance(scene, options, csv, list(inputs)))
+    return record
+
+
+def _with_inputs(base: Dict[str, Any], inputs: Sequence[Any]) -> Dict[str, Any]:
+    """``base`` (a record without inputs) with these inputs: a dict of its own, the rest shared."""
+    record = dict(base)
+    record["inputs"] = [{"path": p, "size": n, "sha256": h or None, **({"error": e} if e else {})}
+                        for p, n, h, e in inputs]
+    return record
+
+
+def _batch(items: Sequence[Any], branch: str,
+           provenance: Optional[Callable[[int, Any], Dict[str, Any]]] = None) -> List[BatchResult]:
     out = []
-    for it in items:
+    for k, it in enumerate(items):
+        record = provenance(k, it) if provenance is not None and it.ok else None
         out.append(BatchResult(source=it.source, curve=it.curve if it.curve >= 0 else None, x=it.x, y=it.y,
                                grid_x=it.grid_x if it.grid_x >= 0 else None, grid_y=it.grid_y if it.grid_y >= 0 else None,
-                               result=FitResult(it.summary, branch) if it.ok else None,
+                               result=FitResult(it.summary, branch, record) if it.ok else None,
                                error=None if it.ok else it.error))
     return out
 
@@ -1069,9 +1122,12 @@ def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: Scen
     """
     options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
                        starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
-    pairs = [(np.asarray(d, dtype=np.float64), np.asarray(p, dtype=np.float64)) for d, p in curves]
+    pairs = [(_float64(d), _float64(p)) for d, p in curves]
+    s = _as_scene(scene)
     with _keep_finished(options.branch):
-        return _batch(_core.fit_batch(pairs, _as_scene(scene), options, _integer("jobs", jobs)), options.branch)
+        items = _core.fit_batch(pairs, s, options, _integer("jobs", jobs))
+    base = _provenance(s, options, None, [])
+    return _batch(items, options.branch, lambda k, it: _with_inputs(base, _array_inputs(*pairs[k], None)))
 
 
 _with_fit_parameters(fit_batch)
@@ -1152,10 +1208,14 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
                             curve=None if curve is None else _integer("curve", curve))
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]
+    names = [os.fspath(p) for p in paths]
+    s = _as_scene(scene)
+    # Each file hashed once, before it is read (a FIFO or a directory is recorded, not opened).
+    hashed = {name: _core.record_file(name) for name in names}
     with _keep_finished(options.branch):
-        items = _core.fit_files([os.fspath(p) for p in paths], _as_scene(scene), options, csv, _integer("jobs", jobs),
-                                selection)
-    return _batch(items, options.branch)
+        items = _core.fit_files(names, s, options, csv, _integer("jobs", jobs), selection)
+    base = _provenance(s, options, csv, [])
+    return _batch(items, options.branch, lambda k, it: _with_inputs(base, [hashed.get(it.source) or _core.record_file(it.source)]))
 
 
 _with_fit_parameters(fit_files)

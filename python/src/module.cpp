@@ -17,15 +17,12 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include "instrument.hpp"
 #include "layerjkr/layerjkr.hpp"
-
-#ifndef LAYERJKR_VERSION
-#error "LAYERJKR_VERSION (the CMake project version) must be defined"
-#endif
 
 namespace py = pybind11;
 using namespace layerjkr;
@@ -253,7 +250,7 @@ std::vector<BatchItem> fit_files_py(const std::vector<std::string>& paths, const
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "layerjkr C++ core (use the layerjkr package, not this module)";
-  m.attr("__version__") = LAYERJKR_VERSION;
+  m.attr("__version__") = layerjkr::version();  // the library's, by construction
   Exceptions& e = exceptions();
   e.error = new_exception(m, "Error", py::handle(PyExc_Exception), "Base class of everything layerjkr raises.");
   e.domain = new_exception(m, "DomainError", py::make_tuple(e.error, py::handle(PyExc_ValueError)).release(),
@@ -281,6 +278,8 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("profile", [](const Scene& s) { return s.profile->describe(); }, "The indenter, described.")
       .def_property_readonly("model", [](const Scene& s) { return std::string(to_string(s.model)); },
                              "The scene's model key.")
+      .def_property_readonly("json", [](const Scene& s) { return s.origin.json; },
+                             "The JSON the scene was parsed from ('' for one built in code).")
       .def("__repr__", [](const Scene& s) {
         return "layerjkr.Scene(model='" + std::string(to_string(s.model)) + "', profile='" + s.profile->describe() + "')";
       });
@@ -410,5 +409,30 @@ PYBIND11_MODULE(_core, m) {
   m.def("fit_batch", &fit_batch_py, py::arg("curves"), py::arg("scene"), py::arg("options"), py::arg("jobs"));
   m.def("fit_files", &fit_files_py, py::arg("paths"), py::arg("scene"), py::arg("options"), py::arg("csv"),
         py::arg("jobs"), py::arg("curves") = py::none());
+
+  // Provenance (provenance.hpp): inputs as (path, size, sha256, error) tuples, the record as JSON text.
+  m.def("record_file", [](const std::string& path) {
+        InputRecord r;
+        {
+          py::gil_scoped_release release;
+          r = record_file(path);
+        }
+        return py::make_tuple(r.path, r.size, r.sha256, r.error);
+      },
+      py::arg("path"));
+  m.def("record_bytes", [](const std::string& name, const py::buffer& data) {
+        const py::buffer_info b = data.request();
+        if (!PyBuffer_IsContiguous(b.view(), 'C')) throw InputError(name + ": the array must be C-contiguous to be hashed");
+        const InputRecord r = record_bytes(name, b.ptr, static_cast<std::size_t>(b.size * b.itemsize));
+        return py::make_tuple(r.path, r.size, r.sha256, r.error);
+      },
+      py::arg("name"), py::arg("data"));
+  m.def("provenance", [](const Scene& scene, const FitOptions& options, std::optional<CsvOptions> csv,
+                         const std::vector<std::tuple<std::string, std::uint64_t, std::string, std::string>>& inputs) {
+        std::vector<InputRecord> records;
+        for (const auto& [path, size, sha, error] : inputs) records.push_back({path, size, sha, error});
+        return provenance_json(scene, options, csv ? &*csv : nullptr, records);
+      },
+      py::arg("scene"), py::arg("options"), py::arg("csv"), py::arg("inputs"));
   layerjkr::python::bind_instrument(m);
 }

@@ -144,8 +144,13 @@ def test_fit_equals_cli(cli, source, tmp_path):
     run_cli(cli, source, "fit", "data/curves/hydrogel_film_two_term.csv", "--scene", SCENE, "--free", "E,w,delta0,P0",
             "--branch", "all", "--out", str(out))
     ref = json.loads(out.read_text())
+    made_from = ref.pop("provenance")
     assert r.as_dict() == ref
     assert list(r.as_dict()) == list(ref)
+    # The same keywords are the same options, and the same scene, as the CLI records them.
+    assert r.provenance["options"] == made_from["options"]
+    for key in ("json", "sha256", "description"):  # "file": the path as given, relative for the CLI here
+        assert r.provenance["scene"][key] == made_from["scene"][key], key
     assert r.parameters == tuple(ref["parameters"]) == ("E", "w", "delta0", "P0")
     for name, p in ref["parameters"].items():
         assert r.values[name] == p["value"], name
@@ -176,6 +181,7 @@ def test_fit_uncertainty_arrays_by_name(source):
         r.values[0] = 1.0  # read-only
     back = pickle.loads(pickle.dumps(r))  # Dask moves results between processes
     assert back.as_dict() == r.as_dict() and np.array_equal(back.P_fit, r.P_fit)
+    assert back.provenance == r.provenance
     named = pickle.loads(pickle.dumps(c))
     assert named["E", "w"] == c["E", "w"] and named.names == c.names
 

@@ -3,6 +3,8 @@
 #include "fit_commands.hpp"
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <iostream>
 #include <optional>
 
@@ -24,6 +26,15 @@ CurveData read_fit_data(const std::string& path, const Prepared& p) {
   for (std::size_t i = 0; i < reader.size(); ++i)
     if (p.csv.curve < 0 || reader.curve_number(i) == p.csv.curve) return to_curve_data(reader.curve(i), path, p.csv.spring_constant);
   throw InputError(path + ": has no curve " + std::to_string(p.csv.curve));
+}
+
+// A small text file the CLI reads whole (a report), named by its flag in errors.
+std::string read_text(const std::string& path, const std::string& flag) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw InputError(flag + ": cannot open " + path);
+  std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  if (f.bad()) throw InputError(flag + ": cannot read " + path);
+  return text;
 }
 
 }  // namespace
@@ -53,24 +64,65 @@ int run_export(const std::string& path, const std::string& out, const std::strin
   return 0;
 }
 
-int run_fit(const FitArguments& args, const std::string& data, const std::string& report,
-            const std::string& plot) {
-  const Prepared p = prepare(args);
+namespace {
+
+// The fit and its outputs, from prepared options: `fit` and `fit --from-report` share it.
+// `inputs` is the curve's record, taken before it is read; `extra` is added to the provenance.
+int fit_and_report(const Prepared& p, const std::string& data, const std::vector<std::string>& inputs_not_outputs,
+                   const std::string& report, const std::string& plot, const std::vector<std::string>& command_line,
+                   const nlohmann::ordered_json& extra = nlohmann::ordered_json::object()) {
   // Both outputs are checked, and their files created, before the fit.
-  check_not_input(report, "--out", {data, args.scene});
-  check_not_input(plot, "--plot", {data, args.scene});
+  check_not_input(report, "--out", inputs_not_outputs);
+  check_not_input(plot, "--plot", inputs_not_outputs);
   std::optional<OutputFile> report_file, plot_file;
   if (!report.empty()) report_file.emplace(report);
   if (!plot.empty()) plot_file.emplace(plot);
+  const std::vector<InputRecord> inputs{record_file(data)};
   const CurveData curve = read_fit_data(data, p);
   const FitSummary s = fit(curve, p.scene, p.options);
   if (plot_file) plot_fit(s, *plot_file);
   if (report_file) {
-    report_file->write(report_json(s, p.options.branch).dump(2) + "\n");
+    nlohmann::ordered_json j = report_json(s, p.options.branch);
+    j["provenance"] = provenance_record(p.scene, p.options, p.csv, inputs, command_line);
+    for (const auto& item : extra.items()) j["provenance"][item.key()] = item.value();
+    report_file->write(j.dump(2) + "\n");
     report_file->commit();
   }
   std::cout << s.brief_report();
   return 0;
+}
+
+}  // namespace
+
+int run_fit(const FitArguments& args, const std::string& data, const std::string& report,
+            const std::string& plot, const std::vector<std::string>& command_line) {
+  const Prepared p = prepare(args);
+  return fit_and_report(p, data, {data, args.scene}, report, plot, command_line);
+}
+
+int run_fit_from_report(const std::string& from, const std::string& report, const std::string& plot,
+                        const std::vector<std::string>& command_line) {
+  const std::string text = read_text(from, "--from-report");
+  nlohmann::ordered_json j;
+  try {
+    j = nlohmann::ordered_json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(from + ": not a JSON fit report (" + e.what() + ")");
+  }
+  if (!j.is_object() || !j.contains("provenance"))
+    throw InputError(from + ": has no \"provenance\" (a fit report of layerjkr 0.1.0 or later written by fit --out)");
+  const ProvenanceRecord r = parse_provenance(j["provenance"].dump(), from + ": provenance");
+  if (r.version != version())
+    std::cerr << "layerjkr: warning: " << from << " was written by layerjkr " << r.version << ", this is "
+              << version() << ": the numbers may differ\n";
+  if (!r.scene) throw InputError(from + ": cannot be rerun: its scene was " + r.scene_note);
+  if (r.inputs.size() != 1)
+    throw InputError(from + ": records " + std::to_string(r.inputs.size()) + " inputs; a fit report has one");
+  verify_input(r.inputs[0]);
+  const Prepared p{*r.scene, r.options, r.csv.value_or(CsvOptions{})};
+  nlohmann::ordered_json extra;
+  extra["rerun_of"] = {{"report", record_file(from).path}, {"sha256", sha256_hex(text.data(), text.size())}};
+  return fit_and_report(p, r.inputs[0].path, {r.inputs[0].path, from}, report, plot, command_line, extra);
 }
 
 }  // namespace layerjkr::cli

@@ -9,9 +9,17 @@
 
 namespace layerjkr::cli {
 
-/// `layerjkr fit DATA ...`: summary on stdout, optional JSON report and plot.
+/// `layerjkr fit DATA ...`: summary on stdout, optional JSON report (with its provenance: the
+/// version, scene, options, the input's SHA-256 and `command_line`) and plot.
 int run_fit(const FitArguments& args, const std::string& data, const std::string& report,
-            const std::string& plot);
+            const std::string& plot, const std::vector<std::string>& command_line);
+
+/// `layerjkr fit --from-report R.json [--out ...] [--plot ...]`: the fit R.json records, rerun
+/// from its provenance (scene, options, input) after checking the input's SHA-256 (InputError
+/// naming the file and both hashes otherwise). A report of another layerjkr version is rerun
+/// with a warning on stderr.
+int run_fit_from_report(const std::string& from, const std::string& report, const std::string& plot,
+                        const std::vector<std::string>& command_line);
 
 /// `layerjkr export FILE --out OUT.csv [--curves A:B]`: every curve (or those at positions A to
 /// B - 1) of an instrument file as one CSV (curve,segment,force,height,tip_position), which
@@ -26,8 +34,23 @@ int run_export(const std::string& path, const std::string& out, const std::strin
 /// file and curve cells) not fitted again.
 /// `curves` ("A:B", empty for all) selects the curves of each map by position; reading skips
 /// the rest. The progress bar (curves/s, time left) is drawn only when stderr is a terminal.
+/// Beside the table, its record (sidecar_path(out)) holds the provenance of every row: version,
+/// scene, options, each input file's path, size and SHA-256, the command line, written and
+/// committed with the table. --resume refuses (InputError) a table whose record is missing or
+/// names another scene or other options, or an input whose SHA-256 changed.
 int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
-                const std::string& out, const std::string& plot_dir = "", bool resume = false,
-                const std::string& curves = "");
+                const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
+                const std::vector<std::string>& command_line);
+
+/// `layerjkr fit-map --from-report OUT.json --out NEW.csv [--jobs N] [--plot-dir DIR]`: the map a
+/// record describes, rerun with its scene, options, inputs (each input's SHA-256 checked first) and
+/// curve range. Inputs are named as the first run named them where that still resolves to the
+/// recorded file, so rerun from the same directory the table is the same, byte for byte.
+int run_fit_map_from_report(const std::string& from, int jobs, const std::string& out, const std::string& plot_dir,
+                            const std::vector<std::string>& command_line);
+
+/// fit-map's record beside its table: OUT.csv -> OUT.json; a name not ending in .csv gets .json
+/// appended (OUT.txt -> OUT.txt.json).
+std::string sidecar_path(const std::string& out);
 
 }  // namespace layerjkr::cli

@@ -9,8 +9,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -21,6 +23,7 @@
 #include "layerjkr/layerjkr.hpp"
 #include "limits.hpp"
 #include "plots.hpp"
+#include "reports.hpp"
 #include "results_table.hpp"
 
 namespace layerjkr::cli {
@@ -109,24 +112,96 @@ class StopOnSignals {
   struct sigaction old_int_ {}, old_term_ {};
 };
 
+using json = nlohmann::ordered_json;
+
+// --resume keeps rows made earlier: only if they were made from the same scene and options, and
+// every input both runs name still has the bytes it had (the sidecar says what they were made from).
+// Returns the earlier record.
+json check_resumable(const std::string& sidecar, const json& now) {
+  std::ifstream f(sidecar, std::ios::binary);
+  if (!f)
+    throw InputError("--resume: " + sidecar + ", the record of how the earlier table was made, is missing; "
+                     "without it its rows cannot be checked against this run (rerun without --resume)");
+  json earlier;
+  try {
+    earlier = json::parse(f);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError("--resume: " + sidecar + " is not a fit-map record (" + e.what() + ")");
+  }
+  const auto differs = [&](const char* key, const char* sub = nullptr) {
+    if (!earlier.contains(key)) return true;
+    return sub ? !earlier[key].contains(sub) || earlier[key][sub] != now[key][sub] : earlier[key] != now[key];
+  };
+  if (differs("scene", "json") || differs("scene", "description"))
+    throw InputError("--resume: the earlier table was made with another scene (" + sidecar + "); it is not resumed");
+  if (differs("options") || differs("csv"))
+    throw InputError("--resume: the earlier table was made with other fit options (" + sidecar + ": " +
+                     (earlier.contains("options") ? earlier["options"].dump() : std::string("none")) +
+                     "); it is not resumed");
+  std::map<std::string, std::string> hashes;
+  if (earlier.contains("inputs") && earlier["inputs"].is_array())
+    for (const auto& in : earlier["inputs"])
+      if (in.contains("path") && in["path"].is_string()) hashes[in["path"].get<std::string>()] = in.value("sha256", json()).dump();
+  for (const auto& in : now["inputs"]) {
+    const auto found = hashes.find(in["path"].get<std::string>());
+    if (found != hashes.end() && found->second != in["sha256"].dump())
+      throw InputError("--resume: " + in["path"].get<std::string>() + " changed since the earlier table was made: SHA-256 " +
+                       in["sha256"].dump() + ", " + sidecar + " says " + found->second + "; it is not resumed");
+  }
+  if (earlier.value("layerjkr_version", std::string()) != version())
+    std::cerr << "layerjkr: warning: --resume: the earlier rows were made by layerjkr "
+              << earlier.value("layerjkr_version", std::string("(unknown)")) << ", the new ones by " << version() << "\n";
+  return earlier;
+}
+
 }  // namespace
 
-int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
-                const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves) {
-  const Prepared p = prepare(args);
+std::string sidecar_path(const std::string& out) {
+  const std::string ext = ".csv";
+  if (out.size() > ext.size() && out.compare(out.size() - ext.size(), ext.size(), ext) == 0)
+    return out.substr(0, out.size() - ext.size()) + ".json";
+  return out + ".json";
+}
+
+namespace {
+
+// fit-map from prepared options and expanded inputs: the command and its --from-report share it.
+// `all_inputs`: every file the outputs must not be; `extra`: added to the sidecar.
+int map_and_record(const Prepared& p, const std::vector<std::string>& files, const std::vector<std::string>& all_inputs,
+                   int jobs, const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
+                   const std::vector<std::string>& command_line, const json& extra) {
   check_count("--jobs", jobs, 1, kMaxJobs);
   if (resume && !plot_dir.empty())
     throw InputError("--plot-dir needs every fit, and --resume does not redo the earlier ones: run them apart");
-  const std::vector<std::string> files = expand_inputs(inputs);
-  std::vector<std::string> all_inputs = files;
-  all_inputs.push_back(args.scene);
   check_not_input(out, "--out", all_inputs);
+  const std::string sidecar = sidecar_path(out);
+  check_not_input(sidecar, "--out's record", all_inputs);
   const std::string head = header(p.options.free);
   Earlier earlier;
   if (resume) read_earlier(out, head, earlier);
   // Every output is created before the first fit: a bad path fails now, not after the work.
   OutputFile table(out);
+  OutputFile record(sidecar);
   if (!plot_dir.empty()) prepare_plot_dir(plot_dir);
+  // What the rows are made from, hashed before any is read (docs/provenance.md has the cost).
+  std::vector<InputRecord> hashed;
+  hashed.reserve(files.size());
+  for (const std::string& f : files) hashed.push_back(record_file(f));
+  json made_from = provenance_record(p.scene, p.options, p.csv, hashed, command_line);
+  // Each input also as it was named (the table's file column), so a rerun can name it the same way.
+  for (std::size_t k = 0; k < files.size(); ++k) made_from["inputs"][k]["named"] = files[k];
+  made_from["table"] = out;
+  made_from["curves"] = curves.empty() ? json(nullptr) : json(curves);
+  for (const auto& item : extra.items()) made_from[item.key()] = item.value();
+  if (!earlier.rows.empty()) {
+    const json earlier_record = check_resumable(sidecar, made_from);
+    // The earlier inputs this run does not name keep their rows, so their records stay too.
+    std::set<std::string> named;
+    for (const InputRecord& r : hashed) named.insert(r.path);
+    for (const auto& in : earlier_record.value("inputs", json::array()))
+      if (!named.count(in.value("path", std::string()))) made_from["inputs"].push_back(in);
+  }
+  record.write(made_from.dump(2) + "\n");
   table.write(head);
 
   std::size_t rows = 0, failed = 0, skipped = 0;
@@ -191,6 +266,7 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
       ++kept;
     }
   table.commit();
+  record.commit();
   if (drawn) std::cerr << "\n";
   const std::string kept_note = kept ? "; " + std::to_string(kept) + " earlier row(s) for other inputs kept at the end" : "";
   if (const int sig = stop_signal.load()) {
@@ -204,6 +280,57 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
   if (failed) std::cerr << "; " << failed << " failed (see the error column of " << out << ")";
   std::cerr << kept_note << "\n";
   return 0;
+}
+
+}  // namespace
+
+int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
+                const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
+                const std::vector<std::string>& command_line) {
+  const Prepared p = prepare(args);
+  const std::vector<std::string> files = expand_inputs(inputs);
+  std::vector<std::string> all_inputs = files;
+  all_inputs.push_back(args.scene);
+  return map_and_record(p, files, all_inputs, jobs, out, plot_dir, resume, curves, command_line, json::object());
+}
+
+int run_fit_map_from_report(const std::string& from, int jobs, const std::string& out, const std::string& plot_dir,
+                            const std::vector<std::string>& command_line) {
+  std::ifstream f(from, std::ios::binary);
+  if (!f) throw InputError("--from-report: cannot open " + from);
+  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(from + ": not a fit-map record (" + e.what() + ")");
+  }
+  if (!j.is_object() || !j.contains("table"))
+    throw InputError(from + ": is not a fit-map record (the OUT.json fit-map writes beside its table)");
+  const ProvenanceRecord r = parse_provenance(text, from);
+  if (r.version != version())
+    std::cerr << "layerjkr: warning: " << from << " was written by layerjkr " << r.version << ", this is "
+              << version() << ": the numbers may differ\n";
+  if (!r.scene) throw InputError(from + ": cannot be rerun: its scene was " + r.scene_note);
+  std::vector<std::string> files;
+  for (std::size_t k = 0; k < r.inputs.size(); ++k) {
+    const InputRecord& in = r.inputs[k];
+    // An input recorded as not a file (a FIFO, a directory) gave a failed row; it is named again.
+    if (in.error.empty()) verify_input(in);
+    // As the first run named it where that still names the same file (from the same directory):
+    // the table's file column is then the same too.
+    const std::string named = j["inputs"][k].value("named", std::string());
+    std::error_code ec;
+    const bool same = !named.empty() && std::filesystem::absolute(named, ec).lexically_normal().string() == in.path;
+    files.push_back(same && !ec ? named : in.path);
+  }
+  const std::string curves = j.value("curves", json()).is_string() ? j["curves"].get<std::string>() : std::string();
+  std::vector<std::string> all_inputs = files;
+  all_inputs.push_back(from);
+  json extra;
+  extra["rerun_of"] = {{"record", record_file(from).path}, {"sha256", sha256_hex(text.data(), text.size())}};
+  const Prepared p{*r.scene, r.options, r.csv.value_or(CsvOptions{})};
+  return map_and_record(p, files, all_inputs, jobs, out, plot_dir, false, curves, command_line, extra);
 }
 
 }  // namespace layerjkr::cli

@@ -2,7 +2,9 @@
 //   layerjkr curve SCENE.json (--at a1,a2,... | --a-max A --points N)
 //   layerjkr summary SCENE.json
 //   layerjkr fit DATA.csv --scene S.json --free E,w,delta0 [--out R.json] [--plot F.png] ...
+//   layerjkr fit --from-report R.json [--out R2.json] [--plot F.png]
 //   layerjkr fit-map DIR_OR_GLOB... --scene S.json --free ... --jobs N --out RESULTS.csv [--resume]
+//   layerjkr fit-map --from-report RESULTS.json --out AGAIN.csv [--jobs N]
 //   layerjkr export FILE.jpk-force|.jpk-force-map|.jpk-qi-data|.ibw|.spm|.000 --out OUT.csv [--curves A:B]
 // Exit codes: 0 success, 2 invalid scene or arguments, 1 internal failure, 130 / 143 fit-map
 // stopped by SIGINT / SIGTERM. Every error is one line on stderr.
@@ -111,8 +113,17 @@ static int run_main(int argc, char** argv) {
                                      "an export; columns, units and signs: docs/fitting.md) or an instrument file (JPK, Igor, Bruker NanoScope)")
       ->required();
   layerjkr::cli::add_fit_options(*fit, fit_args);
-  fit->add_option("--out", report_path, "Write the JSON report here");
+  fit->add_option("--out", report_path, "Write the JSON report here (with its provenance: version, scene, options, "
+                                        "the input's SHA-256, the command line)");
   fit->add_option("--plot", plot_path, "Write a PNG of data, fit and residuals (gnuplot)");
+  std::string from_report;
+  fit->add_option("--from-report", from_report,
+                  "Rerun the fit a JSON report records (its scene, options and input, whose SHA-256 must match) "
+                  "instead of DATA, --scene and the fit flags; --out and --plot as usual");
+  // With --from-report the report gives the data, scene and flags: they are required only without it
+  // (checked after parsing, with CLI11's own message).
+  const std::vector<std::string> fit_required{"data", "--scene", "--free"};
+  for (const std::string& name : fit_required) fit->get_option(name)->required(false);
 
   CLI::App* fit_map = app.add_subcommand(
       "fit-map", "Fit many curves in parallel; one CSV row per curve (failures included)");
@@ -121,15 +132,24 @@ static int run_main(int argc, char** argv) {
       ->required();
   layerjkr::cli::add_fit_options(*fit_map, fit_args);
   fit_map->add_option("--jobs", jobs, "Worker threads (default: all cores)");
-  fit_map->add_option("--out", map_out, "Results CSV")->required();
+  fit_map->add_option("--out", map_out,
+                      "Results CSV; beside it, its record OUT.json (OUT.csv with .json for .csv, else OUT + .json): "
+                      "version, scene, options, every input's SHA-256, the command line")
+      ->required();
   fit_map->add_option("--plot-dir", map_plot_dir,
                       "Draw each fitted field (parameters, rms, status) as a heat-map PNG over the map grid (gnuplot)");
   std::string map_curves, export_curves;
   fit_map->add_option("--curves", map_curves,
                       "Fit only the curves at positions A to B - 1 of each map (A:B, A: or :B; 0-based, file order); "
                       "the rest are not read");
+  std::string map_from_report;
+  fit_map->add_option("--from-report", map_from_report,
+                      "Rerun the map a record (OUT.json) describes: its scene, options, inputs (SHA-256 checked) and "
+                      "--curves, instead of INPUTS, --scene and the fit flags; give --out, and --jobs, --plot-dir");
+  for (const char* name : {"inputs", "--scene", "--free"}) fit_map->get_option(name)->required(false);
   fit_map->add_flag("--resume", map_resume,
-                    "Keep the rows of an existing --out table (same header) and fit only the curves it lacks");
+                    "Keep the rows of an existing --out table (same header) and fit only the curves it lacks; refused when its "
+                    "record names another scene or options, or an input whose SHA-256 changed");
 
   std::string export_path, export_out;
   CLI::App* export_cmd = app.add_subcommand(
@@ -154,6 +174,24 @@ static int run_main(int argc, char** argv) {
     app.parse(argc, argv);
     if (*curve && at.empty() && !*max_opt)
       throw CLI::RequiredError("curve needs --at or --a-max with --points");
+    // With --from-report the report gives the inputs, scene and fit flags; without it they are required.
+    const auto check_from_report = [&](CLI::App* command, const std::string& report, const std::vector<std::string>& required,
+                                       const std::vector<std::string>& allowed) {
+      if (report.empty()) {
+        for (const std::string& name : required)
+          if (command->get_option(name)->count() == 0) throw CLI::RequiredError(name);
+        return;
+      }
+      std::string list;
+      for (const std::string& name : allowed) list += (list.empty() ? "" : ", ") + name;
+      for (const CLI::Option* o : command->get_options())
+        if (o->count() > 0 && o->get_name() != "--from-report" &&
+            std::find(allowed.begin(), allowed.end(), o->get_name()) == allowed.end())
+          throw CLI::ValidationError("--from-report takes the inputs, scene and every fit option from the report; "
+                                     "give only " + list + " with it, not " + o->get_name());
+    };
+    if (*fit) check_from_report(fit, from_report, fit_required, {"--out", "--plot"});
+    if (*fit_map) check_from_report(fit_map, map_from_report, {"inputs", "--scene", "--free"}, {"--out", "--jobs", "--plot-dir"});
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -164,8 +202,15 @@ static int run_main(int argc, char** argv) {
 
   try {
     if (*curve) return run_curve(scene_path, at, a_max, points);
-    if (*fit) return layerjkr::cli::run_fit(fit_args, data_path, report_path, plot_path);
-    if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out, map_plot_dir, map_resume, map_curves);
+    const std::vector<std::string> command_line(argv, argv + argc);
+    if (*fit && !from_report.empty())
+      return layerjkr::cli::run_fit_from_report(from_report, report_path, plot_path, command_line);
+    if (*fit) return layerjkr::cli::run_fit(fit_args, data_path, report_path, plot_path, command_line);
+    if (*fit_map && !map_from_report.empty())
+      return layerjkr::cli::run_fit_map_from_report(map_from_report, jobs, map_out, map_plot_dir, command_line);
+    if (*fit_map)
+      return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out, map_plot_dir, map_resume, map_curves,
+                                        command_line);
     if (*export_cmd) return layerjkr::cli::run_export(export_path, export_out, export_curves);
     if (*discrete) return layerjkr::cli::run_discrete(discrete_args);
     return run_summary(scene_path);

@@ -69,6 +69,13 @@ json report_json(const FitSummary& s, Branch branch) {
   return j;
 }
 
+json provenance_record(const Scene& scene, const FitOptions& options, const CsvOptions& csv,
+                       const std::vector<InputRecord>& inputs, const std::vector<std::string>& command_line) {
+  json p = json::parse(provenance_json(scene, options, &csv, inputs));
+  p["command_line"] = command_line;
+  return p;
+}
+
 std::vector<double> parse_radii(const std::string& text) {
   std::vector<double> out;
   std::stringstream in(text);

@@ -9,6 +9,7 @@
 #include "layerjkr/answer.hpp"
 #include "layerjkr/contact.hpp"
 #include "layerjkr/fit.hpp"
+#include "layerjkr/provenance.hpp"
 
 namespace layerjkr::cli {
 
@@ -26,6 +27,12 @@ nlohmann::ordered_json summary_json(const SummaryAnswer& a);
 
 /// `layerjkr fit --out`: the fit report's JSON keys (docs/fitting.md).
 nlohmann::ordered_json report_json(const FitSummary& s, Branch branch);
+
+/// The "provenance" of a fit report and the body of fit-map's sidecar (docs/provenance.md): the
+/// library's record (provenance.hpp) with the command line that made the result.
+nlohmann::ordered_json provenance_record(const Scene& scene, const FitOptions& options, const CsvOptions& csv,
+                                         const std::vector<InputRecord>& inputs,
+                                         const std::vector<std::string>& command_line);
 
 /// `layerjkr curve`: CSV a,P,delta,P_H,delta_H,S,error_est with 17 significant digits.
 std::string curve_csv(const CurveAnswer& c);

@@ -4,37 +4,18 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
-#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <thread>
 
+#include "io/read_file.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/fit.hpp"
 #include "layerjkr/instrument.hpp"
 
 namespace layerjkr {
 namespace {
-
-namespace fs = std::filesystem;
-
-// Why `path` is not a regular file the readers may open, or "" when it is one. Checked before
-// opening: opening a FIFO blocks until someone writes to it.
-std::string not_a_file(const std::string& path) {
-  std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);
-  if (fs::is_regular_file(st)) return {};
-  if (fs::is_directory(st)) return path + ": is a directory, not a curve file";
-  if (fs::is_fifo(st)) return path + ": is a FIFO (named pipe), not a regular file; not opened, reading it could block";
-  if (fs::is_socket(st)) return path + ": is a socket, not a regular file";
-  if (fs::is_block_file(st) || fs::is_character_file(st)) return path + ": is a device, not a regular file";
-  if (ec == std::errc::too_many_symbolic_link_levels) return path + ": is a symbolic link loop";
-  std::error_code lec;
-  if (fs::is_symlink(fs::symlink_status(path, lec))) return path + ": is a dangling symbolic link (its target does not exist)";
-  if (ec) return path + ": cannot be read (" + ec.message() + ")";
-  return path + ": is not a regular file";
-}
 
 // `load(i, item)` reads item i (and may fill in its map position); `unread(i)` is told of an
 // item that will not be loaded (skipped or cancelled), so that a file reader can close.
@@ -194,7 +175,7 @@ std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Sc
     Slot file_slot;
     // Once cancelled, the rest are not read: run_batch marks their items cancelled.
     cancelled = cancelled || (batch.cancelled && batch.cancelled());
-    if (!cancelled) file_slot.error = not_a_file(path);
+    if (!cancelled) file_slot.error = detail::not_a_file(path);
     if (cancelled || !file_slot.error.empty() || !is_instrument_file(path)) {
       if (file_slot.error.empty()) file_slot.csv_path = path;
       add(std::move(file_item), std::move(file_slot));
@@ -234,7 +215,7 @@ std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Sc
           return to_curve_data(c, item.source, csv.spring_constant);
         }
         // Checked again: the file may have changed since the list was made.
-        const std::string why = not_a_file(s.csv_path);
+        const std::string why = detail::not_a_file(s.csv_path);
         if (!why.empty()) throw InputError(why);
         return read_curve_csv(s.csv_path, csv);
       },

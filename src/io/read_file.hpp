@@ -19,6 +19,24 @@ inline std::string describe_bytes(std::uint64_t n) {
   return n % (1u << 20) == 0 ? std::to_string(n >> 20) + " MiB" : std::to_string(n) + " bytes";
 }
 
+// Why `path` is not a regular file the readers may open, or "" when it is one. Checked before
+// opening: opening a FIFO blocks until someone writes to it (fit_files, provenance's record_file).
+inline std::string not_a_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (fs::is_regular_file(st)) return {};
+  if (fs::is_directory(st)) return path + ": is a directory, not a curve file";
+  if (fs::is_fifo(st)) return path + ": is a FIFO (named pipe), not a regular file; not opened, reading it could block";
+  if (fs::is_socket(st)) return path + ": is a socket, not a regular file";
+  if (fs::is_block_file(st) || fs::is_character_file(st)) return path + ": is a device, not a regular file";
+  if (ec == std::errc::too_many_symbolic_link_levels) return path + ": is a symbolic link loop";
+  std::error_code lec;
+  if (fs::is_symlink(fs::symlink_status(path, lec))) return path + ": is a dangling symbolic link (its target does not exist)";
+  if (ec) return path + ": cannot be read (" + ec.message() + ")";
+  return path + ": is not a regular file";
+}
+
 /// The file's bytes, at most `max_bytes` of them. Throws InputError naming the path for a
 /// file that cannot be opened or read, a directory or device (/dev/urandom would never
 /// end), or a file larger than the limit (naming the limit and `raise_with`, how to raise

@@ -15,6 +15,8 @@
 #include "io/read_file.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/exact_layer.hpp"
+#include "layerjkr/provenance.hpp"
+#include "provenance/scene_description.hpp"
 
 namespace layerjkr {
 namespace {
@@ -349,12 +351,18 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   // Every invalid value is reported at parse time, without building anything.
   in.checked("medium", [&] { validate(resolve_model(s).spec); });
   check_scales(in, s);
+  s.origin.json = root.dump();
+  s.origin.description = detail::describe_scene(s);
   return s;
 }
 
 Scene load_scene(const std::string& path) {
   // A scene, even with a table indenter of 10^6 points, is far below 64 MiB.
-  return parse_scene(detail::read_file(path, "the scene file", std::uint64_t{64} << 20), path);
+  const std::string text = detail::read_file(path, "the scene file", std::uint64_t{64} << 20);
+  Scene s = parse_scene(text, path);
+  s.origin.file = path;
+  s.origin.file_sha256 = sha256_hex(text.data(), text.size());
+  return s;
 }
 
 }  // namespace layerjkr

@@ -33,10 +33,11 @@ fs::path curve_dir(const std::string& name, int n) {
   return dir;
 }
 
-// The temporary table fit-map writes in `dir` (hidden, random name), or "".
-std::string temporary_table(const fs::path& dir) {
+// The temporary file fit-map writes for `target` in `dir` (hidden, random name: .TARGET.XXXXXX),
+// or "". The table's record (map.json) has its own beside the table's.
+std::string temporary_file(const fs::path& dir, const std::string& target = "map.csv") {
   for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().filename().string().rfind(".", 0) == 0) return e.path().string();
+    if (e.path().filename().string().rfind("." + target + ".", 0) == 0) return e.path().string();
   return "";
 }
 
@@ -52,7 +53,7 @@ int interrupt(const std::vector<std::string>& args, const fs::path& out_dir, int
     ::_exit(98);
   }
   for (int tries = 0; tries < 60000; ++tries) {  // at most 60 s
-    const std::string tmp = temporary_table(out_dir);
+    const std::string tmp = temporary_file(out_dir);
     if (!tmp.empty() && count_lines(slurp(tmp)) >= 2) break;
     int status = 0;
     if (::waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -119,7 +120,9 @@ TEST_CASE("fit-map: SIGINT and SIGTERM keep a valid partial table, --resume comp
       CHECK(rows[k].rfind((in / ("c" + std::to_string(999 + k) + ".csv")).string() + ",,,,,,ok,,two_term,1,", 0) == 0);
       CHECK(std::count(rows[k].begin(), rows[k].end(), ',') == std::count(rows[0].begin(), rows[0].end(), ','));
     }
-    CHECK(temporary_table(out_dir).empty());
+    CHECK(temporary_file(out_dir).empty());
+    CHECK(temporary_file(out_dir, "map.json").empty());
+    CHECK(fs::exists(out_dir / "map.json"));  // the record is committed with the table
   }
   std::string resume_args, full_args;
   for (std::size_t k = 1; k + 1 < args.size(); ++k) resume_args += " " + args[k];
