@@ -24,10 +24,11 @@ int run_export(const std::string& path, const std::string& out, const std::strin
 /// starts, the running ones finish, the table so far is committed, and it returns 130 / 143.
 /// With `resume`, the rows of an existing table (same header) are kept and their curves (by
 /// file and curve cells) not fitted again.
+/// `report_dir` (empty for none) gets the interactive report (map_report.hpp) as index.html.
 /// `curves` ("A:B", empty for all) selects the curves of each map by position; reading skips
 /// the rest. The progress bar (curves/s, time left) is drawn only when stderr is a terminal.
 int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
                 const std::string& out, const std::string& plot_dir = "", bool resume = false,
-                const std::string& curves = "");
+                const std::string& curves = "", const std::string& report_dir = "");
 
 }  // namespace layerjkr::cli

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -108,11 +109,14 @@ class StopOnSignals {
 }  // namespace
 
 int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
-                const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves) {
+                const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
+                const std::string& report_dir) {
   const Prepared p = prepare(args);
   check_count("--jobs", jobs, 1, kMaxJobs);
   if (resume && !plot_dir.empty())
     throw InputError("--plot-dir needs every fit, and --resume does not redo the earlier ones: run them apart");
+  if (resume && !report_dir.empty())
+    throw InputError("--report needs every fit, and --resume does not redo the earlier ones: run them apart");
   const std::vector<std::string> files = expand_inputs(inputs);
   std::vector<std::string> all_inputs = files;
   all_inputs.push_back(args.scene);
@@ -123,6 +127,11 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
   // Every output is created before the first fit: a bad path fails now, not after the work.
   OutputFile table(out);
   if (!plot_dir.empty()) prepare_plot_dir(plot_dir);
+  std::optional<OutputFile> page;
+  if (!report_dir.empty()) {
+    prepare_report_dir(report_dir, "--report");
+    page.emplace(map_report_page(report_dir));
+  }
   table.write(head);
 
   std::size_t rows = 0, failed = 0, skipped = 0;
@@ -130,6 +139,7 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
   b.jobs = jobs;
   if (!curves.empty()) b.curves = CurveRange::parse(curves, "--curves");
   b.cancelled = [] { return stop_signal.load() != 0; };
+  if (page) b.display_points = kDefaultDisplayPoints;
   if (resume)
     b.skip = [&](const BatchItem& it) {
       const std::lock_guard<std::mutex> guard(earlier.lock);
@@ -191,10 +201,19 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
   const std::string kept_note = kept ? "; " + std::to_string(kept) + " earlier row(s) for other inputs kept at the end" : "";
   if (const int sig = stop_signal.load()) {
     std::cerr << "fit-map: stopped by " << (sig == SIGINT ? "SIGINT" : "SIGTERM") << ": " << rows << " of "
-              << items.size() << " rows written to " << out << kept_note << "; --resume finishes the table\n";
+              << items.size() << " rows written to " << out << kept_note << "; --resume finishes the table"
+              << (page ? " (no report written)" : "") << "\n";
     return 128 + sig;
   }
   if (!plot_dir.empty()) plot_map_fields(items, p.options.free, plot_dir);
+  if (page) {
+    MapReportOptions r;
+    r.free = p.options.free;
+    r.subtitle = "scene " + args.scene + "; " + std::to_string(files.size()) + " input file(s); results " + out;
+    page->write(map_report_html(items, r));
+    page->commit();
+    std::cerr << "fit-map: report written to " << page->target() << "\n";
+  }
   std::cerr << "fit-map: " << rows - failed - skipped << " of " << rows - skipped << " curves fitted";
   if (skipped) std::cerr << " (" << skipped << " rows kept from the earlier run)";
   if (failed) std::cerr << "; " << failed << " failed (see the error column of " << out << ")";

@@ -124,7 +124,10 @@ static int run_main(int argc, char** argv) {
   fit_map->add_option("--out", map_out, "Results CSV")->required();
   fit_map->add_option("--plot-dir", map_plot_dir,
                       "Draw each fitted field (parameters, rms, status) as a heat-map PNG over the map grid (gnuplot)");
-  std::string map_curves, export_curves;
+  std::string map_curves, export_curves, map_report_dir;
+  fit_map->add_option("--report", map_report_dir,
+                      "Write an interactive report (one self-contained HTML page: maps, histograms, each curve and its "
+                      "fit) as DIR/index.html; DIR must be new, empty or an earlier report");
   fit_map->add_option("--curves", map_curves,
                       "Fit only the curves at positions A to B - 1 of each map (A:B, A: or :B; 0-based, file order); "
                       "the rest are not read");
@@ -165,7 +168,8 @@ static int run_main(int argc, char** argv) {
   try {
     if (*curve) return run_curve(scene_path, at, a_max, points);
     if (*fit) return layerjkr::cli::run_fit(fit_args, data_path, report_path, plot_path);
-    if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out, map_plot_dir, map_resume, map_curves);
+    if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out, map_plot_dir, map_resume, map_curves,
+                                                          map_report_dir);
     if (*export_cmd) return layerjkr::cli::run_export(export_path, export_out, export_curves);
     if (*discrete) return layerjkr::cli::run_discrete(discrete_args);
     return run_summary(scene_path);
