@@ -222,7 +222,8 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
                             "excluded_count", "pull_off_force", "baseline_slope"})
     names.emplace_back(extra);
   for (const std::string& n : names) columns[n] = json::array();
-  json curves = json::array();
+  // The curves' JSON as text, item by item: as a DOM it would be most of the report's memory.
+  std::string curves = "[";
   bool any_pull_off = false, any_slope = false;
   for (const BatchItem& it : items) {
     const FitSummary& s = it.summary;
@@ -258,7 +259,8 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
     columns["baseline_slope"].push_back(ok ? number(s.baseline_slope) : json(nullptr));
     any_pull_off = any_pull_off || (ok && std::isfinite(s.pull_off_force));
     any_slope = any_slope || (ok && s.baseline_slope != 0.0);
-    curves.push_back(ok ? curve_of(s, options.display_points) : json(nullptr));
+    if (curves.size() > 1) curves += ',';
+    curves += ok ? curve_of(s, options.display_points).dump() : "null";
   }
   json fields = json::array();
   for (FitParameter p : options.free) {
@@ -273,19 +275,16 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
   if (any_slope) fields.push_back({{"key", "baseline_slope"}, {"label", "baseline slope"}, {"unit", "N/m"}});
   json free = json::array();
   for (FitParameter p : options.free) free.push_back(name_of(p));
-  const json data = {{"title", options.title}, {"subtitle", options.subtitle}, {"count", items.size()},
+  curves += ']';
+  const json rest = {{"title", options.title}, {"subtitle", options.subtitle}, {"count", items.size()},
                      {"free", free},           {"fields", fields},             {"columns", columns},
-                     {"views", views_of(items)}, {"curves", curves},           {"display_points", options.display_points}};
-  return data.dump();
+                     {"views", views_of(items)}, {"display_points", options.display_points}};
+  std::string text = rest.dump();  // "{...}": the curves go in first
+  return "{\"curves\":" + curves + "," + text.substr(1);
 }
 
 std::string map_report_html(const std::vector<BatchItem>& items, const MapReportOptions& options) {
-  std::string data = map_report_data(items, options);
-  // '<' occurs only inside JSON strings, where \u003c means the same: nothing in the data can
-  // close the script element that holds it.
-  std::string safe;
-  safe.reserve(data.size());
-  for (char c : data) safe += c == '<' ? std::string("\\u003c") : std::string(1, c);
+  const std::string data = map_report_data(items, options);
   check_script_text(detail::kPlotlyJs, "plotting library");
   check_script_text(detail::kPageJs, "page script");
   check_script_text(detail::kPlotlyLicense, "licence");
@@ -295,22 +294,34 @@ std::string map_report_html(const std::vector<BatchItem>& items, const MapReport
       {"CSS", std::string(detail::kPageCss)},
       {"PLOTLY", std::string(detail::kPlotlyJs)},
       {"PLOTLY_LICENSE", std::string(detail::kPlotlyLicense)},
-      {"DATA", safe},
       {"SCRIPT", std::string(detail::kPageJs)}};
   const std::string_view page = detail::kPageHtml;
   if (page.substr(0, kPageStart.size()) != kPageStart) throw Error("map report: the page template lost its first line");
   std::string out;
-  out.reserve(page.size() + detail::kPlotlyJs.size() + safe.size() + detail::kPageJs.size() + 4096);
+  out.reserve(page.size() + detail::kPlotlyJs.size() + data.size() + detail::kPageJs.size() + 4096);
   std::size_t at = 0;
   for (;;) {
     const std::size_t open = page.find("{{", at);
     if (open == std::string_view::npos) break;
     const std::size_t close = page.find("}}", open);
     if (close == std::string_view::npos) break;
-    const auto part = parts.find(page.substr(open + 2, close - open - 2));
-    if (part == parts.end()) throw Error("map report: unknown template field " + std::string(page.substr(open, close + 2 - open)));
+    const std::string_view field = page.substr(open + 2, close - open - 2);
     out.append(page.substr(at, open - at));
-    out += part->second;
+    if (field == "DATA") {
+      // '<' occurs only inside JSON strings, where \u003c means the same: nothing in the data
+      // can close the script element that holds it. Appended as it goes: a 128 x 128 map's data
+      // is 20 MB.
+      for (char c : data) {
+        if (c == '<')
+          out.append("\\u003c");
+        else
+          out.push_back(c);
+      }
+    } else {
+      const auto part = parts.find(field);
+      if (part == parts.end()) throw Error("map report: unknown template field {{" + std::string(field) + "}}");
+      out += part->second;
+    }
     at = close + 2;
   }
   out.append(page.substr(at));
