@@ -12,6 +12,7 @@ pixel and saves the window as a PNG reduced to a 256-colour palette (PIL) to kee
 Needs python3-selenium, chromium, chromium-driver and python3-pil (scripts/install-deps.sh).
 """
 import argparse
+import os
 import pathlib
 import shutil
 import subprocess
@@ -42,11 +43,13 @@ def main():
         tmp = pathlib.Path(tmp)
         (tmp / "scene.json").write_text(SCENE)
         report = tmp / "report"
-        subprocess.run([args.cli, "fit-map", str(VOLUME), "--scene", str(tmp / "scene.json"), "--free", "E,delta0,P0",
-                        "--jobs", "2", "--out", str(tmp / "results.csv"), "--report", str(report)], check=True)
+        # Short relative names: the page shows them.
+        (tmp / VOLUME.name).symlink_to(VOLUME)
+        subprocess.run([os.path.abspath(args.cli), "fit-map", VOLUME.name, "--scene", "scene.json", "--free", "E,delta0,P0",
+                        "--jobs", "2", "--out", "results.csv", "--report", "report"], check=True, cwd=tmp)
         opts = Options()
         opts.binary_location = shutil.which("chromium") or shutil.which("chromium-browser")
-        for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1400,900",
+        for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1400,1000",
                   "--force-device-scale-factor=1", "--hide-scrollbars"):
             opts.add_argument(a)
         driver = webdriver.Chrome(service=Service(shutil.which("chromedriver")), options=opts)

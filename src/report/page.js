@@ -69,7 +69,7 @@
     var heat = {type: 'heatmap', z: z, text: text, hoverongaps: false, name: f.label,
                 hovertemplate: '%{text}<br>(%{x}, %{y})<br>' + f.label + ' = %{z:.4g} ' + f.unit + '<extra></extra>',
                 colorbar: {title: {text: f.label + (f.unit ? ' [' + f.unit + ']' : ''), side: 'right'},
-                           exponentformat: 'e'}};
+                           exponentformat: 'SI'}};
     if (f.key === STATUS_FIELD.key) {
       var scale = [];
       QUALITIES.forEach(function (q, k) {
@@ -112,7 +112,7 @@
                   legend: {orientation: 'h', y: -0.12}, uirevision: state.view, showlegend: true};
     Plotly.react(mapDiv, traces, layout, CONFIG);
     var histLayout = {margin: {l: 50, r: 10, t: 10, b: 40}, bargap: 0.02,
-                      xaxis: {title: {text: f.label + (f.unit ? ' [' + f.unit + ']' : '')}, exponentformat: 'e'},
+                      xaxis: {title: {text: f.label + (f.unit ? ' [' + f.unit + ']' : '')}, exponentformat: 'SI'},
                       yaxis: {title: {text: 'curves'}}};
     var hist = f.key === STATUS_FIELD.key
       ? {type: 'bar', x: QUALITIES, y: QUALITIES.map(function (q) { return countOf(v, q); }),
@@ -165,9 +165,9 @@
   function drawCurve(i) {
     var s = samplesOf(i);
     var layout = {margin: {l: 60, r: 10, t: 40, b: 45}, title: {text: '#' + i + ' ' + C.file[i], font: {size: 13}},
-                  xaxis: {title: {text: '\u03b4 [m]'}, exponentformat: 'e', anchor: 'y2'},
-                  yaxis: {title: {text: 'P [N]'}, exponentformat: 'e', domain: [0.36, 1]},
-                  yaxis2: {title: {text: 'residual [N]'}, exponentformat: 'e', domain: [0, 0.27]},
+                  xaxis: {title: {text: '\u03b4 [m]'}, exponentformat: 'SI', anchor: 'y2'},
+                  yaxis: {title: {text: 'P [N]'}, exponentformat: 'SI', domain: [0.36, 1]},
+                  yaxis2: {title: {text: 'residual [N]'}, exponentformat: 'SI', domain: [0, 0.27]},
                   legend: {orientation: 'h', y: 1.0, yanchor: 'bottom', x: 1, xanchor: 'right'}, showlegend: true,
                   annotations: []};
     var traces = [];
