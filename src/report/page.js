@@ -105,9 +105,10 @@
                           line: {width: 3}}});
     var layout = {margin: {l: 50, r: 10, t: 30, b: 40}, title: {text: f.label, font: {size: 14}},
                   xaxis: {title: {text: v.kind === 'grid' ? 'grid x' : 'index % ' + v.nx}, range: [-0.5, v.nx - 0.5],
-                          constrain: 'domain', showgrid: false, zeroline: false},
+                          dtick: Math.max(1, Math.ceil(v.nx / 8)), constrain: 'domain', showgrid: false, zeroline: false},
                   yaxis: {title: {text: v.kind === 'grid' ? 'grid y' : 'index / ' + v.nx}, scaleanchor: 'x',
                           range: v.kind === 'grid' ? [-0.5, v.ny - 0.5] : [v.ny - 0.5, -0.5], constrain: 'domain',
+                          dtick: Math.max(1, Math.ceil(v.ny / 8)),
                           showgrid: false, zeroline: false},
                   legend: {orientation: 'h', y: -0.12}, uirevision: state.view, showlegend: true};
     Plotly.react(mapDiv, traces, layout, CONFIG);
