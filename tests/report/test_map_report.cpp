@@ -365,7 +365,7 @@ TEST_CASE("map_report_html is one page with the data inline, unbreakable by the 
   CHECK_THROWS_AS(map_report_data(items, bad), InputError);
 }
 
-TEST_CASE("prepare_report_dir: new, empty or an earlier report; never a file or a directory of other files",
+TEST_CASE("prepare_report_dir takes a new or empty directory or an earlier report, never a file or other files",
           "[report][errors]") {
   const test::TempDir tmp;
   const std::string fresh = tmp.file("a/b/report");
