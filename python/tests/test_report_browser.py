@@ -219,3 +219,14 @@ def test_offline_click_arrow_keys_and_status_filter(report, browser, tmp_path):
         s.value = 'rms_residual'; s.dispatchEvent(new Event('change'));""")
     assert [e for e in browser.get_log("browser") if e["level"] in ("SEVERE", "WARNING")] == []
     browser.save_screenshot(str(tmp_path / "report_offline.png"))
+
+
+def test_a_report_of_no_curves_opens_without_errors(browser, tmp_path):
+    import layerjkr
+    assert layerjkr.fit_batch([], str(SOURCE / "data" / "scenes" / "hydrogel_film_two_term.json"),
+                              report=tmp_path / "rep") == []
+    browser.set_network_conditions(offline=False, latency=0, download_throughput=-1, upload_throughput=-1)
+    browser.get_log("browser")
+    _open(browser, tmp_path / "rep" / "index.html")
+    assert browser.find_element(By.ID, "summary").text == "No curves."
+    assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []

@@ -260,7 +260,7 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
     any_pull_off = any_pull_off || (ok && std::isfinite(s.pull_off_force));
     any_slope = any_slope || (ok && s.baseline_slope != 0.0);
     if (curves.size() > 1) curves += ',';
-    curves += ok ? curve_of(s, options.display_points).dump() : "null";
+    curves += ok ? curve_of(s, options.display_points).dump() : "null";  // numbers and ASCII only
   }
   json fields = json::array();
   for (FitParameter p : options.free) {
@@ -279,7 +279,9 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
   const json rest = {{"title", options.title}, {"subtitle", options.subtitle}, {"count", items.size()},
                      {"free", free},           {"fields", fields},             {"columns", columns},
                      {"views", views_of(items)}, {"display_points", options.display_points}};
-  std::string text = rest.dump();  // "{...}": the curves go in first
+  // File names and error texts may hold bytes that are not UTF-8 (a path, a binary file's
+  // cells): replaced by U+FFFD, not an exception after the fitting.
+  std::string text = rest.dump(-1, ' ', false, json::error_handler_t::replace);  // "{...}": the curves go in first
   return "{\"curves\":" + curves + "," + text.substr(1);
 }
 

@@ -275,8 +275,8 @@
   }
 
   document.addEventListener('keydown', function (ev) {
-    var tag = ev.target && ev.target.tagName;
-    if (tag === 'SELECT' || tag === 'INPUT' || tag === 'TEXTAREA') return;
+    var t = ev.target, tag = t && t.tagName;
+    if (tag === 'SELECT' || tag === 'TEXTAREA' || (tag === 'INPUT' && t.type !== 'checkbox')) return;
     var moves = {ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, -1], ArrowDown: [0, 1]};
     var m = moves[ev.key];
     if (!m) return;
@@ -332,6 +332,11 @@
     });
   }
 
+  if (!D.views.length) {  // a batch of no curves
+    document.getElementById('summary').textContent = 'No curves.';
+    window.layerjkr = {select: select, state: function () { return null; }, pixelPosition: function () { return null; }, data: D};
+    return;
+  }
   Plotly.newPlot(mapDiv, [], {}, CONFIG);
   setup();
   drawMap();
