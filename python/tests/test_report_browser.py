@@ -24,6 +24,8 @@ from selenium.webdriver.common.keys import Keys  # noqa: E402
 
 BUILD = pathlib.Path(os.environ.get("LAYERJKR_BUILD_DIR", SOURCE / "build"))
 MAKE_MAP = os.environ.get("LAYERJKR_MAKE_MAP", str(BUILD / "bin" / "make_instrument_map"))
+# Markup in a file name is shown as text, never interpreted.
+BROKEN = "<b>broken<i> &amp;.jpk-force"
 SCENE = '{"indenter": {"shape": "paraboloid", "R": 4e-8}, "medium": {"type": "half_space", "E": 3e5, "nu": 0.5}}'
 
 
@@ -44,14 +46,14 @@ def report(tmp_path_factory):
     if not os.path.exists(CLI):
         pytest.skip("the layerjkr CLI is not built at %s" % CLI)
     d = tmp_path_factory.mktemp("report")
-    (d / "broken.jpk-force").write_text("not a zip")
+    (d / BROKEN).write_text("not a zip")
     source = SHARED / "data" / "instrument"
     real = SHARED / "data" / "real" / "jpk_spot3_0192_approach.csv"
     if source.is_dir() and real.exists() and os.path.exists(MAKE_MAP):
         subprocess.run([MAKE_MAP, "qi", "8", str(d / "map8.jpk-qi-data"), "--source", str(source)], check=True,
                        capture_output=True)
         (d / "hertz.json").write_text(SCENE)
-        inputs = [str(d / "map8.jpk-qi-data"), str(d / "broken.jpk-force"), str(real)]
+        inputs = [str(d / "map8.jpk-qi-data"), str(d / BROKEN), str(real)]
         flags = ["--scene", str(d / "hertz.json"), "--free", "E,delta0,P0"]
         grid = True
     else:
@@ -61,7 +63,7 @@ def report(tmp_path_factory):
         for k in range(8):
             shutil.copy(SOURCE / "data" / "curves" / "hydrogel_film_two_term.csv", d / ("c%d.csv" % k))
             inputs.append(str(d / ("c%d.csv" % k)))
-        inputs.append(str(d / "broken.jpk-force"))
+        inputs.append(str(d / BROKEN))
         flags = ["--scene", str(SOURCE / "data" / "scenes" / "hydrogel_film_two_term.json"), "--branch", "all",
                  "--free", "E,w,delta0,P0"]
         grid = False
@@ -128,6 +130,10 @@ def test_select_returns_the_csv_values_and_the_page_stays_offline(report, browse
     bad = next(i for i, r in enumerate(rows) if r["status"] == "error")
     browser.execute_script("window.layerjkr.select(arguments[0])", bad)
     assert rows[bad]["error"][:40] in browser.find_element(By.ID, "values").text
+    broken = next(i for i, r in enumerate(rows) if r["file"].endswith(BROKEN))
+    browser.execute_script("window.layerjkr.select(arguments[0])", broken)
+    assert BROKEN in browser.execute_script("return document.querySelector('#curve .gtitle').textContent")
+    assert BROKEN in browser.find_element(By.ID, "values").text
     # A bad index is an error, not a silent no-op.
     with pytest.raises(Exception, match="not in 0 .. %d" % (n - 1)):
         browser.execute_script("return window.layerjkr.select(arguments[0])", n)

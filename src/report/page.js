@@ -36,6 +36,11 @@
     return unit ? s + ' ' + unit : s;
   }
 
+  // Plotly renders hover text as HTML: names and errors are shown as text.
+  function escapeHtml(s) {
+    return String(s).replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;');
+  }
+
   function fieldOf(key) {
     for (var k = 0; k < FIELDS.length; ++k) if (FIELDS[k].key === key) return FIELDS[k];
     throw new RangeError('layerjkr: no field ' + key);
@@ -61,7 +66,8 @@
         var val = i >= 0 && visible(i) ? value(f.key, i) : null;
         if (val !== null && val !== undefined && f.key !== STATUS_FIELD.key) values.push(val);
         zr.push(val === undefined ? null : val);
-        tr.push(i >= 0 ? '#' + i + ' ' + C.file[i] + '<br>' + C.quality[i] : 'no curve');
+        tr.push(i >= 0 ? '#' + i + ' ' + escapeHtml(C.file[i]) + '<br>' + C.quality[i] +
+                (C.error[i] ? ': ' + escapeHtml(C.error[i].slice(0, 80)) : '') : 'no curve');
       }
       z.push(zr);
       text.push(tr);
@@ -165,7 +171,7 @@
 
   function drawCurve(i) {
     var s = samplesOf(i);
-    var layout = {margin: {l: 60, r: 10, t: 40, b: 45}, title: {text: '#' + i + ' ' + C.file[i], font: {size: 13}},
+    var layout = {margin: {l: 60, r: 10, t: 40, b: 45}, title: {text: '#' + i + ' ' + escapeHtml(C.file[i]), font: {size: 13}},
                   xaxis: {title: {text: '\u03b4 [m]'}, exponentformat: 'SI', anchor: 'y2'},
                   yaxis: {title: {text: 'P [N]'}, exponentformat: 'SI', domain: [0.36, 1]},
                   yaxis2: {title: {text: 'residual [N]'}, exponentformat: 'SI', domain: [0, 0.27]},
@@ -173,7 +179,7 @@
                   annotations: []};
     var traces = [];
     if (!s) {
-      layout.annotations.push({text: C.status[i] === 'error' ? 'not fitted: ' + C.error[i] : 'no samples kept for display',
+      layout.annotations.push({text: C.status[i] === 'error' ? 'not fitted: ' + escapeHtml(C.error[i]) : 'no samples kept for display',
                                xref: 'paper', yref: 'paper', x: 0.5, y: 0.7, showarrow: false, font: {color: '#b00'}});
     } else {
       var inD = [], inP = [], inR = [], exD = [], exP = [], exR = [];
