@@ -90,10 +90,12 @@ std::string map_report_page(const std::string& dir);
 
 /// Makes `dir` ready for a report, before any fitting: creates it (and its parents) if
 /// missing; an existing directory must be empty or hold a previous report and nothing else
-/// (exactly one entry, index.html, whose text starts as map_report_html's does), which is
-/// then replaced; and it must take new files (checked by creating and removing one).
-/// Throws InputError naming `flag` (e.g. "--report") and `dir` for a path that exists and is
-/// not a directory, cannot be created or written, or holds other files.
-void prepare_report_dir(const std::string& dir, const std::string& flag);
+/// (one entry, index.html, whose text starts as map_report_html's does), which is then
+/// replaced - besides the files named in `also` (the caller's other outputs, e.g. fit-map's
+/// results table, which may go beside the page); and it must take new files (checked by
+/// creating and removing one). Throws InputError naming `flag` (e.g. "--report") and `dir`
+/// for a path that exists and is not a directory, cannot be created or written, or holds
+/// other files.
+void prepare_report_dir(const std::string& dir, const std::string& flag, const std::vector<std::string>& also = {});
 
 }  // namespace layerjkr

@@ -392,7 +392,9 @@ PYBIND11_MODULE(_core, m) {
   m.def("fit_files", &fit_files_py, py::arg("paths"), py::arg("scene"), py::arg("options"), py::arg("csv"),
         py::arg("jobs"), py::arg("curves") = py::none(), py::arg("display_points") = 0);
   m.attr("DEFAULT_DISPLAY_POINTS") = kDefaultDisplayPoints;
-  m.def("prepare_report_dir", &prepare_report_dir, py::arg("dir"), py::arg("flag"));
+  m.def(
+      "prepare_report_dir", [](const std::string& dir, const std::string& flag) { prepare_report_dir(dir, flag); },
+      py::arg("dir"), py::arg("flag"));
   m.def(
       "map_report_html",
       [](const std::vector<BatchItem>& items, const FitOptions& options, const std::string& title,

@@ -125,13 +125,12 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
   Earlier earlier;
   if (resume) read_earlier(out, head, earlier);
   // Every output is created before the first fit: a bad path fails now, not after the work.
+  // The report's directory first: the table may go into it.
+  if (!report_dir.empty()) prepare_report_dir(report_dir, "--report", {out});
   OutputFile table(out);
   if (!plot_dir.empty()) prepare_plot_dir(plot_dir);
   std::optional<OutputFile> page;
-  if (!report_dir.empty()) {
-    prepare_report_dir(report_dir, "--report");
-    page.emplace(map_report_page(report_dir));
-  }
+  if (!report_dir.empty()) page.emplace(map_report_page(report_dir));
   table.write(head);
 
   std::size_t rows = 0, failed = 0, skipped = 0;

@@ -332,7 +332,7 @@ std::string map_report_html(const std::vector<BatchItem>& items, const MapReport
 
 std::string map_report_page(const std::string& dir) { return (fs::path(dir) / "index.html").string(); }
 
-void prepare_report_dir(const std::string& dir, const std::string& flag) {
+void prepare_report_dir(const std::string& dir, const std::string& flag, const std::vector<std::string>& also) {
   const std::string name = flag + " " + dir;
   if (dir.empty()) throw InputError(flag + ": the directory name is empty");
   std::error_code ec;
@@ -346,6 +346,13 @@ void prepare_report_dir(const std::string& dir, const std::string& flag) {
     std::vector<std::string> others;
     for (fs::directory_iterator e(dir, ec), end; !ec && e != end; e.increment(ec)) {
       const std::string entry = e->path().filename().string();
+      std::error_code same_ec;
+      const fs::path here = fs::weakly_canonical(e->path(), same_ec);
+      if (std::any_of(also.begin(), also.end(), [&](const std::string& a) {
+            std::error_code a_ec;
+            return !same_ec && fs::weakly_canonical(a, a_ec) == here && !a_ec;
+          }))
+        continue;  // the caller's own output
       if (entry == "index.html" && e->is_regular_file()) {
         std::ifstream f(e->path(), std::ios::binary);
         std::string start(kPageStart.size(), '\0');

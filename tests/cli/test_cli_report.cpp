@@ -104,6 +104,14 @@ TEST_CASE("fit-map --report: the page's data are the table's values, cell for ce
   CHECK(again.code == 0);
   CHECK(fs::is_regular_file(dir + "/index.html"));
   CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);
+  // The table may go beside the page, again and again.
+  for (int k = 0; k < 2; ++k) {
+    const Run beside = run("fit-map " + in.string() + sample_fit_flags() + " --out " + dir + "/results.csv --report " + dir);
+    INFO(beside.err);
+    CHECK(beside.code == 0);
+  }
+  CHECK(lines(slurp(dir + "/results.csv")).size() == 5);
+  CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 2);
 }
 
 TEST_CASE("fit-map --report refuses a file, an unwritable place, a directory of other files, and --resume",

@@ -386,6 +386,8 @@ TEST_CASE("prepare_report_dir takes a new or empty directory or an earlier repor
     return std::string("no error");
   };
   std::ofstream(tmp.file("a/b/report/notes.txt")) << "mine";
+  prepare_report_dir(fresh, "--report", {tmp.file("a/b/report/notes.txt")});  // the caller's own output
+  prepare_report_dir(fresh, "--report", {tmp.file("a/b/../b/report/notes.txt")});
   const std::string other = message(fresh);
   CHECK(other.find("--report " + fresh + ": the directory is not empty and is not a previous report (it holds notes.txt)") == 0);
   const std::string page_only = tmp.file("page");
