@@ -2,7 +2,7 @@
 //   layerjkr curve SCENE.json (--at a1,a2,... | --a-max A --points N)
 //   layerjkr summary SCENE.json
 //   layerjkr fit DATA.csv --scene S.json --free E,w,delta0 [--out R.json] [--plot F.png] ...
-//   layerjkr fit-map DIR_OR_GLOB... --scene S.json --free ... --jobs N --out RESULTS.csv [--resume]
+//   layerjkr fit-map DIR_OR_GLOB... --scene S.json --free ... --jobs N --out RESULTS.csv [--report DIR] [--resume]
 //   layerjkr export FILE.jpk-force|.jpk-force-map|.jpk-qi-data|.ibw|.spm|.000 --out OUT.csv [--curves A:B]
 // Exit codes: 0 success, 2 invalid scene or arguments, 1 internal failure, 130 / 143 fit-map
 // stopped by SIGINT / SIGTERM. Every error is one line on stderr.
