@@ -127,7 +127,7 @@ static int run_main(int argc, char** argv) {
   std::string map_curves, export_curves, map_report_dir;
   fit_map->add_option("--report", map_report_dir,
                       "Write an interactive report (one self-contained HTML page: maps, histograms, each curve and its "
-                      "fit) as DIR/index.html; DIR must be new, empty or an earlier report");
+                      "fit) as DIR/index.html; DIR must be new, empty or an earlier report (the --out table may go in it)");
   fit_map->add_option("--curves", map_curves,
                       "Fit only the curves at positions A to B - 1 of each map (A:B, A: or :B; 0-based, file order); "
                       "the rest are not read");
