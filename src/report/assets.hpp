@@ -6,10 +6,10 @@
 
 namespace layerjkr::detail {
 
-extern const std::string_view kPlotlyJs;      ///< third_party/plotly.js-cartesian-dist-min/plotly-cartesian.min.js
-extern const std::string_view kPlotlyLicense; ///< its LICENSE
-extern const std::string_view kPageHtml;      ///< src/report/page.html, the template
-extern const std::string_view kPageCss;       ///< src/report/page.css
-extern const std::string_view kPageJs;        ///< src/report/page.js
+extern const std::string_view kPlotlyJs;       ///< third_party/plotly.js-cartesian-dist-min/plotly-cartesian.min.js
+extern const std::string_view kPlotlyLicense;  ///< its LICENSE
+extern const std::string_view kPageHtml;       ///< src/report/page.html, the template
+extern const std::string_view kPageCss;        ///< src/report/page.css
+extern const std::string_view kPageJs;         ///< src/report/page.js
 
 }  // namespace layerjkr::detail

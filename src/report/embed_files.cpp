@@ -53,8 +53,8 @@ int main(int argc, char** argv) {
       out << "\"\n";
     }
     if (bytes.empty()) out << "    \"\"\n";
-    out << "    ;\n}  // namespace\nextern const std::string_view " << name << "{" << name << "_bytes, "
-        << bytes.size() << "};\n";
+    out << "    ;\n}  // namespace\nextern const std::string_view " << name << "{" << name << "_bytes, " << bytes.size()
+        << "};\n";
   }
   out << "}  // namespace layerjkr::detail\n";
   const std::string text = out.str();

@@ -12,8 +12,8 @@
 #include <string_view>
 #include <system_error>
 
-#include <nlohmann/json.hpp>
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include "layerjkr/error.hpp"
 #include "layerjkr/map_report.hpp"
@@ -35,13 +35,20 @@ json index_or_null(int v) { return v >= 0 ? json(v) : json(nullptr); }
 
 const char* unit(FitParameter p) {
   switch (p) {
-    case FitParameter::K: return "Pa/m";
-    case FitParameter::G: return "N/m";
-    case FitParameter::w: return "J/m^2";
-    case FitParameter::delta0: return "m";
-    case FitParameter::P0: return "N";
-    case FitParameter::E: return "Pa";
-    case FitParameter::R: return "m";
+    case FitParameter::K:
+      return "Pa/m";
+    case FitParameter::G:
+      return "N/m";
+    case FitParameter::w:
+      return "J/m^2";
+    case FitParameter::delta0:
+      return "m";
+    case FitParameter::P0:
+      return "N";
+    case FitParameter::E:
+      return "Pa";
+    case FitParameter::R:
+      return "m";
   }
   return "";
 }
@@ -181,11 +188,20 @@ std::string html_text(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -194,7 +210,8 @@ std::string html_text(const std::string& s) {
 // Text that goes inside a <script> element must not end it or open a comment there.
 void check_script_text(std::string_view text, const char* what) {
   std::string lower(text);
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (lower.find("</script") != std::string::npos || lower.find("<!--") != std::string::npos)
     throw Error(std::string("map report: the embedded ") + what + " holds '</script' or '<!--' and cannot be inlined");
 }
@@ -206,14 +223,16 @@ void MapReportOptions::validate() const {
     throw DomainError("MapReportOptions", "display_points", static_cast<double>(display_points), ">= 8");
   for (std::size_t i = 0; i < free.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
-      if (free[i] == free[j]) throw InputError("MapReportOptions: free parameter " + name_of(free[i]) + " is listed twice");
+      if (free[i] == free[j])
+        throw InputError("MapReportOptions: free parameter " + name_of(free[i]) + " is listed twice");
 }
 
 std::string map_report_data(const std::vector<BatchItem>& items, const MapReportOptions& options) {
   options.validate();
   json columns;
-  std::vector<std::string> names = {"file", "curve", "x", "y", "grid_x", "grid_y", "status", "error", "model",
-                                    "converged", "iterations", "rms_residual", "identifiable"};
+  std::vector<std::string> names = {"file",       "curve",        "x",           "y",     "grid_x",
+                                    "grid_y",     "status",       "error",       "model", "converged",
+                                    "iterations", "rms_residual", "identifiable"};
   for (FitParameter p : options.free) {
     names.push_back(name_of(p));
     names.push_back(name_of(p) + "_stderr");
@@ -276,8 +295,9 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
   json free = json::array();
   for (FitParameter p : options.free) free.push_back(name_of(p));
   curves += ']';
-  const json rest = {{"title", options.title}, {"subtitle", options.subtitle}, {"count", items.size()},
-                     {"free", free},           {"fields", fields},             {"columns", columns},
+  const json rest = {{"title", options.title},   {"subtitle", options.subtitle},
+                     {"count", items.size()},    {"free", free},
+                     {"fields", fields},         {"columns", columns},
                      {"views", views_of(items)}, {"display_points", options.display_points}};
   // File names and error texts may hold bytes that are not UTF-8 (a path, a binary file's
   // cells): replaced by U+FFFD, not an exception after the fitting.
@@ -290,13 +310,12 @@ std::string map_report_html(const std::vector<BatchItem>& items, const MapReport
   check_script_text(detail::kPlotlyJs, "plotting library");
   check_script_text(detail::kPageJs, "page script");
   check_script_text(detail::kPlotlyLicense, "licence");
-  const std::map<std::string_view, std::string> parts = {
-      {"TITLE", html_text(options.title)},
-      {"SUBTITLE", html_text(options.subtitle)},
-      {"CSS", std::string(detail::kPageCss)},
-      {"PLOTLY", std::string(detail::kPlotlyJs)},
-      {"PLOTLY_LICENSE", std::string(detail::kPlotlyLicense)},
-      {"SCRIPT", std::string(detail::kPageJs)}};
+  const std::map<std::string_view, std::string> parts = {{"TITLE", html_text(options.title)},
+                                                         {"SUBTITLE", html_text(options.subtitle)},
+                                                         {"CSS", std::string(detail::kPageCss)},
+                                                         {"PLOTLY", std::string(detail::kPlotlyJs)},
+                                                         {"PLOTLY_LICENSE", std::string(detail::kPlotlyLicense)},
+                                                         {"SCRIPT", std::string(detail::kPageJs)}};
   const std::string_view page = detail::kPageHtml;
   if (page.substr(0, kPageStart.size()) != kPageStart) throw Error("map report: the page template lost its first line");
   std::string out;
@@ -373,7 +392,8 @@ void prepare_report_dir(const std::string& dir, const std::string& flag, const s
   }
   std::string probe = (fs::path(dir) / ".layerjkr-probe.XXXXXX").string();
   const int fd = mkstemp(probe.data());
-  if (fd < 0) throw InputError(name + ": cannot write in the directory (" + std::generic_category().message(errno) + ")");
+  if (fd < 0)
+    throw InputError(name + ": cannot write in the directory (" + std::generic_category().message(errno) + ")");
   close(fd);
   unlink(probe.c_str());
 }

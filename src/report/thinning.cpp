@@ -12,7 +12,7 @@ namespace {
 // Indices of the smallest and largest finite v[i] in [begin, end) (the first of equals);
 // `end` for none.
 template <class Value>
-void extremes(std::size_t begin, std::size_t end, Value v, std::vector<std::size_t>& keep) {
+void extremes(std::size_t begin, std::size_t end, std::vector<std::size_t>& keep, Value v) {
   std::size_t lo = end, hi = end;
   for (std::size_t i = begin; i < end; ++i) {
     const double x = v(i);
@@ -44,8 +44,8 @@ std::vector<std::size_t> display_samples(const std::vector<double>& P, const std
   const std::size_t bins = (max_points - 2) / 4;
   for (std::size_t b = 0; b < bins; ++b) {
     const std::size_t begin = b * n / bins, end = (b + 1) * n / bins;
-    extremes(begin, end, [&](std::size_t i) { return P[i]; }, keep);
-    extremes(begin, end, [&](std::size_t i) { return P[i] - P_fit[i]; }, keep);
+    extremes(begin, end, keep, [&](std::size_t i) { return P[i]; });
+    extremes(begin, end, keep, [&](std::size_t i) { return P[i] - P_fit[i]; });
   }
   for (std::size_t i = 1; i < excluded.size(); ++i)
     if (excluded[i] != excluded[i - 1]) {

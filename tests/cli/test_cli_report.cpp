@@ -106,7 +106,8 @@ TEST_CASE("fit-map --report: the page's data are the table's values, cell for ce
   CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);
   // The table may go beside the page, again and again.
   for (int k = 0; k < 2; ++k) {
-    const Run beside = run("fit-map " + in.string() + sample_fit_flags() + " --out " + dir + "/results.csv --report " + dir);
+    const Run beside =
+        run("fit-map " + in.string() + sample_fit_flags() + " --out " + dir + "/results.csv --report " + dir);
     INFO(beside.err);
     CHECK(beside.code == 0);
   }

@@ -196,7 +196,8 @@ TEST_CASE("display_samples skips NaN as an extreme and rejects bad arguments", "
   CHECK_THROWS_AS(display_samples(P, P_fit, std::vector<bool>(3), 10), InputError);
 }
 
-TEST_CASE("fit_batch with display_points keeps a thinned subsequence of each fit's samples", "[report][thinning][fit]") {
+TEST_CASE("fit_batch with display_points keeps a thinned subsequence of each fit's samples",
+          "[report][thinning][fit]") {
   const Scene scene = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 1e-6},
       "medium": {"type": "half_space", "E": 1e5, "nu": 0.5}, "w": 0.0})");
   SimulationOptions so;
@@ -240,7 +241,8 @@ TEST_CASE("fit_batch with display_points keeps a thinned subsequence of each fit
 TEST_CASE("map_report_data holds the items' values exactly, their layout and their curves", "[report]") {
   std::vector<BatchItem> items;
   for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 4; ++i) items.push_back(fitted_item("a.jpk-qi-data#" + std::to_string(4 * j + i), 4 * j + i, i, j, 4 * j + i));
+    for (int i = 0; i < 4; ++i)
+      items.push_back(fitted_item("a.jpk-qi-data#" + std::to_string(4 * j + i), 4 * j + i, i, j, 4 * j + i));
   items[5].summary.converged = false;
   items[6].summary.identifiable = false;
   items[6].summary.unidentifiable = {"E, delta0"};
@@ -254,7 +256,7 @@ TEST_CASE("map_report_data holds the items' values exactly, their layout and the
   items.push_back(failed);  // no pixel: the index view
   items.push_back(fitted_item("b.csv", -1, -1, -1, 13));
   items.push_back(fitted_item("c.jpk-force-map#0", 0, 0, 0, 14));  // a second map
-  items.back().summary.delta.clear();  // fitted without samples kept: no curve
+  items.back().summary.delta.clear();                              // fitted without samples kept: no curve
   MapReportOptions r;
   r.free = {FitParameter::E, FitParameter::delta0};
   const json d = json::parse(map_report_data(items, r));
@@ -373,7 +375,7 @@ TEST_CASE("prepare_report_dir takes a new or empty directory or an earlier repor
   const std::string fresh = tmp.file("a/b/report");
   prepare_report_dir(fresh, "--report");
   CHECK(fs::is_directory(fresh));
-  CHECK(fs::is_empty(fresh));  // the writability probe is gone
+  CHECK(fs::is_empty(fresh));             // the writability probe is gone
   prepare_report_dir(fresh, "--report");  // empty: fine
   std::ofstream(map_report_page(fresh)) << map_report_html({}, MapReportOptions{});
   prepare_report_dir(fresh, "--report");  // an earlier report: fine
@@ -389,14 +391,16 @@ TEST_CASE("prepare_report_dir takes a new or empty directory or an earlier repor
   prepare_report_dir(fresh, "--report", {tmp.file("a/b/report/notes.txt")});  // the caller's own output
   prepare_report_dir(fresh, "--report", {tmp.file("a/b/../b/report/notes.txt")});
   const std::string other = message(fresh);
-  CHECK(other.find("--report " + fresh + ": the directory is not empty and is not a previous report (it holds notes.txt)") == 0);
+  CHECK(other.find("--report " + fresh +
+                   ": the directory is not empty and is not a previous report (it holds notes.txt)") == 0);
   const std::string page_only = tmp.file("page");
   fs::create_directories(page_only);
   std::ofstream(map_report_page(page_only)) << "<html>someone else's</html>";
   CHECK(message(page_only).find("(it holds index.html)") != std::string::npos);
   const std::string file = tmp.file("file.txt");
   std::ofstream(file) << "x";
-  CHECK(message(file) == "--report " + file + ": exists and is not a directory (the report is a directory holding index.html)");
+  CHECK(message(file) ==
+        "--report " + file + ": exists and is not a directory (the report is a directory holding index.html)");
   CHECK(message(file + "/sub").find("--report " + file + "/sub: cannot create the directory") == 0);
   CHECK(message("") == "--report: the directory name is empty");
   if (::geteuid() != 0) {  // root writes anywhere
