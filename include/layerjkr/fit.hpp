@@ -220,7 +220,9 @@ struct BatchItem {
   std::string source;  ///< file name or CurveData::source
   bool ok = false;
   std::string error;   ///< the Error's message when !ok
-  FitSummary summary;  ///< without the per-sample vectors (delta, P, P_fit, excluded), to bound memory
+  /// Without the per-sample vectors (delta, P, P_fit, excluded), to bound memory; with
+  /// BatchOptions::display_points, a thinned copy of them.
+  FitSummary summary;
   /// Instrument files: the curve's number in the file, map position [m] and grid pixel
   /// (-1 / NaN where the file has none, and for CSV files).
   int curve = -1;
@@ -258,6 +260,11 @@ struct BatchOptions {
   /// range of a map is read without the rest). A file the range selects no curve of is one
   /// failed item saying so. CSV files hold one curve each and ignore it.
   CurveRange curves;
+  /// 0: each item's summary drops its per-sample vectors. > 0 (>= 8): it keeps them thinned
+  /// for display to about this many samples (thin_for_display, map_report.hpp), in the
+  /// worker, before the full ones are released: 3 doubles and a bit per kept sample, about
+  /// 5 kB per curve for kDefaultDisplayPoints (80 MB for a 128 x 128 map).
+  std::size_t display_points = 0;
 };
 
 /// Fits many curves in parallel with the same scene and options. A curve that cannot be

@@ -13,6 +13,7 @@
 #include "layerjkr/fit.hpp"
 #include "layerjkr/instrument.hpp"
 #include "layerjkr/jkr.hpp"
+#include "layerjkr/map_report.hpp"
 #include "layerjkr/model.hpp"
 #include "layerjkr/model_choice.hpp"
 #include "layerjkr/model_error.hpp"

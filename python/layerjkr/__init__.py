@@ -22,6 +22,7 @@ import contextlib
 import json
 import os
 import sys
+import tempfile
 import warnings as _warnings
 from typing import (Any, Callable, Dict, Iterator, List, Literal, NamedTuple, Optional, Sequence,
                     Tuple, Union, overload)
@@ -1087,7 +1088,8 @@ def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: Scen
               max_iterations: int = 200,
               contact_point: ContactPointMethod = "fit", indentation_range: Optional[Tuple[float, float]] = None,
               force_range: Optional[Tuple[float, float]] = None,
-              baseline_window: Optional[Tuple[float, float]] = None) -> List[BatchResult]:
+              baseline_window: Optional[Tuple[float, float]] = None,
+              report: Optional[Union[str, "os.PathLike[str]"]] = None) -> List[BatchResult]:
     """Fit many curves with the same scene and options on ``jobs`` threads.
 
     Parameters
@@ -1099,13 +1101,17 @@ def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: Scen
     jobs : int, default 1
         Worker threads, >= 1 (the GIL is released).
     %s
+    report : path, optional
+        Also write the interactive report (as ``fit-map --report``; see :func:`fit_files`)
+        to ``report/index.html``; the curves, having no map position, are laid out by index.
 
     Returns
     -------
     list of BatchResult
-        One per curve, in order: its FitResult (without the per-sample arrays) or the error
-        message. A curve that cannot be fitted never stops the batch. The fits' warnings are
-        in each result, not emitted.
+        One per curve, in order: its FitResult (without the per-sample arrays, or with
+        ``report``, with the thinned ones the report shows) or the error message. A curve that
+        cannot be fitted never stops the batch. The fits' warnings are in each result, not
+        emitted.
 
     Raises
     ------
@@ -1124,8 +1130,12 @@ def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: Scen
                        starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
     pairs = [(_float64(d), _float64(p)) for d, p in curves]
     s = _as_scene(scene)
+    directory = _report_dir(report)
     with _keep_finished(options.branch):
-        items = _core.fit_batch(pairs, s, options, _integer("jobs", jobs))
+        items = _core.fit_batch(pairs, s, options, _integer("jobs", jobs),
+                                _core.DEFAULT_DISPLAY_POINTS if directory else 0)
+    if directory:
+        _write_report(items, options, directory, "%d curves (fit_batch)" % len(items))
     base = _provenance(s, options, None, [])
     return _batch(items, options.branch, lambda k, it: _with_inputs(base, _array_inputs(*pairs[k], None)))
 
@@ -1142,7 +1152,8 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
               curve: Optional[int] = None, curves: Optional[CurveRangeLike] = None,
               contact_point: ContactPointMethod = "fit", indentation_range: Optional[Tuple[float, float]] = None,
               force_range: Optional[Tuple[float, float]] = None,
-              baseline_window: Optional[Tuple[float, float]] = None) -> List[BatchResult]:
+              baseline_window: Optional[Tuple[float, float]] = None,
+              report: Optional[Union[str, "os.PathLike[str]"]] = None) -> List[BatchResult]:
     """Fit CSV and instrument files on ``jobs`` threads, as ``layerjkr fit-map``.
 
     Parameters
@@ -1169,6 +1180,13 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
         ``slice(a, None)`` for a to the end. Only those curves are read. A range that selects
         no curve of a file is that file's failed item. CSV files are unaffected. None: every
         curve.
+    report : path, optional
+        A directory for the interactive report, as ``layerjkr fit-map --report``: one
+        self-contained page, ``report/index.html``, that works from file:// without network
+        (a heat map per fitted field with colour bar and histogram, bad pixels marked, a
+        status filter, each curve with its fit; docs/report.md). The directory is created; an
+        existing one must be empty or hold an earlier report (only its index.html), checked
+        before any fitting. Not written if the batch is interrupted.
 
     ``spring_constant`` is also the one the CSV reader uses for z,deflection data and that
     replaces an instrument file's own.
@@ -1177,7 +1195,8 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
     -------
     list of BatchResult
         One per curve, in file order, with its map position and pixel: its FitResult
-        (without the per-sample arrays) or the error message. A file that cannot be read is
+        (without the per-sample arrays, or with ``report``, with the thinned ones the report
+        shows) or the error message. A file that cannot be read is
         one failed item (so is a path that is not a regular file: a directory, a FIFO, a
         dangling or looping link, never opened). The fits' warnings are in each result, not
         emitted.
@@ -1190,7 +1209,8 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
         BatchResults). The same for any exception a signal handler raises.
     InputError
         An invalid option (named), unknown units, ``jobs`` < 1; a ``curves`` range with a
-        step other than 1, a negative bound or its begin after its end.
+        step other than 1, a negative bound or its begin after its end; a ``report`` that is a
+        file, cannot be created or written, or is a directory holding other files.
     DomainError
         An option outside its range.
     TypeError
@@ -1210,12 +1230,44 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
         paths = [paths]
     names = [os.fspath(p) for p in paths]
     s = _as_scene(scene)
+    directory = _report_dir(report)
     # Each file hashed once, before it is read (a FIFO or a directory is recorded, not opened).
     hashed = {name: _core.record_file(name) for name in names}
     with _keep_finished(options.branch):
-        items = _core.fit_files(names, s, options, csv, _integer("jobs", jobs), selection)
+        items = _core.fit_files(names, s, options, csv, _integer("jobs", jobs), selection,
+                                _core.DEFAULT_DISPLAY_POINTS if directory else 0)
+    if directory:
+        _write_report(items, options, directory, "%d input file(s) (fit_files)" % len(names))
     base = _provenance(s, options, csv, [])
     return _batch(items, options.branch, lambda k, it: _with_inputs(base, [hashed.get(it.source) or _core.record_file(it.source)]))
+
+
+def _report_dir(report: Optional[Union[str, "os.PathLike[str]"]]) -> Optional[str]:
+    """The report's directory, created and checked before any fitting (None: no report)."""
+    if report is None:
+        return None
+    directory = os.fspath(report)
+    _core.prepare_report_dir(directory, "report")
+    return directory
+
+
+def _write_report(items: Sequence[Any], options: Any, directory: str, subtitle: str) -> None:
+    """Writes the report's page atomically: a private temporary file renamed over index.html."""
+    html = _core.map_report_html(items, options, "layerjkr force-map report", subtitle)
+    fd, tmp = tempfile.mkstemp(prefix=".index.html.", dir=directory)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(html)
+            f.flush()
+            os.fsync(f.fileno())
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, os.path.join(directory, "index.html"))
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
 
 
 _with_fit_parameters(fit_files)

@@ -224,8 +224,9 @@ std::vector<BatchItem> run_interruptible(BatchOptions b, Run run) {
 }
 
 std::vector<BatchItem> fit_batch_py(const std::vector<std::pair<Array, Array>>& curves, const Scene& scene,
-                                    const FitOptions& options, int jobs) {
-  const BatchOptions b = batch_options(jobs);
+                                    const FitOptions& options, int jobs, std::size_t display_points) {
+  BatchOptions b = batch_options(jobs);
+  b.display_points = display_points;
   std::vector<CurveData> data;
   for (std::size_t i = 0; i < curves.size(); ++i) {
     CurveData c;
@@ -240,8 +241,10 @@ std::vector<BatchItem> fit_batch_py(const std::vector<std::pair<Array, Array>>& 
 // curves: (begin, end) positions of each instrument file, checked by the Python layer.
 std::vector<BatchItem> fit_files_py(const std::vector<std::string>& paths, const Scene& scene, const FitOptions& options,
                                     const CsvOptions& csv, int jobs,
-                                    const std::optional<std::pair<std::size_t, std::size_t>>& curves) {
+                                    const std::optional<std::pair<std::size_t, std::size_t>>& curves,
+                                    std::size_t display_points) {
   BatchOptions b = batch_options(jobs);
+  b.display_points = display_points;
   if (curves) b.curves = CurveRange{curves->first, curves->second};
   return run_interruptible(b, [&](const BatchOptions& o) { return fit_files(paths, scene, options, csv, o); });
 }
@@ -406,9 +409,10 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("grid_y", &BatchItem::grid_y);
 
   m.def("fit", &fit_arrays, py::arg("delta"), py::arg("P"), py::arg("segment"), py::arg("scene"), py::arg("options"));
-  m.def("fit_batch", &fit_batch_py, py::arg("curves"), py::arg("scene"), py::arg("options"), py::arg("jobs"));
+  m.def("fit_batch", &fit_batch_py, py::arg("curves"), py::arg("scene"), py::arg("options"), py::arg("jobs"),
+        py::arg("display_points") = 0);
   m.def("fit_files", &fit_files_py, py::arg("paths"), py::arg("scene"), py::arg("options"), py::arg("csv"),
-        py::arg("jobs"), py::arg("curves") = py::none());
+        py::arg("jobs"), py::arg("curves") = py::none(), py::arg("display_points") = 0);
 
   // Provenance (provenance.hpp): inputs as (path, size, sha256, error) tuples, the record as JSON text.
   m.def("record_file", [](const std::string& path) {
@@ -434,5 +438,25 @@ PYBIND11_MODULE(_core, m) {
         return provenance_json(scene, options, csv ? &*csv : nullptr, records);
       },
       py::arg("scene"), py::arg("options"), py::arg("csv"), py::arg("inputs"));
+  m.attr("DEFAULT_DISPLAY_POINTS") = kDefaultDisplayPoints;
+  m.def(
+      "prepare_report_dir", [](const std::string& dir, const std::string& flag) { prepare_report_dir(dir, flag); },
+      py::arg("dir"), py::arg("flag"));
+  m.def(
+      "map_report_html",
+      [](const std::vector<BatchItem>& items, const FitOptions& options, const std::string& title,
+         const std::string& subtitle) {
+        MapReportOptions r;
+        r.free = options.free;
+        r.title = title;
+        r.subtitle = subtitle;
+        std::string html;
+        {
+          py::gil_scoped_release release;
+          html = map_report_html(items, r);
+        }
+        return py::bytes(html);
+      },
+      py::arg("items"), py::arg("options"), py::arg("title"), py::arg("subtitle"));
   layerjkr::python::bind_instrument(m);
 }

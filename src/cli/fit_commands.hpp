@@ -32,6 +32,7 @@ int run_export(const std::string& path, const std::string& out, const std::strin
 /// starts, the running ones finish, the table so far is committed, and it returns 130 / 143.
 /// With `resume`, the rows of an existing table (same header) are kept and their curves (by
 /// file and curve cells) not fitted again.
+/// `report_dir` (empty for none) gets the interactive report (map_report.hpp) as index.html.
 /// `curves` ("A:B", empty for all) selects the curves of each map by position; reading skips
 /// the rest. The progress bar (curves/s, time left) is drawn only when stderr is a terminal.
 /// Beside the table, its record (sidecar_path(out)) holds the provenance of every row: version,
@@ -40,14 +41,14 @@ int run_export(const std::string& path, const std::string& out, const std::strin
 /// names another scene or other options, or an input whose SHA-256 changed.
 int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
                 const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
-                const std::vector<std::string>& command_line);
+                const std::string& report_dir, const std::vector<std::string>& command_line);
 
-/// `layerjkr fit-map --from-report OUT.json --out NEW.csv [--jobs N] [--plot-dir DIR]`: the map a
+/// `layerjkr fit-map --from-report OUT.json --out NEW.csv [--jobs N] [--plot-dir DIR] [--report DIR]`: the map a
 /// record describes, rerun with its scene, options, inputs (each input's SHA-256 checked first) and
 /// curve range. Inputs are named as the first run named them where that still resolves to the
 /// recorded file, so rerun from the same directory the table is the same, byte for byte.
 int run_fit_map_from_report(const std::string& from, int jobs, const std::string& out, const std::string& plot_dir,
-                            const std::vector<std::string>& command_line);
+                            const std::string& report_dir, const std::vector<std::string>& command_line);
 
 /// fit-map's record beside its table: OUT.csv -> OUT.json; a name not ending in .csv gets .json
 /// appended (OUT.txt -> OUT.txt.json).

@@ -12,6 +12,7 @@
 #include <iterator>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <utility>
@@ -169,10 +170,12 @@ namespace {
 // `all_inputs`: every file the outputs must not be; `extra`: added to the sidecar.
 int map_and_record(const Prepared& p, const std::vector<std::string>& files, const std::vector<std::string>& all_inputs,
                    int jobs, const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
-                   const std::vector<std::string>& command_line, const json& extra) {
+                   const std::string& report_dir, const std::vector<std::string>& command_line, const json& extra) {
   check_count("--jobs", jobs, 1, kMaxJobs);
   if (resume && !plot_dir.empty())
     throw InputError("--plot-dir needs every fit, and --resume does not redo the earlier ones: run them apart");
+  if (resume && !report_dir.empty())
+    throw InputError("--report needs every fit, and --resume does not redo the earlier ones: run them apart");
   check_not_input(out, "--out", all_inputs);
   const std::string sidecar = sidecar_path(out);
   check_not_input(sidecar, "--out's record", all_inputs);
@@ -180,6 +183,8 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
   Earlier earlier;
   if (resume) read_earlier(out, head, earlier);
   // Every output is created before the first fit: a bad path fails now, not after the work.
+  // The report's directory first: the table and its record may go into it.
+  if (!report_dir.empty()) prepare_report_dir(report_dir, "--report", {out, sidecar});
   OutputFile table(out);
   OutputFile record(sidecar);
   if (!plot_dir.empty()) prepare_plot_dir(plot_dir);
@@ -202,6 +207,8 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
       if (!named.count(in.value("path", std::string()))) made_from["inputs"].push_back(in);
   }
   record.write(made_from.dump(2) + "\n");
+  std::optional<OutputFile> page;
+  if (!report_dir.empty()) page.emplace(map_report_page(report_dir));
   table.write(head);
 
   std::size_t rows = 0, failed = 0, skipped = 0;
@@ -209,6 +216,7 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
   b.jobs = jobs;
   if (!curves.empty()) b.curves = CurveRange::parse(curves, "--curves");
   b.cancelled = [] { return stop_signal.load() != 0; };
+  if (page) b.display_points = kDefaultDisplayPoints;
   if (resume)
     b.skip = [&](const BatchItem& it) {
       const std::lock_guard<std::mutex> guard(earlier.lock);
@@ -271,10 +279,20 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
   const std::string kept_note = kept ? "; " + std::to_string(kept) + " earlier row(s) for other inputs kept at the end" : "";
   if (const int sig = stop_signal.load()) {
     std::cerr << "fit-map: stopped by " << (sig == SIGINT ? "SIGINT" : "SIGTERM") << ": " << rows << " of "
-              << items.size() << " rows written to " << out << kept_note << "; --resume finishes the table\n";
+              << items.size() << " rows written to " << out << kept_note << "; --resume finishes the table"
+              << (page ? " (no report written)" : "") << "\n";
     return 128 + sig;
   }
   if (!plot_dir.empty()) plot_map_fields(items, p.options.free, plot_dir);
+  if (page) {
+    MapReportOptions r;
+    r.free = p.options.free;
+    r.subtitle = "scene " + (p.scene.origin.file.empty() ? std::string("(recorded)") : p.scene.origin.file) + "; " +
+                 std::to_string(files.size()) + " input file(s); results " + out + "; its record " + sidecar;
+    page->write(map_report_html(items, r));
+    page->commit();
+    std::cerr << "fit-map: report written to " << page->target() << "\n";
+  }
   std::cerr << "fit-map: " << rows - failed - skipped << " of " << rows - skipped << " curves fitted";
   if (skipped) std::cerr << " (" << skipped << " rows kept from the earlier run)";
   if (failed) std::cerr << "; " << failed << " failed (see the error column of " << out << ")";
@@ -286,16 +304,17 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
 
 int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
                 const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
-                const std::vector<std::string>& command_line) {
+                const std::string& report_dir, const std::vector<std::string>& command_line) {
   const Prepared p = prepare(args);
   const std::vector<std::string> files = expand_inputs(inputs);
   std::vector<std::string> all_inputs = files;
   all_inputs.push_back(args.scene);
-  return map_and_record(p, files, all_inputs, jobs, out, plot_dir, resume, curves, command_line, json::object());
+  return map_and_record(p, files, all_inputs, jobs, out, plot_dir, resume, curves, report_dir, command_line,
+                        json::object());
 }
 
 int run_fit_map_from_report(const std::string& from, int jobs, const std::string& out, const std::string& plot_dir,
-                            const std::vector<std::string>& command_line) {
+                            const std::string& report_dir, const std::vector<std::string>& command_line) {
   std::ifstream f(from, std::ios::binary);
   if (!f) throw InputError("--from-report: cannot open " + from);
   const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
@@ -330,7 +349,7 @@ int run_fit_map_from_report(const std::string& from, int jobs, const std::string
   json extra;
   extra["rerun_of"] = {{"record", record_file(from).path}, {"sha256", sha256_hex(text.data(), text.size())}};
   const Prepared p{*r.scene, r.options, r.csv.value_or(CsvOptions{})};
-  return map_and_record(p, files, all_inputs, jobs, out, plot_dir, false, curves, command_line, extra);
+  return map_and_record(p, files, all_inputs, jobs, out, plot_dir, false, curves, report_dir, command_line, extra);
 }
 
 }  // namespace layerjkr::cli

@@ -3,8 +3,8 @@
 //   layerjkr summary SCENE.json
 //   layerjkr fit DATA.csv --scene S.json --free E,w,delta0 [--out R.json] [--plot F.png] ...
 //   layerjkr fit --from-report R.json [--out R2.json] [--plot F.png]
-//   layerjkr fit-map DIR_OR_GLOB... --scene S.json --free ... --jobs N --out RESULTS.csv [--resume]
-//   layerjkr fit-map --from-report RESULTS.json --out AGAIN.csv [--jobs N]
+//   layerjkr fit-map DIR_OR_GLOB... --scene S.json --free ... --jobs N --out RESULTS.csv [--report DIR] [--resume]
+//   layerjkr fit-map --from-report RESULTS.json --out AGAIN.csv [--jobs N] [--report DIR]
 //   layerjkr export FILE.jpk-force|.jpk-force-map|.jpk-qi-data|.ibw|.spm|.000 --out OUT.csv [--curves A:B]
 // Exit codes: 0 success, 2 invalid scene or arguments, 1 internal failure, 130 / 143 fit-map
 // stopped by SIGINT / SIGTERM. Every error is one line on stderr.
@@ -138,7 +138,10 @@ static int run_main(int argc, char** argv) {
       ->required();
   fit_map->add_option("--plot-dir", map_plot_dir,
                       "Draw each fitted field (parameters, rms, status) as a heat-map PNG over the map grid (gnuplot)");
-  std::string map_curves, export_curves;
+  std::string map_curves, export_curves, map_report_dir;
+  fit_map->add_option("--report", map_report_dir,
+                      "Write an interactive report (one self-contained HTML page: maps, histograms, each curve and its "
+                      "fit) as DIR/index.html; DIR must be new, empty or an earlier report (the --out table may go in it)");
   fit_map->add_option("--curves", map_curves,
                       "Fit only the curves at positions A to B - 1 of each map (A:B, A: or :B; 0-based, file order); "
                       "the rest are not read");
@@ -191,7 +194,7 @@ static int run_main(int argc, char** argv) {
                                      "give only " + list + " with it, not " + o->get_name());
     };
     if (*fit) check_from_report(fit, from_report, fit_required, {"--out", "--plot"});
-    if (*fit_map) check_from_report(fit_map, map_from_report, {"inputs", "--scene", "--free"}, {"--out", "--jobs", "--plot-dir"});
+    if (*fit_map) check_from_report(fit_map, map_from_report, {"inputs", "--scene", "--free"}, {"--out", "--jobs", "--plot-dir", "--report"});
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -207,10 +210,11 @@ static int run_main(int argc, char** argv) {
       return layerjkr::cli::run_fit_from_report(from_report, report_path, plot_path, command_line);
     if (*fit) return layerjkr::cli::run_fit(fit_args, data_path, report_path, plot_path, command_line);
     if (*fit_map && !map_from_report.empty())
-      return layerjkr::cli::run_fit_map_from_report(map_from_report, jobs, map_out, map_plot_dir, command_line);
+      return layerjkr::cli::run_fit_map_from_report(map_from_report, jobs, map_out, map_plot_dir, map_report_dir,
+                                                    command_line);
     if (*fit_map)
       return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out, map_plot_dir, map_resume, map_curves,
-                                        command_line);
+                                        map_report_dir, command_line);
     if (*export_cmd) return layerjkr::cli::run_export(export_path, export_out, export_curves);
     if (*discrete) return layerjkr::cli::run_discrete(discrete_args);
     return run_summary(scene_path);

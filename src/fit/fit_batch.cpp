@@ -13,6 +13,7 @@
 #include "layerjkr/error.hpp"
 #include "layerjkr/fit.hpp"
 #include "layerjkr/instrument.hpp"
+#include "layerjkr/map_report.hpp"
 
 namespace layerjkr {
 namespace {
@@ -23,6 +24,8 @@ template <class Load, class Unread>
 std::vector<BatchItem> run_batch(std::vector<BatchItem> items, Load load, Unread unread, const Scene& scene,
                                  const FitOptions& options, const BatchOptions& batch, bool cancelled = false) {
   if (batch.jobs < 1) throw DomainError("fit_batch", "jobs", batch.jobs, ">= 1");
+  if (batch.display_points > 0 && batch.display_points < 8)
+    throw DomainError("fit_batch", "display_points", static_cast<double>(batch.display_points), "0 or >= 8");
   options.validate();
   const std::size_t n = items.size();
   std::atomic<std::size_t> next{0};
@@ -61,12 +64,17 @@ std::vector<BatchItem> run_batch(std::vector<BatchItem> items, Load load, Unread
           unread(i);
         } else {
           item.summary = fit(load(i, item), scene, options);
-          // Move-assigned empties: `v = {}` would keep each vector's capacity, 12 bytes per
-          // sample of every curve of a map (425 MB for 16 384 curves of 2 048 samples).
-          item.summary.delta = std::vector<double>();
-          item.summary.P = std::vector<double>();
-          item.summary.P_fit = std::vector<double>();
-          item.summary.excluded = std::vector<bool>();
+          if (batch.display_points > 0) {
+            // Thinned copies are moved in, so the full vectors' memory goes with them.
+            thin_for_display(item.summary, batch.display_points);
+          } else {
+            // Move-assigned empties: `v = {}` would keep each vector's capacity, 12 bytes per
+            // sample of every curve of a map (425 MB for 16 384 curves of 2 048 samples).
+            item.summary.delta = std::vector<double>();
+            item.summary.P = std::vector<double>();
+            item.summary.P_fit = std::vector<double>();
+            item.summary.excluded = std::vector<bool>();
+          }
           item.ok = true;
         }
       } catch (const std::exception& e) {  // one bad curve never stops the batch

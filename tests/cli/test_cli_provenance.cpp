@@ -263,10 +263,13 @@ TEST_CASE("fit-map --from-report reruns a map to the same table byte for byte", 
   const Run r = run("fit-map " + dir.string() + kFree + " --starts 1 --jobs 2 --out " + out);
   INFO(r.err);
   REQUIRE(r.code == 0);
-  const Run rerun = run("fit-map --from-report " + unique("first_map.json") + " --jobs 1 --out " + again);
+  const std::string page = unique("rerun_report");
+  const Run rerun =
+      run("fit-map --from-report " + unique("first_map.json") + " --jobs 1 --out " + again + " --report " + page);
   INFO(rerun.err);
   REQUIRE(rerun.code == 0);
   CHECK(slurp(again) == slurp(out));  // every cell, every digit
+  CHECK(slurp(page + "/index.html").find("window.layerjkr") != std::string::npos);  // the rerun's report
   const json a = json::parse(slurp(unique("first_map.json"))), b = json::parse(slurp(unique("second_map.json")));
   for (const char* key : {"layerjkr_version", "scene", "options", "csv", "inputs", "curves"}) {
     INFO(key);
@@ -282,7 +285,7 @@ TEST_CASE("fit-map --from-report reruns a map to the same table byte for byte", 
   CHECK_FALSE(fs::exists(unique("never_map.csv")));
   const Run flags = run("fit-map --from-report " + unique("first_map.json") + " --starts 2 --out " + unique("never_map.csv"));
   CHECK(flags.code == 2);
-  CHECK(flags.err.find("give only --out, --jobs, --plot-dir with it, not --starts") != std::string::npos);
+  CHECK(flags.err.find("give only --out, --jobs, --plot-dir, --report with it, not --starts") != std::string::npos);
   const Run report = run("fit-map --from-report " + write_file("fit_report.json", "{\"provenance\": {}}") + " --out " +
                          unique("never_map.csv"));
   CHECK(report.code == 2);

@@ -1,7 +1,8 @@
 // The installed package works when this compiles against the installed headers, links the
 // installed library, reproduces the half-space JKR pull-off -3/2 pi w R, and answers a scene
 // file (argv[1]: data/scenes/sphere_pdms_film_two_term.json) with its error estimates and
-// warnings, written exactly as the README shows a user.
+// warnings, written exactly as the README shows a user; and writes a map report's page without
+// the source tree.
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -48,9 +49,24 @@ bool scene_answers(const std::string& path) {
   return true;
 }
 
+// The map report's page, plotting library included, comes from the installed library alone.
+bool report_is_self_contained() {
+  layerjkr::BatchItem item;
+  item.source = "curve.csv";
+  item.error = "not fitted";
+  layerjkr::MapReportOptions options;
+  options.free = {layerjkr::FitParameter::E};
+  const std::string html = layerjkr::map_report_html({item}, options);
+  if (html.size() < 1500000 || html.find("Permission is hereby granted") == std::string::npos ||
+      html.find("\"not fitted\"") == std::string::npos)
+    return fail("the map report lacks its plotting library, its licence or its data");
+  std::printf("installed layerjkr: a map report of %zu bytes\n", html.size());
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc != 2) return fail("usage: consumer SCENE.json"), 2;
-  return half_space_pull_off() && scene_answers(argv[1]) ? 0 : 1;
+  return half_space_pull_off() && scene_answers(argv[1]) && report_is_self_contained() ? 0 : 1;
 }
