@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "layerjkr/answer.hpp"
@@ -101,5 +102,65 @@ TEST_CASE("a fit with a pyramid returns the modulus of data made from the pyrami
   REQUIRE(s.converged);
   CHECK(rel_err(s[FitParameter::E].value, E) < 1e-6);
   CHECK(std::abs(s[FitParameter::delta0].value - delta0) < 1e-12);
+  CHECK(mentions_pyramid(s.warnings));
+}
+
+TEST_CASE("an approach curve fits with a ratio-of-variances point, a pyramid and an indentation range",
+          "[profile][pyramid][fit][contact_point]") {
+  // Data from Bilodeau's law, with a baseline offset, noise and a stiffer tail beyond 600 nm that
+  // the range keeps out: the modulus of the first 500 nm is recovered within its error bars.
+  const double E = 2000.0, nu = 0.5, theta = 35.0 * kDeg, delta0 = 1.5e-6, P0 = 3e-11, noise = 2e-12;
+  const double c = 0.7453 * E / (1.0 - nu * nu) * std::tan(theta);
+  CurveData curve;
+  std::uint64_t state = 12345;
+  const auto gauss = [&] {  // Box-Muller on a 64-bit LCG: self-contained and repeatable
+    const auto uniform = [&] {
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      return (static_cast<double>(state >> 11) + 0.5) / 9007199254740992.0;
+    };
+    const double u = uniform(), v = uniform();
+    return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * M_PI * v);
+  };
+  for (int i = 0; i < 1000; ++i) {
+    const double delta = 3e-6 * i / 999.0, d = std::max(delta - delta0, 0.0);
+    const double tail = d > 6e-7 ? 4.0 * c * (d - 6e-7) * (d - 6e-7) : 0.0;
+    curve.delta.push_back(delta);
+    curve.P.push_back(P0 + c * d * d + tail + noise * gauss());
+    curve.segment.push_back(0);
+  }
+  const Scene scene = parse_scene(pyramid_scene(35.0, 4));
+  FitOptions options;
+  options.free = {FitParameter::E};
+  options.contact_point = ContactPointMethod::rov;
+  options.indentation_range = Interval{0.0, 5e-7};
+  const FitSummary s = fit(curve, scene, options);
+  INFO(s.brief_report());
+  REQUIRE(s.converged);
+  CHECK(s.contact_point.method == ContactPointMethod::rov);
+  CHECK(std::abs(s.contact_point.value - delta0) < 4.0 * s.contact_point.standard_error + 2 * 3e-6 / 999.0);
+  CHECK(s.contact_point.samples_in_range < s.contact_point.approach_samples);
+  // With the found point and baseline fixed, E is the linear least-squares fit of
+  // P - P0 = c (delta - delta_c)^2 over the range's samples, written here independently.
+  double num = 0.0, den = 0.0;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < curve.size(); ++i) {
+    const double d = curve.delta[i] - s.contact_point.value;
+    if (d < 0.0 || d > 5e-7) continue;
+    num += (curve.P[i] - s.contact_point.baseline) * d * d;
+    den += d * d * d * d;
+    ++kept;
+  }
+  CHECK(kept == s.contact_point.samples_in_range);
+  const double E_linear = num / den / (0.7453 * std::tan(theta) / (1.0 - nu * nu));
+  CHECK(rel_err(s[FitParameter::E].value, E_linear) < 1e-6);
+  // rov's point is late by about one of its uncertainties here, which stiffens E; freeing delta0
+  // (rov's point is then its start and the range's reference) recovers the true modulus.
+  options.free = {FitParameter::E, FitParameter::delta0};
+  const FitSummary refined = fit(curve, scene, options);
+  INFO(refined.brief_report());
+  REQUIRE(refined.converged);
+  const ParameterEstimate& e = refined[FitParameter::E];
+  CHECK(std::abs(e.value - E) < 4.0 * e.standard_error);
+  CHECK(std::abs(refined[FitParameter::delta0].value - delta0) < 4.0 * refined[FitParameter::delta0].standard_error);
   CHECK(mentions_pyramid(s.warnings));
 }
