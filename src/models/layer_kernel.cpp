@@ -30,7 +30,7 @@ constexpr int kTailTerms = 24;      // asymptotic terms beyond kNear
 constexpr double kBreaks[] = {0, 1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64};
 
 // q(u) = 1 - L(u), written with E = exp(-2u): no overflow and no cancellation.
-double one_minus_L(double u, double kappa, bool bonded) {
+double closed_form_q(double u, double kappa, bool bonded) {
   const double E = std::exp(-2.0 * u);
   if (bonded) {
     const double s = 1.0 + 2.0 * u;
@@ -104,7 +104,7 @@ struct Remainder {
 
 double remainder(double u, void* p) {
   const auto* r = static_cast<const Remainder*>(p);
-  return one_minus_L(u, r->kappa, r->bonded) - std::exp(-kBeta * u) * (1.0 + r->gamma * u);
+  return closed_form_q(u, r->kappa, r->bonded) - std::exp(-kBeta * u) * (1.0 + r->gamma * u);
 }
 
 // int_0^inf fn(u) cos(sigma u) du for fn decaying like u^2 e^{-2u}: the tail beyond
@@ -173,10 +173,14 @@ std::vector<double> LayerKernelFunction::taylor_one_minus_L(double nu, bool bond
   return num / den;
 }
 
+double LayerKernelFunction::one_minus_L(double nu, bool bonded, double u) {
+  return closed_form_q(u, 3.0 - 4.0 * nu, bonded);
+}
+
 double LayerKernelFunction::direct(double nu, bool bonded, double sigma) {
   // Boost's Ooura double-exponential Fourier rule: independent of the GSL table it checks.
   const double kappa = 3.0 - 4.0 * nu;
-  auto q = [&](double u) { return one_minus_L(u, kappa, bonded); };
+  auto q = [&](double u) { return closed_form_q(u, kappa, bonded); };
   sigma = std::abs(sigma);
   if (sigma == 0.0) return boost::math::quadrature::exp_sinh<double>().integrate(q, 1e-15);
   static thread_local boost::math::quadrature::ooura_fourier_cos<double> rule(1e-15);

@@ -46,6 +46,8 @@ class LayerKernelFunction {
   /// Ft(sigma) by Boost's Ooura double-exponential Fourier quadrature of the whole
   /// transform (the tests' independent oracle; ~0.1 ms a value).
   static double direct(double nu, bool bonded, double sigma);
+  /// q(u) = 1 - L(u) of one layer in closed form (theory.md s.4), u >= 0.
+  static double one_minus_L(double nu, bool bonded, double u);
   /// Taylor coefficients q_n of q(u) = 1 - L(u) at u = 0, n = 0..count-1 (q_0 = 1).
   static std::vector<double> taylor_one_minus_L(double nu, bool bonded, int count);
 

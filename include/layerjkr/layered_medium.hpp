@@ -1,0 +1,54 @@
+// layerjkr: a stack of perfectly bonded isotropic elastic layers (a coating on a substrate),
+// on a rigid base (bonded or frictionless) or bonded to an elastic half-space; its top
+// surface is frictionless (docs/theory.md s.4a).
+//
+// The surface deflection under an axisymmetric pressure with Hankel transform p^(k) is
+//   w(r) = int_0^inf (2 L(k h1) / (E1* k)) p^(k) J0(k r) k dk,
+// E1* = E1/(1 - nu1^2) and h1 of the TOP layer: L is the stack's compliance relative to the
+// half-space of its top layer (L = 1 for that half-space, L(u) of theory.md s.4 for N = 1 on
+// a rigid base). The exact solver (exact_layer.hpp) takes a stack in place of one layer.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "layerjkr/model.hpp"
+
+namespace layerjkr {
+
+/// One layer of a stack.
+struct StackLayer {
+  double E = 0.0;   ///< Young's modulus [Pa], > 0
+  double nu = 0.0;  ///< Poisson's ratio, in (-1, 0.5] (0.5: incompressible)
+  double h = 0.0;   ///< thickness [m], > 0
+};
+
+/// An elastic half-space under a stack.
+struct Substrate {
+  double E = 0.0;   ///< Young's modulus [Pa], > 0
+  double nu = 0.0;  ///< Poisson's ratio, in (-1, 0.5]
+};
+
+/// N >= 1 layers, top first, on a rigid `base` or, when `substrate` is set, bonded to that
+/// elastic half-space (then `base` is unused).
+struct LayeredMedium {
+  std::vector<StackLayer> layers;
+  Base base = Base::bonded;
+  std::optional<Substrate> substrate;
+
+  /// The one-layer stack of `layer` (on its base).
+  static LayeredMedium single(const ElasticLayer& layer);
+  /// The top layer as an ElasticLayer (E1, nu1, h1; base: the stack's, bonded on a substrate).
+  ElasticLayer top() const;
+  /// True for one layer on a rigid base: exactly an ElasticLayer.
+  bool is_single_layer() const { return layers.size() == 1 && !substrate; }
+  /// Throws DomainError naming the first invalid value, e.g. "layers[1].h" or "substrate.nu",
+  /// with its valid range; at least one layer.
+  void validate(const char* function) const;
+};
+
+/// L(u) of the stack at u = k h1 >= 0 (see above): the stable bottom-up recursion of
+/// docs/theory.md s.4a, accurate to a few ulps for every u (no growing exponentials).
+double stack_compliance_ratio(const LayeredMedium& medium, double u);
+
+}  // namespace layerjkr
