@@ -48,7 +48,8 @@ struct LayeredMedium {
 };
 
 /// L(u) of the stack at u = k h1 >= 0 (see above): the stable bottom-up recursion of
-/// docs/theory.md s.4a, accurate to a few ulps for every u (no growing exponentials).
+/// docs/theory.md s.4a, accurate to a few ulps relative for every u >= 1e-100 (no growing
+/// exponentials); below 1e-100, its limit L(0) (0 on a rigid base, E1*/Es* on a substrate).
 double stack_compliance_ratio(const LayeredMedium& medium, double u);
 
 }  // namespace layerjkr

@@ -145,9 +145,11 @@ Mat2<double> reflect_layer(const StackSymbol::Layer& l, double x, const Mat2<dou
   const Mat2<double> Mt_own = Mt.scaled(inv_m);
   const Mat2<double> Yp = (Mu - Fhs * Mt_own).scaled(1.0 / two);
   const Mat2<double> Ym = Mt_own - Yp;
-  Mat2<double> R = Yp.right_divide(Ym);
-  const Mat2<double> left{1.0 - x, -x, x, 1.0 + x}, right{1.0 - x, x, -x, 1.0 + x};
-  R = (left * R * right).scaled(std::exp(-2.0 * x));
+  Mat2<double> R{0.0, 0.0, 0.0, 0.0};
+  if (x < 400.0) {  // beyond, e^{-2x} underflows while x^2 R may overflow: R is 0
+    const Mat2<double> left{1.0 - x, -x, x, 1.0 + x}, right{1.0 - x, x, -x, 1.0 + x};
+    R = (left * Yp.right_divide(Ym) * right).scaled(std::exp(-2.0 * x));
+  }
   const Mat2<double> Down = R.right_divide(identity<double>() + R).scaled(two);
   D = Down.scaled(inv_m);
   return (Fhs + Down).scaled(inv_m);
@@ -244,7 +246,9 @@ void StackSymbol::propagate(T u, T& L, T& q, bool reflection_allowed) const {
 }
 
 void StackSymbol::evaluate(double u, double& L, double& q) const {
-  if (!(u > 0.0)) {  // the limit: the recursion's rigid frictionless base is singular at k = 0
+  // The limit (error below 1e-100): at k = 0 the recursion's frictionless base is singular,
+  // and near it the cubes of x (an incompressible layer's L ~ u^3) would be subnormal.
+  if (!(u > 1e-100)) {
     q = q0_;
     L = 1.0 - q0_;
     return;
@@ -262,6 +266,14 @@ double StackSymbol::q(double u) const {
   double L = 0.0, q = 0.0;
   evaluate(u, L, q);
   return q;
+}
+
+std::vector<double> StackSymbol::switch_points() const {
+  std::vector<double> u;
+  for (const Layer& l : layers_) u.push_back(1.0 / l.r);
+  std::sort(u.begin(), u.end());
+  u.erase(std::unique(u.begin(), u.end()), u.end());
+  return u;
 }
 
 std::complex<double> StackSymbol::q(std::complex<double> u) const {

@@ -32,6 +32,9 @@ class StackSymbol {
   /// coefficients by a Cauchy integral.
   std::complex<double> q(std::complex<double> u) const;
 
+  /// The u where a layer switches from the propagator to the reflection form (k h_i = 1),
+  /// ascending: q is analytic across them but carries a rounding-size step there.
+  std::vector<double> switch_points() const;
   /// q(0): 1 on a rigid base, 1 - E1*/Es* on a half-space.
   double q0() const { return q0_; }
   /// Taylor coefficients q_n, n < count, of q at 0 from `points` values on |u| = rho.
