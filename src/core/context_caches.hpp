@@ -75,8 +75,9 @@ class BuildOnceCache {
 
 using KernelKey = std::pair<double, bool>;  // nu, bonded
 using StackKernelKey = std::vector<double>;  // StackSymbol::signature()
-// nu, bonded, d, points_per_panel, panel_width, min_panels: what the table's numbers depend on
-using PowerLawTableKey = std::tuple<double, bool, double, int, double, int>;
+// the medium's signature (StackSymbol: nu and the base for one layer), d, points_per_panel,
+// panel_width, min_panels: what the table's numbers depend on
+using PowerLawTableKey = std::tuple<std::vector<double>, double, int, double, int>;
 
 }  // namespace detail
 

@@ -91,6 +91,12 @@ ResolvedModel resolve_medium(const Scene& s) {
     case MediumType::pasternak:
     case MediumType::filonenko_borodich: resolve_foundation(s, r); break;
     case MediumType::layer: resolve_layer(s, r); break;
+    case MediumType::layers:  // only "exact" (read_model): the stack in place of a layer
+      r.spec.kind = ModelKind::exact;
+      r.spec.stack = s.medium.stack;
+      r.spec.layer = s.medium.stack.top();
+      r.E_star = effective_modulus(s.medium.E, s.medium.nu);
+      break;
   }
   return r;
 }

@@ -86,6 +86,19 @@ TEST_CASE("invalid scenes name the key and the value", "[scene][errors]") {
       {scene(kPara, kLayer, R"(, "model": "two_term", "w": -0.1)"), "w = -0.10000000000000001"},
       {scene(kPara, kLayer, R"(, "model": "two_term", "w": "0.1")"), "w must be a number"},
       {scene(kPara, kLayer, R"(, "model": "two_term", "w": 1e999)"), "not valid JSON"},
+      {scene(kPara, R"({"type": "layers", "layers": []})", R"(, "model": "exact")"), "medium.layers must be a non-empty array"},
+      {scene(kPara, R"({"type": "layers"})", R"(, "model": "exact")"), "medium.layers is missing"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}, {"E": 1e6, "nu": 0.3, "h": 0}]})", R"(, "model": "exact")"), "medium.layers[1].h = 0"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.51, "h": 1e-4}]})", R"(, "model": "exact")"), "medium.layers[0].nu = 0.51"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": -1, "nu": 0.3, "h": 1e-4}]})", R"(, "model": "exact")"), "medium.layers[0].E = -1"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4, "G": 1}]})", R"(, "model": "exact")"), "medium.layers[0].G is not a known key"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3}]})", R"(, "model": "exact")"), "medium.layers[0].h is missing"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": {"E": 1e6, "nu": 0.7}})", R"(, "model": "exact")"), "medium.base.nu = 0.69999999999999996"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": {"E": 1e6}})", R"(, "model": "exact")"), "medium.base.nu is missing"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": "glued"})", R"(, "model": "exact")"), "medium.base = \"glued\""},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": 3})", R"(, "model": "exact")"), "medium.base must be"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})", R"(, "model": "two_term")"), "available: exact"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})"), "model is missing; medium 'layers' needs one of: exact"},
   };
   for (const auto& c : cases) {
     INFO(c.text);
@@ -93,6 +106,31 @@ TEST_CASE("invalid scenes name the key and the value", "[scene][errors]") {
     CHECK_THROWS_WITH(parse_scene(c.text), Catch::Contains(c.expected));
   }
   CHECK_THROWS_WITH(load_scene("/nonexistent/scene.json"), Catch::Contains("cannot open"));
+}
+
+TEST_CASE("a stack of layers builds the exact solver of the stack", "[scene][stack]") {
+  const std::string stack = R"({"type": "layers", "layers": [{"E": 3e6, "nu": 0.3, "h": 1e-4},
+      {"E": 3e8, "nu": 0.3, "h": 1.9e-3}], "base": "bonded"})";
+  const Scene s = parse_scene(scene(R"({"shape": "sphere", "R": 0.01})", stack, R"(, "model": "exact")"));
+  CHECK(s.medium.type == MediumType::layers);
+  REQUIRE(s.medium.stack.layers.size() == 2);
+  CHECK(s.medium.stack.layers[1].E == 3e8);
+  CHECK_FALSE(s.medium.stack.substrate);
+  const ResolvedModel r = resolve_model(s);
+  CHECK(r.spec.kind == ModelKind::exact);
+  REQUIRE(r.spec.stack);
+  CHECK(r.spec.layer.h == 1e-4);  // the top layer
+  CHECK(*r.E_star == Approx(3e6 / 0.91).epsilon(1e-15));
+  CHECK_FALSE(r.reference);
+  // the paper's Appendix A at a* = 0.4 mm (tests/models/test_exact_stack.cpp has the FEM check)
+  CHECK(build_scene(s).model->state(0.4e-3).S == Approx(20278.274363).epsilon(1e-9));
+  const Scene h = parse_scene(scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.5, "h": 1e-4}],
+      "base": {"E": 1e6, "nu": 0.5}})", R"(, "model": "exact")"));
+  REQUIRE(h.medium.stack.substrate);
+  CHECK(h.medium.stack.substrate->nu == 0.5);
+  // a layer on a half-space of its own material is Hertz
+  const double a = 1e-4, Es = 1e6 / 0.75;
+  CHECK(build_scene(h).model->state(a).P_H == Approx(4.0 * Es * a * a * a / (3.0 * 0.01)).epsilon(1e-9));
 }
 
 TEST_CASE("deep nesting is refused while parsing, naming the limit", "[scene][errors][limits]") {
