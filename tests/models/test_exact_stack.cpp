@@ -4,6 +4,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
 
 #include <boost/math/differentiation/finite_difference.hpp>
 #include <boost/math/quadrature/tanh_sinh.hpp>
@@ -146,6 +150,37 @@ TEST_CASE("Stack: the paper's Appendix A bi-layer against its FEM", "[exact][sta
   const NonAdhesiveState single =
       make_exact_layer(make_sphere(10e-3), ElasticLayer{3e6, 0.3, 0.1e-3, Base::bonded})->state(a);
   CHECK(single.S / 20276.4 - 1.0 > 0.05);
+}
+
+TEST_CASE("Stack: flat-punch factors against an independent Nystrom solve on the Papkovich-Neuber symbol",
+          "[exact][stack]") {
+  // tools/stack_flat_punch_reference.py: mpmath symbol, direct u-quadrature of the kernel,
+  // one Gauss-Legendre rule over the contact; no code shared with the library.
+  const std::map<std::string, LayeredMedium> cases = {
+      {"three_frictionless", kThree},
+      {"three_bonded", stack({{1.0, 0.45, 1.0}, {0.2, 0.3, 2.0}, {5.0, 0.49, 1.0}})},
+      {"layer_on_stiffer_half_space", on_half_space({{1.0, 0.4, 1.0}}, 10.0, 0.3)},
+      {"stiff_layer_on_soft_half_space", on_half_space({{10.0, 0.3, 1.0}}, 1.0, 0.45)},
+  };
+  std::ifstream in(std::string(LAYERJKR_SOURCE_DIR) + "/data/stack/flat_punch_reference.csv");
+  REQUIRE(in);
+  std::string line;
+  int rows = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line.rfind("case,", 0) == 0) continue;
+    std::stringstream ss(line);
+    std::string name, field;
+    std::getline(ss, name, ',');
+    std::vector<double> v;
+    while (std::getline(ss, field, ',')) v.push_back(std::stod(field));
+    REQUIRE(v.size() == 3);
+    const ExactLayerKernel k(cases.at(name), range(10));
+    const double f = k.flat_punch_factor(v[0]);
+    INFO(name << " a/h1 = " << v[0] << ": " << f << " against " << v[1]);
+    CHECK(rel_err(f, v[1]) < 1e-9);
+    ++rows;
+  }
+  CHECK(rows == 8);
 }
 
 TEST_CASE("Stack: invalid stacks name the layer and the key", "[exact][stack][errors]") {
