@@ -9,6 +9,7 @@
 // a rigid base). The exact solver (exact_layer.hpp) takes a stack in place of one layer.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -46,6 +47,27 @@ struct LayeredMedium {
   /// with its valid range; at least one layer.
   void validate(const char* function) const;
 };
+
+/// The thin-stack (k H -> 0) expansion of a stack on a rigid base: the surface compliance
+/// C(k) = 2 L(k h1)/(E1* k) = eps + D k^2 + O(k^4) on a bonded base, i.e. the two-term law
+/// w = eps p - D lap p (theory.md s.4a), and C(0) on a frictionless base. With depth z,
+/// M = lambda + 2 mu (infinite at nu = 1/2), beta = nu/(1 - nu):
+///   eps = sum_i h_i/M_i  (springs in series; an incompressible layer drops out)
+///   D   = 2 int_0^H B(z) [beta(z) a(z) - b(z)] dz,  a = int_z^H dz'/mu, b = int_z^H dz'/M,
+///         B = int_0^z beta dz'  (all layers incompressible: D = int_0^H z^2/mu dz)
+///   frictionless C(0) = eps + (sum_i h_i beta_i)^2 / sum_i (2 mu_i h_i/(1 - nu_i))
+/// They need a >> H, the whole stack's thickness, not just a >> h1.
+struct ThinStackConstants {
+  double eps = 0.0;           ///< bonded base: C(0) [m^3/N]
+  double D = 0.0;             ///< bonded base: the k^2 coefficient [m^5/N]
+  double frictionless = 0.0;  ///< frictionless base: C(0) [m^3/N]
+  double K = 0.0;             ///< Winkler modulus 1/C(0) of the stack's own base [N/m^3] (inf if C(0) = 0)
+  double G = 0.0;             ///< bonded base: -D/eps^2 [N/m], the two-term law's G (NaN if eps = 0)
+};
+
+/// The thin-stack constants of a stack on a rigid base; a substrate throws DomainError (on a
+/// half-space no local law exists: theory.md s.4a).
+ThinStackConstants thin_stack_constants(const LayeredMedium& medium);
 
 /// L(u) of the stack at u = k h1 >= 0 (see above): the stable bottom-up recursion of
 /// docs/theory.md s.4a, accurate to a few ulps relative for every u >= 1e-100 (no growing

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 #include <string>
 
@@ -39,6 +40,50 @@ void LayeredMedium::validate(const char* function) const {
     if (!(substrate->nu > -1.0 && substrate->nu <= 0.5))
       throw DomainError(function, "substrate.nu", substrate->nu, "(-1, 0.5]");
   }
+}
+
+ThinStackConstants thin_stack_constants(const LayeredMedium& medium) {
+  const char* fn = "thin_stack_constants";
+  medium.validate(fn);
+  if (medium.substrate)
+    throw DomainError(fn, "substrate.E", medium.substrate->E,
+                      "none: a stack on an elastic half-space has no thin-layer law (theory.md s.4a); use the exact model");
+  const std::size_t n = medium.layers.size();
+  // per layer: 1/mu, 1/M (0 at nu = 1/2), beta
+  std::vector<double> inv_mu(n), inv_M(n), beta(n), z(n + 1, 0.0);
+  ThinStackConstants c;
+  double beta_h = 0.0, stretch = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const StackLayer& l = medium.layers[i];
+    const double mu = l.E / (2.0 * (1.0 + l.nu));
+    inv_mu[i] = 1.0 / mu;
+    inv_M[i] = (1.0 + l.nu) * (1.0 - 2.0 * l.nu) / (l.E * (1.0 - l.nu));
+    beta[i] = l.nu / (1.0 - l.nu);
+    z[i + 1] = z[i] + l.h;
+    c.eps += l.h * inv_M[i];
+    beta_h += l.h * beta[i];
+    stretch += 2.0 * mu * l.h / (1.0 - l.nu);
+  }
+  // D: inside layer i, B(z) and beta_i a(z) - b(z) are linear in z, so Simpson's rule is exact.
+  std::vector<double> a_bottom(n + 1, 0.0), b_bottom(n + 1, 0.0), B_top(n + 1, 0.0);
+  for (std::size_t i = n; i-- > 0;) {
+    a_bottom[i] = a_bottom[i + 1] + medium.layers[i].h * inv_mu[i];  // a at z_i (layer i's top)
+    b_bottom[i] = b_bottom[i + 1] + medium.layers[i].h * inv_M[i];
+  }
+  for (std::size_t i = 0; i < n; ++i) B_top[i + 1] = B_top[i] + beta[i] * medium.layers[i].h;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double h = medium.layers[i].h;
+    auto integrand = [&](double s) {  // s in [0, h] below the layer's top
+      const double a = a_bottom[i + 1] + (h - s) * inv_mu[i], b = b_bottom[i + 1] + (h - s) * inv_M[i];
+      return (B_top[i] + beta[i] * s) * (beta[i] * a - b);
+    };
+    c.D += 2.0 * h / 6.0 * (integrand(0.0) + 4.0 * integrand(0.5 * h) + integrand(h));
+  }
+  c.frictionless = c.eps + beta_h * beta_h / stretch;
+  const double C0 = medium.base == Base::bonded ? c.eps : c.frictionless;
+  c.K = C0 > 0.0 ? 1.0 / C0 : std::numeric_limits<double>::infinity();
+  c.G = c.eps > 0.0 ? -c.D / (c.eps * c.eps) : std::numeric_limits<double>::quiet_NaN();
+  return c;
 }
 
 double stack_compliance_ratio(const LayeredMedium& medium, double u) {

@@ -12,6 +12,7 @@
 
 #include "layerjkr/error.hpp"
 #include "layerjkr/layered_medium.hpp"
+#include "layerjkr/model.hpp"
 #include "models/layer_kernel.hpp"
 #include "models/stack_symbol.hpp"
 
@@ -254,4 +255,59 @@ TEST_CASE("Invalid stacks name the layer and the key", "[stack]") {
   CHECK_THAT(message(stack({{1.0, 0.51, 1.0}})), Catch::Contains("layers[0].nu"));
   CHECK_THAT(message(stack({{-1.0, 0.3, 1.0}})), Catch::Contains("layers[0].E"));
   CHECK_THAT(message(on_half_space({{1.0, 0.3, 1.0}}, 1.0, -1.0)), Catch::Contains("substrate.nu"));
+}
+
+TEST_CASE("Thin-stack constants: the library's one-layer laws, and the symbol's expansion", "[stack][thin]") {
+  for (const double nu : {0.0, 0.2, 0.3, 0.45}) {
+    const layerjkr::ElasticLayer layer{2.0, nu, 0.3, Base::bonded};
+    const auto c = layerjkr::thin_stack_constants(LayeredMedium::single(layer));
+    const auto lib = layerjkr::thin_layer_constants(layer);
+    CHECK(c.K == Approx(lib.K).epsilon(1e-14));
+    CHECK(c.G == Approx(lib.G).epsilon(1e-13).margin(1e-15));
+    const auto frictionless = layerjkr::thin_stack_constants(LayeredMedium::single({2.0, nu, 0.3, Base::frictionless}));
+    CHECK(frictionless.K == Approx(layerjkr::thin_layer_constants({2.0, nu, 0.3, Base::frictionless}).K).epsilon(1e-14));
+  }
+  for (const double nu : {0.3, 0.49, 0.5}) {  // the uniform law's (eps, D), finite at nu = 1/2
+    const layerjkr::ElasticLayer layer{2.0, nu, 0.3, Base::bonded};
+    const auto c = layerjkr::thin_stack_constants(LayeredMedium::single(layer));
+    const auto u = layerjkr::uniform_layer_constants(layer);
+    CHECK(c.eps == Approx(u.eps).margin(1e-16));
+    CHECK(c.D == Approx(u.D).epsilon(1e-13));
+  }
+  // C(k) = eps + D k^2 + O(k^4) against the exact symbol (Richardson in k), bonded base
+  for (const auto& layers : std::vector<std::vector<StackLayer>>{{{3e6, 0.3, 0.1e-3}, {300e6, 0.3, 1.9e-3}},
+                                                                 {{1.0, 0.3, 1.0}, {5.0, 0.45, 0.5}, {0.3, 0.2, 2.0}},
+                                                                 {{1.0, 0.3, 1.0}, {0.5, 0.5, 1.0}},
+                                                                 {{1.0, 0.5, 1.0}, {6.0, 0.5, 0.5}, {0.4, 0.5, 2.0}}}) {
+    const LayeredMedium m = stack(layers);
+    const auto c = layerjkr::thin_stack_constants(m);
+    const StackSymbol s(m);
+    const double h1 = layers[0].h, E1s = E_star(layers[0].E, layers[0].nu);
+    double H = 0.0;
+    for (const StackLayer& l : layers) H += l.h;
+    auto R = [&](double k) { return (2.0 * s.L(k * h1) / (E1s * k) - c.eps) / (k * k); };
+    const double k = 3e-3 / H;
+    const double D = (4.0 * R(k / 2) - R(k)) / 3.0;
+    CHECK(D == Approx(c.D).epsilon(1e-6));
+    CHECK(c.K == Approx(1.0 / c.eps));
+    // frictionless base: C(0), the laminate
+    const LayeredMedium f = stack(layers, Base::frictionless);
+    const double u = 1e-7;
+    CHECK(2.0 * StackSymbol(f).L(u) / (E1s * u / h1) == Approx(c.frictionless).epsilon(1e-5));
+    CHECK(layerjkr::thin_stack_constants(f).K == Approx(1.0 / c.frictionless).epsilon(1e-15));
+  }
+  {  // every layer incompressible: eps = 0 and D = J = int z^2/mu dz
+    const std::vector<StackLayer> layers = {{1.0, 0.5, 1.0}, {6.0, 0.5, 0.5}, {0.4, 0.5, 2.0}};
+    const auto c = layerjkr::thin_stack_constants(stack(layers));
+    double z0 = 0.0, J = 0.0;
+    for (const StackLayer& l : layers) {
+      J += (std::pow(z0 + l.h, 3) - std::pow(z0, 3)) / (3.0 * mu(l.E, l.nu));
+      z0 += l.h;
+    }
+    CHECK(c.eps == 0.0);
+    CHECK(c.D == Approx(J).epsilon(1e-14));
+    CHECK(std::isinf(c.K));
+  }
+  CHECK_THROWS_WITH(layerjkr::thin_stack_constants(on_half_space({{1.0, 0.3, 1.0}}, 1.0, 0.3)),
+                    Catch::Contains("no thin-layer law"));
 }
