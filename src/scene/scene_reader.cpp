@@ -307,7 +307,7 @@ MediumModels models_for(MediumType t) {
               false};
     case MediumType::pasternak:
     case MediumType::filonenko_borodich: return {{SceneModel::asymptotic, SceneModel::full}, false};
-    case MediumType::layers: return {{SceneModel::exact}, false};
+    case MediumType::layers: return {{SceneModel::exact, SceneModel::leading, SceneModel::two_term}, false};
   }
   return {{}, false};
 }

@@ -183,6 +183,26 @@ TEST_CASE("Stack: flat-punch factors against an independent Nystrom solve on the
   CHECK(rows == 8);
 }
 
+TEST_CASE("Stack: the thin-stack laws approach the exact stack as a/H grows", "[exact][stack][thin]") {
+  const LayeredMedium m = stack({{1.0, 0.3, 1.0}, {3.0, 0.2, 1.0}});  // H = 2 h1
+  const ThinStackConstants c = thin_stack_constants(m);
+  const auto p = make_paraboloid(1e4);
+  const auto exact = make_exact_layer(p, m, range(200));
+  const auto winkler = make_winkler(p, c.K), two_term = make_two_term(p, c.K, c.G);
+  double previous_w = 1.0, previous_t = 1.0;
+  for (double a_over_H : {5.0, 20.0, 80.0}) {
+    const double a = 2.0 * a_over_H;
+    const NonAdhesiveState e = exact->state(a), w = winkler->state(a), t = two_term->state(a);
+    const double ew = rel_err(w.P_H, e.P_H), et = rel_err(t.P_H, e.P_H);
+    INFO("a/H = " << a_over_H << ": Winkler " << ew << ", two-term " << et);
+    CHECK(ew < 0.6 * previous_w);  // O(H/a), from the contact edge
+    CHECK(et < 0.6 * previous_t);
+    CHECK(ew < 2.0 / a_over_H);
+    previous_w = ew;
+    previous_t = et;
+  }
+}
+
 TEST_CASE("Stack: invalid stacks name the layer and the key", "[exact][stack][errors]") {
   CHECK_THROWS_WITH(ExactLayerKernel(stack({})), Catch::Contains("layers"));
   CHECK_THROWS_WITH(ExactLayerKernel(stack({{1.0, 0.3, 1.0}, {1.0, 0.6, 1.0}})), Catch::Contains("layers[1].nu = 0.59999999999999998"));

@@ -97,8 +97,11 @@ TEST_CASE("invalid scenes name the key and the value", "[scene][errors]") {
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": {"E": 1e6}})", R"(, "model": "exact")"), "medium.base.nu is missing"},
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": "glued"})", R"(, "model": "exact")"), "medium.base = \"glued\""},
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": 3})", R"(, "model": "exact")"), "medium.base must be"},
-      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})", R"(, "model": "two_term")"), "available: exact"},
-      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})"), "model is missing; medium 'layers' needs one of: exact"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})", R"(, "model": "uniform")"), "available: exact, leading, two_term"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": {"E": 1e6, "nu": 0.3}})", R"(, "model": "leading")"), "no thin-layer law"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": "frictionless"})", R"(, "model": "two_term")"), "bonded for model 'two_term'"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.5, "h": 1e-4}, {"E": 1e7, "nu": 0.5, "h": 1e-4}]})", R"(, "model": "leading")"), "every layer is incompressible"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})"), "model is missing; medium 'layers' needs one of: exact, leading, two_term"},
   };
   for (const auto& c : cases) {
     INFO(c.text);
@@ -131,6 +134,20 @@ TEST_CASE("a stack of layers builds the exact solver of the stack", "[scene][sta
   // a layer on a half-space of its own material is Hertz
   const double a = 1e-4, Es = 1e6 / 0.75;
   CHECK(build_scene(h).model->state(a).P_H == Approx(4.0 * Es * a * a * a / (3.0 * 0.01)).epsilon(1e-9));
+  // the thin-stack laws: springs in series (and the k^2 term), judged against the exact stack
+  const Scene t = parse_scene(scene(R"({"shape": "sphere", "R": 0.01})", stack, R"(, "model": "two_term")"));
+  const ResolvedModel rt = resolve_model(t);
+  const ThinStackConstants c = thin_stack_constants(t.medium.stack);
+  CHECK(rt.spec.kind == ModelKind::two_term);
+  CHECK(*rt.K == c.K);
+  CHECK(*rt.G == c.G);
+  CHECK(c.K == Approx(1.0 / (1e-4 * 1.3 * 0.4 / (3e6 * 0.7) + 1.9e-3 * 1.3 * 0.4 / (3e8 * 0.7))).epsilon(1e-14));
+  REQUIRE(rt.reference);
+  CHECK(rt.reference->stack);
+  const BuiltScene bt = build_scene(t);
+  REQUIRE(bt.reference);
+  CHECK(bt.reference->state(0.4e-3).S == Approx(20278.274363).epsilon(1e-9));
+  CHECK(bt.model->state(0.4e-3).S == Approx(M_PI * c.K * 0.16e-6).epsilon(1e-12));  // 17058 N/m: -16 %
 }
 
 TEST_CASE("deep nesting is refused while parsing, naming the limit", "[scene][errors][limits]") {
