@@ -307,7 +307,8 @@ MediumModels models_for(MediumType t) {
               false};
     case MediumType::pasternak:
     case MediumType::filonenko_borodich: return {{SceneModel::asymptotic, SceneModel::full}, false};
-    case MediumType::layers: return {{SceneModel::exact, SceneModel::leading, SceneModel::two_term}, false};
+    case MediumType::layers:
+      return {{SceneModel::exact, SceneModel::leading, SceneModel::two_term, SceneModel::automatic}, false};
   }
   return {{}, false};
 }

@@ -92,6 +92,18 @@ void resolve_stack(const Scene& s, ResolvedModel& r) {
     r.spec = exact;
     return;
   }
+  if (s.model == SceneModel::automatic) {  // chosen among stack_model_candidates, judged by exact
+    r.spec = exact;
+    r.automatic = true;
+    r.tolerance = s.tolerance;
+    r.reference = exact;
+    if (!stack.substrate) {
+      const ThinStackConstants c = thin_stack_constants(stack);
+      if (std::isfinite(c.K)) r.K = c.K;
+      if (stack.base == Base::bonded && std::isfinite(c.G)) r.G = c.G;
+    }
+    return;
+  }
   const char* fn = "thin-stack law";
   const ThinStackConstants c = thin_stack_constants(stack);  // throws on a half-space
   const bool bonded = stack.base == Base::bonded;

@@ -1,11 +1,13 @@
 // Scene JSON reader: every shape and medium, and every kind of bad input.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <string>
 
 #include "layerjkr/built_scene.hpp"
 #include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
+#include "layerjkr/model_spec.hpp"
 #include "layerjkr/scene.hpp"
 
 using namespace layerjkr;
@@ -97,11 +99,11 @@ TEST_CASE("invalid scenes name the key and the value", "[scene][errors]") {
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": {"E": 1e6}})", R"(, "model": "exact")"), "medium.base.nu is missing"},
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": "glued"})", R"(, "model": "exact")"), "medium.base = \"glued\""},
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": 3})", R"(, "model": "exact")"), "medium.base must be"},
-      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})", R"(, "model": "uniform")"), "available: exact, leading, two_term"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})", R"(, "model": "uniform")"), "available: exact, leading, two_term, auto"},
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": {"E": 1e6, "nu": 0.3}})", R"(, "model": "leading")"), "no thin-layer law"},
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": "frictionless"})", R"(, "model": "two_term")"), "bonded for model 'two_term'"},
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.5, "h": 1e-4}, {"E": 1e7, "nu": 0.5, "h": 1e-4}]})", R"(, "model": "leading")"), "every layer is incompressible"},
-      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})"), "model is missing; medium 'layers' needs one of: exact, leading, two_term"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})"), "model is missing; medium 'layers' needs one of: exact, leading, two_term, auto"},
   };
   for (const auto& c : cases) {
     INFO(c.text);
@@ -148,6 +150,32 @@ TEST_CASE("a stack of layers builds the exact solver of the stack", "[scene][sta
   REQUIRE(bt.reference);
   CHECK(bt.reference->state(0.4e-3).S == Approx(20278.274363).epsilon(1e-9));
   CHECK(bt.model->state(0.4e-3).S == Approx(M_PI * c.K * 0.16e-6).epsilon(1e-12));  // 17058 N/m: -16 %
+}
+
+TEST_CASE("model auto on a stack: the thin-stack law where it is within tolerance, else exact", "[scene][stack]") {
+  // 3 um of coating on a 10 mm sphere: a >> H, Winkler's springs in series are within 2 %
+  const std::string thin = R"({"type": "layers", "layers": [{"E": 3e6, "nu": 0.3, "h": 1e-6},
+      {"E": 1e7, "nu": 0.3, "h": 2e-6}], "base": "bonded"})";
+  const Scene s = parse_scene(scene(kPara, thin, R"(, "model": "auto", "tolerance": 0.02, "w": 0.05)"));
+  const BuiltScene b = build_scene_for_summary(s);
+  REQUIRE(b.choice);
+  CHECK(b.choice->model == ModelKind::winkler);
+  CHECK(b.choice->estimated_error < 0.02);
+  // the choice's estimate against the exact stack's own pull-off
+  ModelSpec exact = *resolve_model(s).reference;
+  const double P_exact = summarize(JkrSolution(make_contact_model(s.profile, exact), 0.05)).pull_off->P;
+  const double P_chosen = summarize(JkrSolution(b.model, 0.05)).pull_off->P;
+  CHECK(std::abs(P_chosen / P_exact - 1.0) < 0.02);
+  CHECK(std::abs(P_chosen / P_exact - 1.0) == Approx(b.choice->estimated_error).epsilon(0.05));
+  // the paper's bi-layer at a/H ~ 0.1: no thin law is within 5 %
+  const std::string paper = R"({"type": "layers", "layers": [{"E": 3e6, "nu": 0.3, "h": 1e-4},
+      {"E": 3e8, "nu": 0.3, "h": 1.9e-3}]})";
+  const BuiltScene p = build_scene_for_summary(parse_scene(scene(kPara, paper, R"(, "model": "auto", "tolerance": 0.05, "w": 0.05)")));
+  CHECK(p.choice->model == ModelKind::exact);
+  // on a half-space there is no candidate
+  const std::string hs = R"({"type": "layers", "layers": [{"E": 3e6, "nu": 0.3, "h": 1e-6}], "base": {"E": 1e7, "nu": 0.3}})";
+  CHECK(build_scene_for_summary(parse_scene(scene(kPara, hs, R"(, "model": "auto", "tolerance": 0.5, "w": 0.05)"))).choice->model ==
+        ModelKind::exact);
 }
 
 TEST_CASE("deep nesting is refused while parsing, naming the limit", "[scene][errors][limits]") {
