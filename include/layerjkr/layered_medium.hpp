@@ -69,6 +69,12 @@ struct ThinStackConstants {
 /// half-space no local law exists: theory.md s.4a).
 ThinStackConstants thin_stack_constants(const LayeredMedium& medium);
 
+/// A stack of incompressible layers (every nu = 1/2) bonded to a rigid base obeys, thin, the
+/// lubrication law w = -J lap p with J = D = int_0^H z^2/mu dz: the law of one incompressible
+/// layer (make_incompressible_layer, which depends on h^3/E only) of thickness H and modulus
+/// E = H^3/J. Returns that layer; DomainError for any other stack.
+ElasticLayer equivalent_incompressible_layer(const LayeredMedium& medium);
+
 /// L(u) of the stack at u = k h1 >= 0 (see above): the stable bottom-up recursion of
 /// docs/theory.md s.4a, accurate to a few ulps relative for every u >= 1e-100 (no growing
 /// exponentials); below 1e-100, its limit L(0) (0 on a rigid base, E1*/Es* on a substrate).

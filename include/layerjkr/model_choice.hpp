@@ -48,11 +48,11 @@ ModelChoice choose_layer_model_for_summary(const ProfilePtr& profile, const Elas
                                            double tolerance);
 
 /// A stack's candidates for model "auto", cheapest first: on a rigid base its thin-stack laws
-/// (winkler with K = 1/C(0); two_term on a bonded base), none on a half-space
-/// (layered_medium.hpp, theory.md s.4a).
+/// (winkler with K = 1/C(0); two_term on a bonded base; incompressible alone for a bonded
+/// stack of incompressible layers), none on a half-space (layered_medium.hpp, theory.md s.4a).
 std::vector<ModelKind> stack_model_candidates(const LayeredMedium& medium);
 
-/// The spec of `kind` (exact, winkler or two_term) for a stack.
+/// The spec of `kind` (exact, winkler, two_term or incompressible) for a stack.
 ModelSpec stack_model_spec(ModelKind kind, const LayeredMedium& medium);
 
 /// choose_layer_model and choose_layer_model_for_summary for a stack, judged against the exact

@@ -16,7 +16,8 @@
 //                 "tolerance": the cheapest model whose measured error is within it);  pasternak, filonenko_borodich: asymptotic |
 //                 full;  winkler: winkler (default);  half_space: half_space (default);
 //                 layers: exact | leading | two_term (thin-stack laws on a rigid base; two_term
-//                 bonded only; judged against exact) | auto (needs "tolerance")
+//                 bonded only; judged against exact) | incompressible (every nu = 0.5, bonded: the
+//                 squeeze film) | auto (needs "tolerance")
 // solver:         closed_form (default) | ode  (foundation models only)
 // w:              work of adhesion [J/m^2], >= 0 (absent = 0)
 // All values SI. Unknown keys, wrong types and invalid values throw InputError

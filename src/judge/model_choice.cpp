@@ -138,6 +138,7 @@ std::vector<ModelKind> stack_model_candidates(const LayeredMedium& medium) {
   if (medium.substrate) return {};  // no local law on a half-space (theory.md s.4a)
   const ThinStackConstants c = thin_stack_constants(medium);
   std::vector<ModelKind> out;
+  if (c.eps == 0.0 && medium.base == Base::bonded) return {ModelKind::incompressible};  // all nu = 1/2
   if (std::isfinite(c.K)) out.push_back(ModelKind::winkler);
   if (medium.base == Base::bonded && c.eps > 0.0 && c.G != 0.0) out.push_back(ModelKind::two_term);
   return out;
@@ -149,13 +150,15 @@ ModelSpec stack_model_spec(ModelKind kind, const LayeredMedium& medium) {
   spec.layer = medium.top();
   if (kind == ModelKind::exact) {
     spec.stack = medium;
+  } else if (kind == ModelKind::incompressible) {
+    spec.layer = equivalent_incompressible_layer(medium);
   } else if (kind == ModelKind::winkler || kind == ModelKind::two_term) {
     const ThinStackConstants c = thin_stack_constants(medium);
     spec.K = c.K;
     spec.G = kind == ModelKind::winkler ? 0.0 : c.G;
   } else {
     throw DomainError("stack_model_spec", std::string("model ") + to_string(kind), 0.0,
-                      "exact, winkler or two_term for a stack");
+                      "exact, winkler, two_term or incompressible for a stack");
   }
   return spec;
 }

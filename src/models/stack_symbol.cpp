@@ -86,6 +86,22 @@ ThinStackConstants thin_stack_constants(const LayeredMedium& medium) {
   return c;
 }
 
+ElasticLayer equivalent_incompressible_layer(const LayeredMedium& medium) {
+  const char* fn = "equivalent_incompressible_layer";
+  medium.validate(fn);
+  if (medium.substrate || medium.base != Base::bonded)
+    throw DomainError(fn, "base", 0.0, "a bonded rigid base (the lubrication law needs u = 0 at the base)");
+  double H = 0.0;
+  for (std::size_t i = 0; i < medium.layers.size(); ++i) {
+    if (medium.layers[i].nu != 0.5)
+      throw DomainError(fn, "layers[" + std::to_string(i) + "].nu", medium.layers[i].nu,
+                        "0.5 in every layer (an incompressible stack)");
+    H += medium.layers[i].h;
+  }
+  const double J = thin_stack_constants(medium).D;
+  return {H * H * H / J, 0.5, H, Base::bonded};
+}
+
 double stack_compliance_ratio(const LayeredMedium& medium, double u) {
   if (!(u >= 0.0 && std::isfinite(u)))
     throw DomainError("stack_compliance_ratio", "u", u, "finite and >= 0 (u = k h1)");

@@ -308,7 +308,9 @@ MediumModels models_for(MediumType t) {
     case MediumType::pasternak:
     case MediumType::filonenko_borodich: return {{SceneModel::asymptotic, SceneModel::full}, false};
     case MediumType::layers:
-      return {{SceneModel::exact, SceneModel::leading, SceneModel::two_term, SceneModel::automatic}, false};
+      return {{SceneModel::exact, SceneModel::leading, SceneModel::two_term, SceneModel::incompressible,
+               SceneModel::automatic},
+              false};
   }
   return {{}, false};
 }

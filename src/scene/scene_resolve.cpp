@@ -104,13 +104,19 @@ void resolve_stack(const Scene& s, ResolvedModel& r) {
     }
     return;
   }
+  if (s.model == SceneModel::incompressible) {  // the squeeze film of an incompressible stack
+    r.spec.kind = ModelKind::incompressible;
+    r.spec.layer = equivalent_incompressible_layer(stack);
+    r.reference = exact;
+    return;
+  }
   const char* fn = "thin-stack law";
   const ThinStackConstants c = thin_stack_constants(stack);  // throws on a half-space
   const bool bonded = stack.base == Base::bonded;
   if (!std::isfinite(c.K))
     throw DomainError(fn, "eps = sum h_i (1+nu_i)(1-2nu_i)/(E_i (1-nu_i))", c.eps,
-                      "> 0; every layer is incompressible, so the stack has no Winkler spring (its thin law is "
-                      "the squeeze film w = -D lap p, not offered yet): use model 'exact'");
+                      "> 0; every layer is incompressible, so the stack has no Winkler spring: its thin law is "
+                      "the squeeze film, model 'incompressible'");
   if (s.model == SceneModel::two_term && !bonded)
     throw DomainError(fn, "base", 1.0,
                       "bonded for model 'two_term' (a frictionless stack's k^2 term is not derived): use 'leading' "

@@ -203,6 +203,29 @@ TEST_CASE("Stack: the thin-stack laws approach the exact stack as a/H grows", "[
   }
 }
 
+TEST_CASE("Stack: an incompressible stack's squeeze-film law approaches the exact stack", "[exact][stack][thin]") {
+  // one layer: exactly the library's incompressible layer
+  const ElasticLayer one = equivalent_incompressible_layer(stack({{2.0, 0.5, 0.3}}));
+  CHECK(one.E == Approx(2.0).epsilon(1e-14));
+  CHECK(one.h == 0.3);
+  // a cell (soft) on a gel (stiffer), both incompressible, on glass
+  const LayeredMedium m = stack({{1.0, 0.5, 1.0}, {5.0, 0.5, 2.0}});  // H = 3 h1
+  const auto p = make_paraboloid(1e4);
+  const auto exact = make_exact_layer(p, m, range(300));
+  const auto thin = make_incompressible_layer(p, equivalent_incompressible_layer(m));
+  double previous = 1.0;
+  for (double a_over_H : {10.0, 40.0}) {
+    const double a = 3.0 * a_over_H;
+    const double e = rel_err(thin->state(a).P_H, exact->state(a).P_H);
+    INFO("a/H = " << a_over_H << ": " << e);
+    CHECK(e < 12.0 / a_over_H);  // O(H/a), as for one layer (8.7 h/a)
+    CHECK(e < 0.5 * previous);
+    previous = e;
+  }
+  CHECK_THROWS_WITH(equivalent_incompressible_layer(stack({{1.0, 0.5, 1.0}, {5.0, 0.45, 2.0}})),
+                    Catch::Contains("layers[1].nu = 0.45"));
+}
+
 TEST_CASE("Stack: invalid stacks name the layer and the key", "[exact][stack][errors]") {
   CHECK_THROWS_WITH(ExactLayerKernel(stack({})), Catch::Contains("layers"));
   CHECK_THROWS_WITH(ExactLayerKernel(stack({{1.0, 0.3, 1.0}, {1.0, 0.6, 1.0}})), Catch::Contains("layers[1].nu = 0.59999999999999998"));

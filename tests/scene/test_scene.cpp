@@ -99,11 +99,12 @@ TEST_CASE("invalid scenes name the key and the value", "[scene][errors]") {
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": {"E": 1e6}})", R"(, "model": "exact")"), "medium.base.nu is missing"},
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": "glued"})", R"(, "model": "exact")"), "medium.base = \"glued\""},
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": 3})", R"(, "model": "exact")"), "medium.base must be"},
-      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})", R"(, "model": "uniform")"), "available: exact, leading, two_term, auto"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})", R"(, "model": "uniform")"), "available: exact, leading, two_term, incompressible, auto"},
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": {"E": 1e6, "nu": 0.3}})", R"(, "model": "leading")"), "no thin-layer law"},
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": "frictionless"})", R"(, "model": "two_term")"), "bonded for model 'two_term'"},
       {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.5, "h": 1e-4}, {"E": 1e7, "nu": 0.5, "h": 1e-4}]})", R"(, "model": "leading")"), "every layer is incompressible"},
-      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})"), "model is missing; medium 'layers' needs one of: exact, leading, two_term, auto"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.5, "h": 1e-4}, {"E": 1e7, "nu": 0.4, "h": 1e-4}]})", R"(, "model": "incompressible")"), "layers[1].nu = 0.40000000000000002"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})"), "model is missing; medium 'layers' needs one of: exact, leading, two_term, incompressible, auto"},
   };
   for (const auto& c : cases) {
     INFO(c.text);
@@ -172,6 +173,11 @@ TEST_CASE("model auto on a stack: the thin-stack law where it is within toleranc
       {"E": 3e8, "nu": 0.3, "h": 1.9e-3}]})";
   const BuiltScene p = build_scene_for_summary(parse_scene(scene(kPara, paper, R"(, "model": "auto", "tolerance": 0.05, "w": 0.05)")));
   CHECK(p.choice->model == ModelKind::exact);
+  // an incompressible stack (a cell on a gel): the squeeze film
+  const std::string cell = R"({"type": "layers", "layers": [{"E": 1e3, "nu": 0.5, "h": 1e-6}, {"E": 1e4, "nu": 0.5, "h": 2e-6}]})";
+  const BuiltScene c = build_scene_for_summary(parse_scene(scene(kPara, cell, R"(, "model": "auto", "tolerance": 0.1, "w": 1e-4)")));
+  CHECK(c.choice->model == ModelKind::incompressible);
+  CHECK(c.choice->estimated_error < 0.1);  // 6 % at a/H ~ 15
   // on a half-space there is no candidate
   const std::string hs = R"({"type": "layers", "layers": [{"E": 3e6, "nu": 0.3, "h": 1e-6}], "base": {"E": 1e7, "nu": 0.3}})";
   CHECK(build_scene_for_summary(parse_scene(scene(kPara, hs, R"(, "model": "auto", "tolerance": 0.5, "w": 0.05)"))).choice->model ==
