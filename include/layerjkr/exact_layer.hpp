@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "layerjkr/context.hpp"
+#include "layerjkr/layered_medium.hpp"
 #include "layerjkr/model.hpp"
 
 namespace layerjkr {
@@ -80,6 +81,11 @@ struct ExactLayerState {
 class ExactLayerKernel {
  public:
   ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions options = {});
+  /// A stack of layers (layered_medium.hpp): everything below holds with E* -> E1* and
+  /// h -> h1 of the top layer (a/h is a/h1, kernel() in units of h1). The kernel function is
+  /// built per stack (0.1-0.3 s, docs/exact-layer.md) and shared through the Context by the
+  /// stack's ratios; a state then costs what one of a single layer of thickness h1 costs.
+  ExactLayerKernel(const LayeredMedium& medium, ExactLayerOptions options = {});
   ~ExactLayerKernel();
   ExactLayerKernel(const ExactLayerKernel&) = delete;
   ExactLayerKernel& operator=(const ExactLayerKernel&) = delete;
@@ -90,7 +96,10 @@ class ExactLayerKernel {
   double kernel_derivative(double sigma) const;
   /// E* = E/(1 - nu^2) [Pa].
   double effective_modulus() const { return E_star_; }
+  /// The layer; for a stack its top layer (E1, nu1, h1).
   const ElasticLayer& layer() const { return layer_; }
+  /// The medium: a one-layer stack for an ElasticLayer.
+  const LayeredMedium& medium() const { return medium_; }
   const ExactLayerOptions& options() const { return options_; }
 
   /// Non-adhesive state at contact radius a for `profile`, with error estimates (when
@@ -116,6 +125,7 @@ class ExactLayerKernel {
 
  private:
   ElasticLayer layer_;
+  LayeredMedium medium_;
   ExactLayerOptions options_;
   double E_star_;
   std::shared_ptr<const detail::LayerKernelFunction> kernel_;  // shared per (nu, base) and Context
@@ -139,6 +149,10 @@ ContactModelPtr make_edge_corrected(ProfilePtr profile, const ElasticLayer& laye
 /// ContactModel "exact": the exact layer for a profile. The shared kernel is fetched in
 /// the constructor; state(a) costs one Nystrom solve pair (ms to s, docs/benchmarks.md).
 ContactModelPtr make_exact_layer(ProfilePtr profile, const ElasticLayer& layer,
+                                 const ExactLayerOptions& options = {});
+/// ContactModel "exact" for a stack of layers (E* and h of its top layer; power laws from
+/// per-stack tables in a/h1).
+ContactModelPtr make_exact_layer(ProfilePtr profile, const LayeredMedium& medium,
                                  const ExactLayerOptions& options = {});
 
 }  // namespace layerjkr

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "layerjkr/layered_medium.hpp"
 #include "layerjkr/model.hpp"
 #include "layerjkr/model_spec.hpp"
 
@@ -44,6 +45,21 @@ ModelChoice choose_layer_model(const ProfilePtr& profile, const ElasticLayer& la
 /// is within `tolerance` of the exact layer's. Costs one exact summary plus one summary per
 /// candidate tried.
 ModelChoice choose_layer_model_for_summary(const ProfilePtr& profile, const ElasticLayer& layer, double w,
+                                           double tolerance);
+
+/// A stack's candidates for model "auto", cheapest first: on a rigid base its thin-stack laws
+/// (winkler with K = 1/C(0); two_term on a bonded base; incompressible alone for a bonded
+/// stack of incompressible layers), none on a half-space (layered_medium.hpp, theory.md s.4a).
+std::vector<ModelKind> stack_model_candidates(const LayeredMedium& medium);
+
+/// The spec of `kind` (exact, winkler, two_term or incompressible) for a stack.
+ModelSpec stack_model_spec(ModelKind kind, const LayeredMedium& medium);
+
+/// choose_layer_model and choose_layer_model_for_summary for a stack, judged against the exact
+/// stack.
+ModelChoice choose_stack_model(const ProfilePtr& profile, const LayeredMedium& medium, double w, double tolerance,
+                               const std::vector<double>& radii);
+ModelChoice choose_stack_model_for_summary(const ProfilePtr& profile, const LayeredMedium& medium, double w,
                                            double tolerance);
 
 }  // namespace layerjkr

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "layerjkr/exact_layer.hpp"
+#include "layerjkr/layered_medium.hpp"
 #include "layerjkr/model.hpp"
 
 namespace layerjkr {
@@ -19,6 +20,9 @@ struct ModelSpec {
   double K = 0.0;        ///< foundation modulus [N/m^3] (winkler, two_term, full_foundation)
   double G = 0.0;        ///< shear modulus or tension [N/m] (two_term: any sign; full: > 0)
   ElasticLayer layer;    ///< exact, edge_corrected, incompressible, uniform: the layer; half_space: E and nu
+  /// exact only: a stack of layers, solved in place of `layer` (which then holds its top
+  /// layer, E1 and h1, as the reports and the fit read them). Other kinds refuse a stack.
+  std::optional<LayeredMedium> stack;
   bool ode = false;      ///< foundations: P_H by the ODE route (make_ode_foundation)
   ExactLayerOptions exact;  ///< exact: discretisation and range
 };

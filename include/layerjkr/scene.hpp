@@ -9,10 +9,15 @@
 //                 | table {r: [...], z: [...]}
 // medium.type:    winkler {K} | pasternak {K, G} | filonenko_borodich {K, T}
 //                 | layer {E, nu, h, base: bonded|frictionless} | half_space {E, nu}
+//                 | layers {layers: [{E, nu, h}, ...] (top first), base: bonded|frictionless|{E, nu}}
+//                   (a stack of bonded layers on a rigid base or an elastic half-space)
 // model:          layer: leading | two_term | edge_corrected | exact (nu may be 0.5) | incompressible
 //                 (nu = 0.5, bonded) | uniform (bonded, nu up to 0.5) | auto (needs
 //                 "tolerance": the cheapest model whose measured error is within it);  pasternak, filonenko_borodich: asymptotic |
-//                 full;  winkler: winkler (default);  half_space: half_space (default)
+//                 full;  winkler: winkler (default);  half_space: half_space (default);
+//                 layers: exact | leading | two_term (thin-stack laws on a rigid base; two_term
+//                 bonded only; judged against exact) | incompressible (every nu = 0.5, bonded: the
+//                 squeeze film) | auto (needs "tolerance")
 // solver:         closed_form (default) | ode  (foundation models only)
 // w:              work of adhesion [J/m^2], >= 0 (absent = 0)
 // All values SI. Unknown keys, wrong types and invalid values throw InputError
@@ -23,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "layerjkr/layered_medium.hpp"
 #include "layerjkr/model_spec.hpp"
 #include "layerjkr/profile.hpp"
 #include "layerjkr/types.hpp"
@@ -33,8 +39,9 @@ namespace layerjkr {
 struct MediumSpec {
   MediumType type = MediumType::winkler;
   double K = 0.0, G = 0.0, T = 0.0;  ///< foundations [N/m^3], [N/m], [N/m]
-  double E = 0.0, nu = 0.0, h = 0.0;  ///< layer / half-space [Pa], [-], [m]
+  double E = 0.0, nu = 0.0, h = 0.0;  ///< layer / half-space [Pa], [-], [m]; layers: the top layer's
   Base base = Base::bonded;
+  LayeredMedium stack;  ///< layers: the stack (top first)
 };
 
 /// Where a scene came from, for provenance (provenance.hpp): set by parse_scene and load_scene,

@@ -38,8 +38,8 @@ enum class ModelKind {
 };
 
 /// A scene's medium (scene.hpp): "winkler", "pasternak", "filonenko_borodich", "layer",
-/// "half_space".
-enum class MediumType { winkler, pasternak, filonenko_borodich, layer, half_space };
+/// "half_space", "layers" (a stack of bonded layers, layered_medium.hpp).
+enum class MediumType { winkler, pasternak, filonenko_borodich, layer, half_space, layers };
 
 /// The scene's "model" key: what the user asked for. Spelled as the enumerator, except
 /// automatic, which is "auto". Which ones a medium accepts: scene.hpp.

@@ -9,6 +9,7 @@
 #include <mutex>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include "layerjkr/context.hpp"
 
@@ -73,14 +74,17 @@ class BuildOnceCache {
 };
 
 using KernelKey = std::pair<double, bool>;  // nu, bonded
-// nu, bonded, d, points_per_panel, panel_width, min_panels: what the table's numbers depend on
-using PowerLawTableKey = std::tuple<double, bool, double, int, double, int>;
+using StackKernelKey = std::vector<double>;  // StackSymbol::signature()
+// the medium's signature (StackSymbol: nu and the base for one layer), d, points_per_panel,
+// panel_width, min_panels: what the table's numbers depend on
+using PowerLawTableKey = std::tuple<std::vector<double>, double, int, double, int>;
 
 }  // namespace detail
 
 struct Context::Caches {
   // ~50 kB a kernel; a session rarely needs more layers.
   detail::BuildOnceCache<detail::KernelKey, detail::LayerKernelFunction> kernels{64};
+  detail::BuildOnceCache<detail::StackKernelKey, detail::LayerKernelFunction> stack_kernels{64};
   detail::BuildOnceCache<detail::PowerLawTableKey, detail::ExactPowerLawTable> power_law_tables{64};
   // nu -> beta: a handful of entries per process.
   detail::BuildOnceCache<double, double> uniform_betas;

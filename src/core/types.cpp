@@ -26,7 +26,7 @@ LAYERJKR_NAMES(ModelKind, {ModelKind::winkler, "winkler"}, {ModelKind::two_term,
                {ModelKind::incompressible, "incompressible"}, {ModelKind::uniform, "uniform"})
 LAYERJKR_NAMES(MediumType, {MediumType::winkler, "winkler"}, {MediumType::pasternak, "pasternak"},
                {MediumType::filonenko_borodich, "filonenko_borodich"}, {MediumType::layer, "layer"},
-               {MediumType::half_space, "half_space"})
+               {MediumType::half_space, "half_space"}, {MediumType::layers, "layers"})
 LAYERJKR_NAMES(SceneModel, {SceneModel::winkler, "winkler"}, {SceneModel::half_space, "half_space"},
                {SceneModel::leading, "leading"}, {SceneModel::two_term, "two_term"},
                {SceneModel::edge_corrected, "edge_corrected"}, {SceneModel::exact, "exact"},

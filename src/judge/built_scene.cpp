@@ -11,7 +11,7 @@
 namespace layerjkr {
 namespace {
 
-using Choose = std::function<ModelChoice(const ElasticLayer&)>;
+using Choose = std::function<ModelChoice(const ModelSpec&)>;  // the resolved exact spec
 
 // Runs a library factory; its DomainError becomes an InputError naming the scene's medium.
 template <class F>
@@ -27,7 +27,7 @@ BuiltScene build(const Scene& s, const Choose& choose, bool with_reference) {
   BuiltScene b;
   b.resolved = checked([&] { return resolve_model(s); });
   if (b.resolved.automatic) {
-    const ModelChoice choice = checked([&] { return choose(b.resolved.spec.layer); });
+    const ModelChoice choice = checked([&] { return choose(b.resolved.spec); });
     b.model = choice.contact_model;
     b.reference = choice.reference;
     b.choice = AutoChoice{choice.model, choice.estimated_error, s.tolerance, ""};
@@ -58,7 +58,11 @@ BuiltScene build_scene(const Scene& s, double a_min, bool with_reference) {
 
 BuiltScene build_scene_for_radii(const Scene& s, const std::vector<double>& radii) {
   BuiltScene b = build(
-      s, [&](const ElasticLayer& layer) { return choose_layer_model(s.profile, layer, s.w, s.tolerance, radii); },
+      s,
+      [&](const ModelSpec& spec) {
+        return spec.stack ? choose_stack_model(s.profile, *spec.stack, s.w, s.tolerance, radii)
+                          : choose_layer_model(s.profile, spec.layer, s.w, s.tolerance, radii);
+      },
       true);
   if (b.choice) b.choice->judged_at = "over the curve's radii";
   return b;
@@ -66,7 +70,11 @@ BuiltScene build_scene_for_radii(const Scene& s, const std::vector<double>& radi
 
 BuiltScene build_scene_for_summary(const Scene& s) {
   BuiltScene b = build(
-      s, [&](const ElasticLayer& layer) { return choose_layer_model_for_summary(s.profile, layer, s.w, s.tolerance); },
+      s,
+      [&](const ModelSpec& spec) {
+        return spec.stack ? choose_stack_model_for_summary(s.profile, *spec.stack, s.w, s.tolerance)
+                          : choose_layer_model_for_summary(s.profile, spec.layer, s.w, s.tolerance);
+      },
       true);
   if (b.choice) b.choice->judged_at = "at the pull-off and zero-load point";
   return b;

@@ -47,12 +47,13 @@ bool sweep_is_cheaper(const ExactLayerOptions& o, double rho, int count) {
 
 class ExactLayerModel final : public ContactModel {
  public:
-  ExactLayerModel(ProfilePtr p, const ElasticLayer& layer, const ExactLayerOptions& o)
-      : ContactModel(std::move(p)), kernel_(layer, o) {
+  template <class Medium>
+  ExactLayerModel(ProfilePtr p, const Medium& medium, const ExactLayerOptions& o)
+      : ContactModel(std::move(p)), kernel_(medium, o) {
     if (o.tabulate_power_laws)
       if (const auto form = profile().power_law_form()) {
         form_ = *form;
-        table_ = detail::shared_power_law_table(layer.nu, layer.base, form->d, o);
+        table_ = detail::shared_power_law_table(kernel_.medium(), form->d, o);
       }
   }
   // A ContactModel returns no error estimate, so none is computed (solve() has it).
@@ -106,6 +107,10 @@ class ExactLayerModel final : public ContactModel {
 ContactModelPtr make_exact_layer(ProfilePtr profile, const ElasticLayer& layer,
                                  const ExactLayerOptions& options) {
   return std::make_shared<ExactLayerModel>(std::move(profile), layer, options);
+}
+
+ContactModelPtr make_exact_layer(ProfilePtr profile, const LayeredMedium& medium, const ExactLayerOptions& options) {
+  return std::make_shared<ExactLayerModel>(std::move(profile), medium, options);
 }
 
 }  // namespace layerjkr

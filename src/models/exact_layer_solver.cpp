@@ -44,12 +44,24 @@ void ExactLayerOptions::validate() const {
 }
 
 ExactLayerKernel::ExactLayerKernel(const ElasticLayer& layer, ExactLayerOptions options)
-    : layer_(layer), options_(std::move(options)) {
+    : layer_(layer), medium_(LayeredMedium::single(layer)), options_(std::move(options)) {
   detail::silence_gsl_errors();
   options_.validate();
   detail::require_positive("ExactLayerKernel", "h", layer.h);
   E_star_ = layerjkr::effective_modulus(layer.E, layer.nu);  // validates E, nu in (-1, 0.5]
   kernel_ = detail::shared_layer_kernel(layer.nu, layer.base == Base::bonded, options_.context);
+  // Holding the Context would make a cycle for the power-law tables it caches, whose unit
+  // solver is an ExactLayerKernel: a private Context would never be freed.
+  options_.context.reset();
+}
+
+ExactLayerKernel::ExactLayerKernel(const LayeredMedium& medium, ExactLayerOptions options)
+    : layer_(medium.top()), medium_(medium), options_(std::move(options)) {
+  detail::silence_gsl_errors();
+  options_.validate();
+  medium.validate("ExactLayerKernel");
+  E_star_ = layerjkr::effective_modulus(layer_.E, layer_.nu);
+  kernel_ = detail::shared_stack_kernel(medium, options_.context);
   // Holding the Context would make a cycle for the power-law tables it caches, whose unit
   // solver is an ExactLayerKernel: a private Context would never be freed.
   options_.context.reset();
@@ -118,7 +130,8 @@ namespace {
 // The symmetrised Nystrom matrix B = I - (1/pi) W^1/2 [Ft(t_i - t_j) + Ft(t_i + t_j)] W^1/2.
 // With equal panels the first part is block Toeplitz and the second block Hankel, so only
 // (2m-1) p^2 + m p^2 distinct kernel values are needed instead of (m p)^2. B is symmetric
-// positive definite: the kernel's symbol 1 - L(u) lies in (0, 1] for every nu <= 1/2.
+// positive definite: the operator's symbol is L(u) > 0, a compliance (for one layer the
+// kernel's 1 - L lies in (0, 1]; for a stack on a soft substrate 1 - L may be negative).
 void fill_symmetric_matrix(const ExactLayerKernel& k, const Grid& g, Eigen::MatrixXd& B) {
   const int m = g.panels, p = g.p, n = m * p;
   const detail::KernelBlocks blocks = detail::kernel_blocks(k, g);

@@ -1,5 +1,6 @@
 // Per-(nu, base, d) tables of the exact layer's power-law moments in ln(a/h).
 #include "models/exact_power_law_table.hpp"
+#include "models/stack_symbol.hpp"
 
 #include <gsl/gsl_chebyshev.h>
 
@@ -54,9 +55,12 @@ double ExactPowerLawTable::max_rho() { return std::exp(x_min() + kBreaks[kPieces
 double ExactPowerLawTable::min_rho() { return std::exp(x_min() + kBreaks[0]); }
 
 ExactPowerLawTable::ExactPowerLawTable(double nu, Base base, double d, const ExactLayerOptions& options)
+    : ExactPowerLawTable(LayeredMedium::single(ElasticLayer{1.0, nu, 1.0, base}), d, options) {}
+
+ExactPowerLawTable::ExactPowerLawTable(const LayeredMedium& unit_medium, double d, const ExactLayerOptions& options)
     : d_(d),
       unit_profile_(make_power_law(1.0, d)),
-      unit_kernel_(std::make_unique<ExactLayerKernel>(ElasticLayer{1.0, nu, 1.0, base}, options)),
+      unit_kernel_(std::make_unique<ExactLayerKernel>(unit_medium, options)),
       pieces_(std::make_unique<Pieces>()) {
   C_ = unit_profile_->sneddon(1.0).I0;
 }
@@ -117,9 +121,23 @@ ExactMoments ExactPowerLawTable::at(double rho) const {
 
 std::shared_ptr<const ExactPowerLawTable> shared_power_law_table(double nu, Base base, double d,
                                                                  const ExactLayerOptions& o) {
-  const PowerLawTableKey key{nu, base == Base::bonded, d, o.points_per_panel, o.panel_width, o.min_panels};
+  return shared_power_law_table(LayeredMedium::single(ElasticLayer{1.0, nu, 1.0, base}), d, o);
+}
+
+std::shared_ptr<const ExactPowerLawTable> shared_power_law_table(const LayeredMedium& medium, double d,
+                                                                 const ExactLayerOptions& o) {
+  // In units of the top layer: E1 = h1 = 1, every other modulus and thickness a ratio.
+  LayeredMedium unit = medium;
+  const StackLayer top = medium.layers.at(0);
+  for (StackLayer& l : unit.layers) {
+    l.E /= top.E;
+    l.h /= top.h;
+  }
+  if (unit.substrate) unit.substrate->E /= top.E;
+  const PowerLawTableKey key{StackSymbol(unit, "exact_power_law_table").signature(), d, o.points_per_panel,
+                             o.panel_width, o.min_panels};
   return context_caches(o.context).power_law_tables.get(
-      key, [&] { return std::make_shared<const ExactPowerLawTable>(nu, base, d, o); });
+      key, [&] { return std::make_shared<const ExactPowerLawTable>(unit, d, o); });
 }
 
 }  // namespace layerjkr::detail

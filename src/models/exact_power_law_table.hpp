@@ -16,6 +16,7 @@
 
 #include <memory>
 
+#include "layerjkr/layered_medium.hpp"
 #include "models/exact_layer_solver.hpp"
 
 namespace layerjkr::detail {
@@ -25,6 +26,8 @@ class ExactPowerLawTable {
   /// The table for r^d (d >= 1) on a layer of Poisson's ratio nu and `base`, solved with
   /// `options` (their discretisation sets the table's accuracy).
   ExactPowerLawTable(double nu, Base base, double d, const ExactLayerOptions& options);
+  /// The same for a stack, in units of its top layer (a/h1; h1 = E1 = 1 in `unit_medium`).
+  ExactPowerLawTable(const LayeredMedium& unit_medium, double d, const ExactLayerOptions& options);
   ~ExactPowerLawTable();
   ExactPowerLawTable(const ExactPowerLawTable&) = delete;
   ExactPowerLawTable& operator=(const ExactPowerLawTable&) = delete;
@@ -49,6 +52,9 @@ class ExactPowerLawTable {
 /// The table for (nu, base, d, discretisation) from the cache of options.context (null:
 /// Context::global()), built on first request, once, thread-safely.
 std::shared_ptr<const ExactPowerLawTable> shared_power_law_table(double nu, Base base, double d,
+                                                                 const ExactLayerOptions& options);
+/// The table of a stack (any E1, h1: it is keyed by the stack's ratios), a/h1 in the range.
+std::shared_ptr<const ExactPowerLawTable> shared_power_law_table(const LayeredMedium& medium, double d,
                                                                  const ExactLayerOptions& options);
 
 }  // namespace layerjkr::detail

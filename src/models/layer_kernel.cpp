@@ -16,12 +16,13 @@
 
 #include "core/context_caches.hpp"
 #include "core/gsl_support.hpp"
+#include "models/stack_symbol.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {
 namespace {
 
-constexpr double kBeta = 2.0;       // decay rate of the subtracted model e^{-beta u}(1 + gamma u)
+constexpr double kBeta = 2.0;  // decay rate of the subtracted model (A + B u) e^{-beta u}: the top layer's
 constexpr int kChebOrder = 20;      // terms a piece
 constexpr int kTailTerms = 24;      // asymptotic terms beyond kNear
 // Pieces of the Chebyshev table. The remainder's transform is singular only on the imaginary
@@ -30,7 +31,7 @@ constexpr int kTailTerms = 24;      // asymptotic terms beyond kNear
 constexpr double kBreaks[] = {0, 1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64};
 
 // q(u) = 1 - L(u), written with E = exp(-2u): no overflow and no cancellation.
-double one_minus_L(double u, double kappa, bool bonded) {
+double closed_form_q(double u, double kappa, bool bonded) {
   const double E = std::exp(-2.0 * u);
   if (bonded) {
     const double s = 1.0 + 2.0 * u;
@@ -97,44 +98,56 @@ Series one_minus_exp_over_u(double c, int n) {
   return s;
 }
 
+// q(u) minus the subtracted model (A + B u) e^{-2u}.
+template <class Q>
 struct Remainder {
-  double kappa, gamma;
-  bool bonded;
+  const Q* q;
+  double A, B;
+  static double at(double u, void* p) {
+    const auto* r = static_cast<const Remainder*>(p);
+    return (*r->q)(u) - std::exp(-kBeta * u) * (r->A + r->B * u);
+  }
 };
 
-double remainder(double u, void* p) {
-  const auto* r = static_cast<const Remainder*>(p);
-  return one_minus_L(u, r->kappa, r->bonded) - std::exp(-kBeta * u) * (1.0 + r->gamma * u);
-}
-
 // int_0^inf fn(u) cos(sigma u) du for fn decaying like u^2 e^{-2u}: the tail beyond
-// u = kCutoff is below 1e-30, so GSL's QAWO on [0, kCutoff] (QAG at sigma = 0) is used.
-double cosine_transform(gsl_function fn, double sigma) {
+// u = kCutoff is below 1e-30, so GSL's QAWO on [0, kCutoff] (QAG at sigma = 0) is used, split
+// at `splits` (a stack's switch points, where its symbol has a rounding-size step).
+// `scale` is the size of fn near 0 (1 for one layer; |q(0)| = E1*/Es* - 1 for a stiff film on a
+// soft substrate): the tolerances are relative to it.
+double cosine_transform(gsl_function fn, double sigma, const std::vector<double>& splits, double scale) {
   constexpr std::size_t kLimit = 4000;
   constexpr double kCutoff = 40.0;
   struct Workspace {
     gsl_integration_workspace* ws = gsl_integration_workspace_alloc(kLimit);
     ~Workspace() { gsl_integration_workspace_free(ws); }
   } w;
-  double result = 0.0, abserr = 0.0;
-  int status = GSL_SUCCESS;
+  std::vector<double> edges{0.0};
+  for (double x : splits)
+    if (x > 0.0 && x < kCutoff) edges.push_back(x);
+  edges.push_back(kCutoff);
   sigma = std::abs(sigma);
-  if (sigma == 0.0) {
-    status = gsl_integration_qag(&fn, 0.0, kCutoff, 1e-15, 1e-13, kLimit, GSL_INTEG_GAUSS41, w.ws,
-                                 &result, &abserr);
-  } else {
-    gsl_integration_qawo_table* wf =
-        gsl_integration_qawo_table_alloc(sigma, kCutoff, GSL_INTEG_COSINE, 60);
-    status = gsl_integration_qawo(&fn, 0.0, 1e-15, 1e-13, kLimit, w.ws, wf, &result, &abserr);
-    gsl_integration_qawo_table_free(wf);
+  double total = 0.0;
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+    const double a = edges[i], b = edges[i + 1];
+    double result = 0.0, abserr = 0.0;
+    int status = GSL_SUCCESS;
+    if (sigma == 0.0) {
+      status = gsl_integration_qag(&fn, a, b, 1e-15 * scale, 1e-13, kLimit, GSL_INTEG_GAUSS41, w.ws, &result, &abserr);
+    } else {
+      gsl_integration_qawo_table* wf = gsl_integration_qawo_table_alloc(sigma, b - a, GSL_INTEG_COSINE, 60);
+      status = gsl_integration_qawo(&fn, a, 1e-15 * scale, 1e-13, kLimit, w.ws, wf, &result, &abserr);
+      gsl_integration_qawo_table_free(wf);
+    }
+    // The integral is O(1) and asked for to 1e-15, so QAWO may report that rounding stops it;
+    // its error estimate says whether the result is still good enough to use.
+    if (status == GSL_EROUND && abserr < 1e-13 * scale) status = GSL_SUCCESS;
+    if (status != GSL_SUCCESS)
+      throw NumericalError(std::string("layerjkr exact layer: kernel transform failed at sigma = ") +
+                           format_double(sigma) + " on u in [" + format_double(a) + ", " + format_double(b) +
+                           "] (" + gsl_strerror(status) + ", error estimate " + format_double(abserr) + ")");
+    total += result;
   }
-  // The integral is O(1) and asked for to 1e-15, so QAWO may report that rounding stops it;
-  // its error estimate says whether the result is still good enough to use.
-  if (status == GSL_EROUND && abserr < 1e-13) status = GSL_SUCCESS;
-  if (status != GSL_SUCCESS)
-    throw NumericalError(std::string("layerjkr exact layer: kernel transform failed at sigma = ") +
-                         format_double(sigma) + " (" + gsl_strerror(status) + ")");
-  return result;
+  return total;
 }
 
 double slope_at_zero(double kappa, bool bonded) {  // q'(0) = -L'(0)
@@ -149,12 +162,64 @@ using Cheb = std::unique_ptr<gsl_cheb_series, ChebFree>;
 }  // namespace
 
 struct LayerKernelFunction::Pieces {
-  std::vector<Cheb> value, slope;  // on [kBreaks[i], kBreaks[i + 1]]
-  static std::size_t index(double x) {  // x in [0, kNear)
-    return static_cast<std::size_t>(std::upper_bound(std::begin(kBreaks), std::end(kBreaks), x) -
-                                    std::begin(kBreaks)) - 1;
-  }
+  std::vector<Cheb> value, slope;  // on [breaks[i], breaks[i + 1]]
 };
+
+namespace {
+// The piece holding x in [0, near).
+std::size_t piece_index(const std::vector<double>& breaks, double x) {
+  return static_cast<std::size_t>(std::upper_bound(breaks.begin(), breaks.end(), x) - breaks.begin()) - 1;
+}
+
+// tail[k] = (-1)^(k+1) (2k+1)! q_(2k+1) from q's Taylor coefficients q_n.
+std::vector<double> tail_from(const std::vector<double>& q) {
+  std::vector<double> tail;
+  double factorial = 1.0;  // (2k+1)!
+  for (int k = 0; k < kTailTerms; ++k) {
+    factorial *= (k == 0) ? 1.0 : (2.0 * k) * (2.0 * k + 1.0);
+    const double sign = (k % 2 == 0) ? -1.0 : 1.0;
+    tail.push_back(sign * factorial * q[2 * static_cast<std::size_t>(k) + 1]);
+  }
+  return tail;
+}
+
+// The asymptotic series' terms at x: |tail[k]| / x^(2k+2).
+std::vector<double> tail_terms(const std::vector<double>& tail, double x) {
+  std::vector<double> t;
+  double p = 1.0 / (x * x);
+  for (double c : tail) {
+    t.push_back(std::abs(c) * p);
+    p /= x * x;
+  }
+  return t;
+}
+}  // namespace
+
+std::size_t LayerKernelFunction::pieces() const { return pieces_->value.size(); }
+
+template <class Q>
+void LayerKernelFunction::build(const Q& q, const std::vector<double>& splits) {
+  silence_gsl_errors();
+  Remainder<Q> rem{&q, model_a_, model_b_};
+  struct Transform {
+    Remainder<Q>* rem;
+    const std::vector<double>* splits;
+    double scale;
+    static double at(double sigma, void* p) {
+      const auto* t = static_cast<Transform*>(p);
+      return cosine_transform(gsl_function{&Remainder<Q>::at, t->rem}, sigma, *t->splits, t->scale);
+    }
+  } transform{&rem, &splits, std::max({1.0, std::abs(model_a_), 0.5 * std::abs(model_b_)})};
+  gsl_function f{&Transform::at, &transform};
+  for (std::size_t i = 0; i + 1 < breaks_.size(); ++i) {
+    Cheb c(gsl_cheb_alloc(kChebOrder));
+    gsl_cheb_init(c.get(), &f, breaks_[i], breaks_[i + 1]);
+    Cheb d(gsl_cheb_alloc(kChebOrder));
+    gsl_cheb_calc_deriv(d.get(), c.get());
+    pieces_->value.push_back(std::move(c));
+    pieces_->slope.push_back(std::move(d));
+  }
+}
 
 std::vector<double> LayerKernelFunction::taylor_one_minus_L(double nu, bool bonded, int count) {
   const int n = count;
@@ -173,10 +238,22 @@ std::vector<double> LayerKernelFunction::taylor_one_minus_L(double nu, bool bond
   return num / den;
 }
 
+double LayerKernelFunction::one_minus_L(double nu, bool bonded, double u) {
+  return closed_form_q(u, 3.0 - 4.0 * nu, bonded);
+}
+
+double LayerKernelFunction::direct(const StackSymbol& symbol, double sigma) {
+  auto q = [&](double u) { return symbol.q(u); };
+  sigma = std::abs(sigma);
+  if (sigma == 0.0) return boost::math::quadrature::exp_sinh<double>().integrate(q, 1e-15);
+  static thread_local boost::math::quadrature::ooura_fourier_cos<double> rule(1e-15);
+  return rule.integrate(q, sigma).first;
+}
+
 double LayerKernelFunction::direct(double nu, bool bonded, double sigma) {
   // Boost's Ooura double-exponential Fourier rule: independent of the GSL table it checks.
   const double kappa = 3.0 - 4.0 * nu;
-  auto q = [&](double u) { return one_minus_L(u, kappa, bonded); };
+  auto q = [&](double u) { return closed_form_q(u, kappa, bonded); };
   sigma = std::abs(sigma);
   if (sigma == 0.0) return boost::math::quadrature::exp_sinh<double>().integrate(q, 1e-15);
   static thread_local boost::math::quadrature::ooura_fourier_cos<double> rule(1e-15);
@@ -184,44 +261,67 @@ double LayerKernelFunction::direct(double nu, bool bonded, double sigma) {
 }
 
 LayerKernelFunction::LayerKernelFunction(double nu, bool bonded) : pieces_(std::make_unique<Pieces>()) {
-  silence_gsl_errors();
   const double kappa = 3.0 - 4.0 * nu;
-  gamma_ = slope_at_zero(kappa, bonded) + kBeta;
+  model_a_ = 1.0;
+  model_b_ = slope_at_zero(kappa, bonded) + kBeta;
+  tail_ = tail_from(taylor_one_minus_L(nu, bonded, 2 * kTailTerms + 1));
+  breaks_.assign(std::begin(kBreaks), std::end(kBreaks));
+  near_ = kNear;
+  const auto q = [kappa, bonded](double u) { return closed_form_q(u, kappa, bonded); };
+  build(q, {});
+}
 
-  const std::vector<double> q = taylor_one_minus_L(nu, bonded, 2 * kTailTerms + 1);
-  double factorial = 1.0;  // (2k+1)!
-  for (int k = 0; k < kTailTerms; ++k) {
-    factorial *= (k == 0) ? 1.0 : (2.0 * k) * (2.0 * k + 1.0);
-    const double sign = (k % 2 == 0) ? -1.0 : 1.0;
-    tail_.push_back(sign * factorial * q[2 * static_cast<std::size_t>(k) + 1]);
-  }
-
-  Remainder rem{kappa, gamma_, bonded};
-  struct Transform {
-    Remainder* rem;
-    static double at(double sigma, void* p) {
-      return cosine_transform(gsl_function{&remainder, static_cast<Transform*>(p)->rem}, sigma);
+LayerKernelFunction::LayerKernelFunction(const StackSymbol& symbol) : pieces_(std::make_unique<Pieces>()) {
+  // Cauchy radius for q's Taylor coefficients: inside q's nearest complex singularity, which
+  // moves in like h1/H, and like mu_s/mu_film for a stiff film on a soft substrate.
+  double rho = 0.25 / std::max(1.0, symbol.total_thickness());
+  if (symbol.max_layer_over_substrate() > 1.0) rho /= symbol.max_layer_over_substrate();
+  constexpr int kCount = 2 * kTailTerms + 1, kPoints = 512;
+  const std::vector<double> q = symbol.taylor(kCount, rho, kPoints);
+  const std::vector<double> check = symbol.taylor(kCount, 0.8 * rho, kPoints);
+  model_a_ = symbol.q0();
+  model_b_ = q[1] + kBeta * symbol.q0();
+  tail_ = tail_from(q);
+  const std::vector<double> tail_check = tail_from(check);
+  // The tail starts at the first break where its last terms are below 1e-18 and the two
+  // Cauchy radii agree on the sum to 1e-16: both the truncation and the coefficients' own
+  // rounding (amplified by rho^-n) are then negligible.
+  breaks_.assign(std::begin(kBreaks), std::end(kBreaks));
+  bool factor_one_and_half = true;
+  for (;;) {
+    const double x = breaks_.back();
+    const std::vector<double> t = tail_terms(tail_, x), tc = tail_terms(tail_check, x);
+    double spread = 0.0;
+    {
+      const double y = 1.0 / (x * x);
+      double a = 0.0, b = 0.0;
+      for (int k = kTailTerms - 1; k >= 0; --k) {
+        a = a * y + tail_[static_cast<std::size_t>(k)];
+        b = b * y + tail_check[static_cast<std::size_t>(k)];
+      }
+      spread = std::abs(a - b) * y;
     }
-  } transform{&rem};
-  gsl_function f{&Transform::at, &transform};
-  for (std::size_t i = 0; i + 1 < std::size(kBreaks); ++i) {
-    Cheb c(gsl_cheb_alloc(kChebOrder));
-    gsl_cheb_init(c.get(), &f, kBreaks[i], kBreaks[i + 1]);
-    Cheb d(gsl_cheb_alloc(kChebOrder));
-    gsl_cheb_calc_deriv(d.get(), c.get());
-    pieces_->value.push_back(std::move(c));
-    pieces_->slope.push_back(std::move(d));
+    if (t[kTailTerms - 1] < 1e-18 && t[kTailTerms - 2] < 1e-18 && spread < 1e-16) break;
+    if (x > 1e7)
+      throw NumericalError("layerjkr exact layer: the stack's kernel needs a table beyond sigma = 1e7 (its total "
+                           "thickness is " + format_double(symbol.total_thickness()) +
+                           " times the top layer's); such a thin top layer is outside the solver's range");
+    breaks_.push_back(x * (factor_one_and_half ? 1.5 : 4.0 / 3.0));
+    factor_one_and_half = !factor_one_and_half;
   }
+  near_ = breaks_.back();
+  const auto qfun = [&symbol](double u) { return symbol.q(u); };
+  build(qfun, symbol.switch_points());
 }
 
 LayerKernelFunction::~LayerKernelFunction() = default;
 
 double LayerKernelFunction::value(double sigma) const {
   const double x = std::abs(sigma);
-  if (x < kNear) {
+  if (x < near_) {
     const double b2 = kBeta * kBeta, s2 = x * x, d = b2 + s2;
-    const double model = kBeta / d + gamma_ * (b2 - s2) / (d * d);
-    return model + gsl_cheb_eval(pieces_->value[Pieces::index(x)].get(), x);
+    const double model = model_a_ * kBeta / d + model_b_ * (b2 - s2) / (d * d);
+    return model + gsl_cheb_eval(pieces_->value[piece_index(breaks_, x)].get(), x);
   }
   const double y = 1.0 / (x * x);
   double sum = 0.0;
@@ -232,11 +332,11 @@ double LayerKernelFunction::value(double sigma) const {
 double LayerKernelFunction::derivative(double sigma) const {
   const double x = std::abs(sigma);
   double value = 0.0;
-  if (x < kNear) {
+  if (x < near_) {
     const double b2 = kBeta * kBeta, s2 = x * x, d = b2 + s2;
-    const double model = -2.0 * kBeta * x / (d * d) +
-                         gamma_ * (-2.0 * x / (d * d) - 4.0 * x * (b2 - s2) / (d * d * d));
-    value = model + gsl_cheb_eval(pieces_->slope[Pieces::index(x)].get(), x);
+    const double model = -2.0 * model_a_ * kBeta * x / (d * d) +
+                         model_b_ * (-2.0 * x / (d * d) - 4.0 * x * (b2 - s2) / (d * d * d));
+    value = model + gsl_cheb_eval(pieces_->slope[piece_index(breaks_, x)].get(), x);
   } else {
     // d/dx sum c_k x^-(2k+2) = -sum (2k+2) c_k x^-(2k+3)
     const double y = 1.0 / (x * x);
@@ -251,6 +351,17 @@ std::shared_ptr<const LayerKernelFunction> shared_layer_kernel(double nu, bool b
                                                                const std::shared_ptr<Context>& context) {
   return context_caches(context).kernels.get(
       {nu, bonded}, [&] { return std::make_shared<const LayerKernelFunction>(nu, bonded); });
+}
+
+std::shared_ptr<const LayerKernelFunction> shared_stack_kernel(const LayeredMedium& medium,
+                                                               const std::shared_ptr<Context>& context) {
+  if (medium.is_single_layer()) {
+    medium.validate("shared_stack_kernel");
+    return shared_layer_kernel(medium.layers[0].nu, medium.base == Base::bonded, context);
+  }
+  const StackSymbol symbol(medium, "shared_stack_kernel");
+  return context_caches(context).stack_kernels.get(
+      symbol.signature(), [&] { return std::make_shared<const LayerKernelFunction>(symbol); });
 }
 
 }  // namespace layerjkr::detail

@@ -1,12 +1,23 @@
 // The one place a ContactModel is built from its description (model_spec.hpp).
 #include "layerjkr/model_spec.hpp"
 
+#include <string>
+
 #include "layerjkr/error.hpp"
 
 namespace layerjkr {
 
 void validate(const ModelSpec& spec) {
   const char* fn = "validate(ModelSpec)";
+  if (spec.stack) {
+    if (spec.kind != ModelKind::exact)
+      throw DomainError(fn, "stack", static_cast<double>(spec.stack->layers.size()),
+                        std::string("only with model 'exact' (a stack has no model '") + to_string(spec.kind) +
+                            "'), the layer count given");
+    spec.stack->validate(fn);
+    spec.exact.validate();
+    return;
+  }
   switch (spec.kind) {
     case ModelKind::winkler:
     case ModelKind::two_term:
@@ -57,6 +68,7 @@ ContactModelPtr make_contact_model(ProfilePtr profile, const ModelSpec& spec) {
     case ModelKind::edge_corrected:
       return make_edge_corrected(std::move(profile), spec.layer);
     case ModelKind::exact:
+      if (spec.stack) return make_exact_layer(std::move(profile), *spec.stack, spec.exact);
       return make_exact_layer(std::move(profile), spec.layer, spec.exact);
     case ModelKind::incompressible:
       return make_incompressible_layer(std::move(profile), spec.layer);

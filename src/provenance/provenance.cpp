@@ -208,6 +208,14 @@ json describe(const Scene& s) {
                                    {"T", s.medium.T}, {"E", s.medium.E}, {"nu", s.medium.nu}, {"h", s.medium.h}})
     m[key] = to_value(value);
   m["base"] = to_string(s.medium.base);
+  if (s.medium.type == MediumType::layers) {  // every layer and the substrate: a changed stack is stale
+    json layers = json::array();
+    for (const StackLayer& l : s.medium.stack.layers)
+      layers.push_back({{"E", to_value(l.E)}, {"nu", to_value(l.nu)}, {"h", to_value(l.h)}});
+    m["layers"] = layers;
+    m["stack_base"] = to_string(s.medium.stack.base);
+    if (const auto& sub = s.medium.stack.substrate) m["substrate"] = {{"E", to_value(sub->E)}, {"nu", to_value(sub->nu)}};
+  }
   json d = json::object();
   d["profile"] = s.profile ? s.profile->describe() : std::string("none");
   d["medium"] = m;

@@ -215,6 +215,48 @@ E read_enum(const Reader& in, const std::string& text, const std::string& key) {
   in.fail(key, "= \"" + text + "\" is unknown (known: " + known_names<E>() + ")");
 }
 
+// E > 0 and nu in (-1, 0.5] of a layer or the substrate at `path`.
+void check_elastic(const Reader& in, const std::string& path, double E, double nu) {
+  if (!(E > 0.0)) in.fail(path + ".E", "= " + format_double(E) + " is invalid; valid range: > 0 [Pa]");
+  if (!(nu > -1.0 && nu <= 0.5)) in.fail(path + ".nu", "= " + format_double(nu) + " is invalid; valid range: (-1, 0.5]");
+}
+
+// {"type": "layers", "layers": [{"E", "nu", "h"}, ...], "base": "bonded" | "frictionless" | {"E", "nu"}}
+void read_stack(const Reader& in, const json& med, MediumSpec& m) {
+  in.only_keys(med, "medium", {"type", "layers", "base"});
+  if (!med.contains("layers")) in.fail("medium.layers", "is missing; give the layers top first, each {E, nu, h}");
+  const json& layers = med.at("layers");
+  if (!layers.is_array() || layers.empty())
+    in.fail("medium.layers", "must be a non-empty array of layers {E, nu, h} (top first), got " + show(layers));
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    const std::string path = "medium.layers[" + std::to_string(i) + "]";
+    if (!layers[i].is_object()) in.fail(path, "must be a JSON object {E, nu, h}, got " + show(layers[i]));
+    in.only_keys(layers[i], path, {"E", "nu", "h"});
+    StackLayer l{in.number(layers[i], "E", path), in.number(layers[i], "nu", path), in.number(layers[i], "h", path)};
+    check_elastic(in, path, l.E, l.nu);
+    if (!(l.h > 0.0)) in.fail(path + ".h", "= " + format_double(l.h) + " is invalid; valid range: > 0 [m]");
+    m.stack.layers.push_back(l);
+  }
+  if (med.contains("base")) {
+    const json& base = med.at("base");
+    if (base.is_object()) {
+      in.only_keys(base, "medium.base", {"E", "nu"});
+      const Substrate sub{in.number(base, "E", "medium.base"), in.number(base, "nu", "medium.base")};
+      check_elastic(in, "medium.base", sub.E, sub.nu);
+      m.stack.substrate = sub;
+    } else if (base.is_string()) {
+      m.stack.base = read_enum<Base>(in, base.get<std::string>(), "medium.base");
+    } else {
+      in.fail("medium.base", "must be \"bonded\", \"frictionless\" or an elastic half-space {E, nu}, got " + show(base));
+    }
+  }
+  const StackLayer& top = m.stack.layers.front();
+  m.E = top.E;
+  m.nu = top.nu;
+  m.h = top.h;
+  m.base = m.stack.substrate ? Base::bonded : m.stack.base;
+}
+
 MediumSpec read_medium(const Reader& in, const json& root) {
   const json& med = in.object(root, "medium", "medium");
   MediumSpec m;
@@ -246,6 +288,7 @@ MediumSpec read_medium(const Reader& in, const json& root) {
       m.E = in.number(med, "E", "medium");
       m.nu = in.number(med, "nu", "medium");
       break;
+    case MediumType::layers: read_stack(in, med, m); break;
   }
   return m;
 }
@@ -266,6 +309,10 @@ MediumModels models_for(MediumType t) {
               false};
     case MediumType::pasternak:
     case MediumType::filonenko_borodich: return {{SceneModel::asymptotic, SceneModel::full}, false};
+    case MediumType::layers:
+      return {{SceneModel::exact, SceneModel::leading, SceneModel::two_term, SceneModel::incompressible,
+               SceneModel::automatic},
+              false};
   }
   return {{}, false};
 }
@@ -302,11 +349,12 @@ void check_scales(const Reader& in, const Scene& s) {
   if (pl && pl->d == 1.0) return;
   const double L = s.profile->length_scale();
   const MediumSpec& m = s.medium;
-  const bool elastic = m.type == MediumType::layer || m.type == MediumType::half_space;
+  const bool elastic = m.type == MediumType::layer || m.type == MediumType::half_space || m.type == MediumType::layers;
   // An elastic modulus: E* for solids, K L for foundations (K [N/m^3]).
   const double E = elastic ? m.E / (1.0 - m.nu * m.nu) : m.K * L;
-  if (m.type == MediumType::layer && !(L / m.h >= 1e-9 && L / m.h <= 1e9))
-    in.fail("indenter", "length scale L = " + format_double(L) + " m against medium.h = " + format_double(m.h) +
+  if ((m.type == MediumType::layer || m.type == MediumType::layers) && !(L / m.h >= 1e-9 && L / m.h <= 1e9))
+    in.fail("indenter", "length scale L = " + format_double(L) + " m against " +
+                            (m.type == MediumType::layers ? "medium.layers[0].h = " : "medium.h = ") + format_double(m.h) +
                             " m is out of range: L/h = " + format_double(L / m.h) + "; valid range: [1e-9, 1e9]");
   const double omega = s.w / (E * L);
   if (s.w > 0.0 && !(omega >= 1e-30 && omega <= 1e6))
@@ -330,8 +378,9 @@ Scene parse_scene(const std::string& text, const std::string& source) {
 
   if (root.contains("solver")) {
     s.solver = read_enum<Solver>(in, in.string(root, "solver", "scene"), "solver");
-    if (s.solver == Solver::ode && s.medium.type == MediumType::half_space)
-      in.fail("solver", "= \"ode\" is available for foundation models only, not half_space");
+    if (s.solver == Solver::ode && (s.medium.type == MediumType::half_space || s.medium.type == MediumType::layers))
+      in.fail("solver", "= \"ode\" is available for foundation models only, not " +
+                            std::string(to_string(s.medium.type)));
   }
   if (root.contains("w")) {
     s.w = in.as_number(root.at("w"), "w");

@@ -1,6 +1,8 @@
 // resolve_model (scene.hpp): the one reading of a scene's medium and model.
 #include "layerjkr/scene.hpp"
 
+#include <cmath>
+
 #include "layerjkr/error.hpp"
 #include "layerjkr/exact_layer.hpp"
 
@@ -78,6 +80,55 @@ void resolve_layer(const Scene& s, ResolvedModel& r) {
   r.reference = exact_layer_spec(layer);
 }
 
+// A stack: the exact solver, or a thin-stack law on a rigid base judged against it.
+void resolve_stack(const Scene& s, ResolvedModel& r) {
+  const LayeredMedium& stack = s.medium.stack;
+  ModelSpec exact;
+  exact.kind = ModelKind::exact;
+  exact.stack = stack;
+  exact.layer = stack.top();
+  r.E_star = effective_modulus(s.medium.E, s.medium.nu);
+  if (s.model == SceneModel::exact) {
+    r.spec = exact;
+    return;
+  }
+  if (s.model == SceneModel::automatic) {  // chosen among stack_model_candidates, judged by exact
+    r.spec = exact;
+    r.automatic = true;
+    r.tolerance = s.tolerance;
+    r.reference = exact;
+    if (!stack.substrate) {
+      const ThinStackConstants c = thin_stack_constants(stack);
+      if (std::isfinite(c.K)) r.K = c.K;
+      if (stack.base == Base::bonded && std::isfinite(c.G)) r.G = c.G;
+    }
+    return;
+  }
+  if (s.model == SceneModel::incompressible) {  // the squeeze film of an incompressible stack
+    r.spec.kind = ModelKind::incompressible;
+    r.spec.layer = equivalent_incompressible_layer(stack);
+    r.reference = exact;
+    return;
+  }
+  const char* fn = "thin-stack law";
+  const ThinStackConstants c = thin_stack_constants(stack);  // throws on a half-space
+  const bool bonded = stack.base == Base::bonded;
+  if (!std::isfinite(c.K))
+    throw DomainError(fn, "eps = sum h_i (1+nu_i)(1-2nu_i)/(E_i (1-nu_i))", c.eps,
+                      "> 0; every layer is incompressible, so the stack has no Winkler spring: its thin law is "
+                      "the squeeze film, model 'incompressible'");
+  if (s.model == SceneModel::two_term && !bonded)
+    throw DomainError(fn, "base", 1.0,
+                      "bonded for model 'two_term' (a frictionless stack's k^2 term is not derived): use 'leading' "
+                      "or 'exact'");
+  r.spec.kind = s.model == SceneModel::leading ? ModelKind::winkler : ModelKind::two_term;
+  r.spec.K = c.K;
+  r.spec.G = s.model == SceneModel::leading ? 0.0 : c.G;
+  r.K = r.spec.K;
+  r.G = r.spec.G;
+  r.reference = exact;
+}
+
 ResolvedModel resolve_medium(const Scene& s) {
   ResolvedModel r;
   r.spec.ode = s.solver == Solver::ode;
@@ -91,6 +142,7 @@ ResolvedModel resolve_medium(const Scene& s) {
     case MediumType::pasternak:
     case MediumType::filonenko_borodich: resolve_foundation(s, r); break;
     case MediumType::layer: resolve_layer(s, r); break;
+    case MediumType::layers: resolve_stack(s, r); break;
   }
   return r;
 }

@@ -39,7 +39,7 @@ TEST_CASE("every registered enum spells each enumerator once and parses it back"
   check_round_trip<Base>(2);
   check_round_trip<FoundationKind>(2);
   check_round_trip<ModelKind>(8);
-  check_round_trip<MediumType>(5);
+  check_round_trip<MediumType>(6);
   check_round_trip<SceneModel>(11);
   check_round_trip<Solver>(2);
   check_round_trip<Branch>(3);

@@ -265,6 +265,18 @@ TEST_CASE("a scene file is recorded as its parsed JSON with the file's SHA-256",
   CHECK(b["file"].is_null());
   CHECK(b["note"].get<std::string>().find("built in code") != std::string::npos);
   CHECK(b["description"]["medium"]["E"] == s.medium.E);
+
+  // A stack changed in a lower layer (or its substrate) after parsing is stale too.
+  const Scene stack = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 1e-3},
+      "medium": {"type": "layers", "layers": [{"E": 3e6, "nu": 0.3, "h": 1e-4}, {"E": 3e8, "nu": 0.3, "h": 1.9e-3}],
+                 "base": {"E": 1e9, "nu": 0.25}}, "model": "exact"})");
+  CHECK_FALSE(nlohmann::json::parse(scene_json(stack))["json"].is_null());
+  Scene lower = stack;
+  lower.medium.stack.layers[1].h *= 2.0;
+  CHECK(nlohmann::json::parse(scene_json(lower))["json"].is_null());
+  Scene substrate = stack;
+  substrate.medium.stack.substrate->nu = 0.3;
+  CHECK(nlohmann::json::parse(scene_json(substrate))["json"].is_null());
 }
 
 TEST_CASE("a provenance record reads back to the same scene, options and inputs", "[provenance]") {

@@ -1,11 +1,13 @@
 // Scene JSON reader: every shape and medium, and every kind of bad input.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <string>
 
 #include "layerjkr/built_scene.hpp"
 #include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
+#include "layerjkr/model_spec.hpp"
 #include "layerjkr/scene.hpp"
 
 using namespace layerjkr;
@@ -86,6 +88,23 @@ TEST_CASE("invalid scenes name the key and the value", "[scene][errors]") {
       {scene(kPara, kLayer, R"(, "model": "two_term", "w": -0.1)"), "w = -0.10000000000000001"},
       {scene(kPara, kLayer, R"(, "model": "two_term", "w": "0.1")"), "w must be a number"},
       {scene(kPara, kLayer, R"(, "model": "two_term", "w": 1e999)"), "not valid JSON"},
+      {scene(kPara, R"({"type": "layers", "layers": []})", R"(, "model": "exact")"), "medium.layers must be a non-empty array"},
+      {scene(kPara, R"({"type": "layers"})", R"(, "model": "exact")"), "medium.layers is missing"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}, {"E": 1e6, "nu": 0.3, "h": 0}]})", R"(, "model": "exact")"), "medium.layers[1].h = 0"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.51, "h": 1e-4}]})", R"(, "model": "exact")"), "medium.layers[0].nu = 0.51"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": -1, "nu": 0.3, "h": 1e-4}]})", R"(, "model": "exact")"), "medium.layers[0].E = -1"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4, "G": 1}]})", R"(, "model": "exact")"), "medium.layers[0].G is not a known key"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3}]})", R"(, "model": "exact")"), "medium.layers[0].h is missing"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": {"E": 1e6, "nu": 0.7}})", R"(, "model": "exact")"), "medium.base.nu = 0.69999999999999996"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": {"E": 1e6}})", R"(, "model": "exact")"), "medium.base.nu is missing"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": "glued"})", R"(, "model": "exact")"), "medium.base = \"glued\""},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": 3})", R"(, "model": "exact")"), "medium.base must be"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})", R"(, "model": "uniform")"), "available: exact, leading, two_term, incompressible, auto"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": {"E": 1e6, "nu": 0.3}})", R"(, "model": "leading")"), "no thin-layer law"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}], "base": "frictionless"})", R"(, "model": "two_term")"), "bonded for model 'two_term'"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.5, "h": 1e-4}, {"E": 1e7, "nu": 0.5, "h": 1e-4}]})", R"(, "model": "leading")"), "every layer is incompressible"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.5, "h": 1e-4}, {"E": 1e7, "nu": 0.4, "h": 1e-4}]})", R"(, "model": "incompressible")"), "layers[1].nu = 0.40000000000000002"},
+      {scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.3, "h": 1e-4}]})"), "model is missing; medium 'layers' needs one of: exact, leading, two_term, incompressible, auto"},
   };
   for (const auto& c : cases) {
     INFO(c.text);
@@ -93,6 +112,76 @@ TEST_CASE("invalid scenes name the key and the value", "[scene][errors]") {
     CHECK_THROWS_WITH(parse_scene(c.text), Catch::Contains(c.expected));
   }
   CHECK_THROWS_WITH(load_scene("/nonexistent/scene.json"), Catch::Contains("cannot open"));
+}
+
+TEST_CASE("a stack of layers builds the exact solver of the stack", "[scene][stack]") {
+  const std::string stack = R"({"type": "layers", "layers": [{"E": 3e6, "nu": 0.3, "h": 1e-4},
+      {"E": 3e8, "nu": 0.3, "h": 1.9e-3}], "base": "bonded"})";
+  const Scene s = parse_scene(scene(R"({"shape": "sphere", "R": 0.01})", stack, R"(, "model": "exact")"));
+  CHECK(s.medium.type == MediumType::layers);
+  REQUIRE(s.medium.stack.layers.size() == 2);
+  CHECK(s.medium.stack.layers[1].E == 3e8);
+  CHECK_FALSE(s.medium.stack.substrate);
+  const ResolvedModel r = resolve_model(s);
+  CHECK(r.spec.kind == ModelKind::exact);
+  REQUIRE(r.spec.stack);
+  CHECK(r.spec.layer.h == 1e-4);  // the top layer
+  CHECK(*r.E_star == Approx(3e6 / 0.91).epsilon(1e-15));
+  CHECK_FALSE(r.reference);
+  // the paper's Appendix A at a* = 0.4 mm (tests/models/test_exact_stack.cpp has the FEM check)
+  CHECK(build_scene(s).model->state(0.4e-3).S == Approx(20278.274363).epsilon(1e-9));
+  const Scene h = parse_scene(scene(kPara, R"({"type": "layers", "layers": [{"E": 1e6, "nu": 0.5, "h": 1e-4}],
+      "base": {"E": 1e6, "nu": 0.5}})", R"(, "model": "exact")"));
+  REQUIRE(h.medium.stack.substrate);
+  CHECK(h.medium.stack.substrate->nu == 0.5);
+  // a layer on a half-space of its own material is Hertz
+  const double a = 1e-4, Es = 1e6 / 0.75;
+  CHECK(build_scene(h).model->state(a).P_H == Approx(4.0 * Es * a * a * a / (3.0 * 0.01)).epsilon(1e-9));
+  // the thin-stack laws: springs in series (and the k^2 term), judged against the exact stack
+  const Scene t = parse_scene(scene(R"({"shape": "sphere", "R": 0.01})", stack, R"(, "model": "two_term")"));
+  const ResolvedModel rt = resolve_model(t);
+  const ThinStackConstants c = thin_stack_constants(t.medium.stack);
+  CHECK(rt.spec.kind == ModelKind::two_term);
+  CHECK(*rt.K == c.K);
+  CHECK(*rt.G == c.G);
+  CHECK(c.K == Approx(1.0 / (1e-4 * 1.3 * 0.4 / (3e6 * 0.7) + 1.9e-3 * 1.3 * 0.4 / (3e8 * 0.7))).epsilon(1e-14));
+  REQUIRE(rt.reference);
+  CHECK(rt.reference->stack);
+  const BuiltScene bt = build_scene(t);
+  REQUIRE(bt.reference);
+  CHECK(bt.reference->state(0.4e-3).S == Approx(20278.274363).epsilon(1e-9));
+  CHECK(bt.model->state(0.4e-3).S == Approx(M_PI * c.K * 0.16e-6).epsilon(1e-12));  // 17058 N/m: -16 %
+}
+
+TEST_CASE("model auto on a stack: the thin-stack law where it is within tolerance, else exact", "[scene][stack]") {
+  // 3 um of coating on a 10 mm sphere: a >> H, Winkler's springs in series are within 2 %
+  const std::string thin = R"({"type": "layers", "layers": [{"E": 3e6, "nu": 0.3, "h": 1e-6},
+      {"E": 1e7, "nu": 0.3, "h": 2e-6}], "base": "bonded"})";
+  const Scene s = parse_scene(scene(kPara, thin, R"(, "model": "auto", "tolerance": 0.02, "w": 0.05)"));
+  const BuiltScene b = build_scene_for_summary(s);
+  REQUIRE(b.choice);
+  CHECK(b.choice->model == ModelKind::winkler);
+  CHECK(b.choice->estimated_error < 0.02);
+  // the choice's estimate against the exact stack's own pull-off
+  ModelSpec exact = *resolve_model(s).reference;
+  const double P_exact = summarize(JkrSolution(make_contact_model(s.profile, exact), 0.05)).pull_off->P;
+  const double P_chosen = summarize(JkrSolution(b.model, 0.05)).pull_off->P;
+  CHECK(std::abs(P_chosen / P_exact - 1.0) < 0.02);
+  CHECK(std::abs(P_chosen / P_exact - 1.0) == Approx(b.choice->estimated_error).epsilon(0.05));
+  // the paper's bi-layer at a/H ~ 0.1: no thin law is within 5 %
+  const std::string paper = R"({"type": "layers", "layers": [{"E": 3e6, "nu": 0.3, "h": 1e-4},
+      {"E": 3e8, "nu": 0.3, "h": 1.9e-3}]})";
+  const BuiltScene p = build_scene_for_summary(parse_scene(scene(kPara, paper, R"(, "model": "auto", "tolerance": 0.05, "w": 0.05)")));
+  CHECK(p.choice->model == ModelKind::exact);
+  // an incompressible stack (a cell on a gel): the squeeze film
+  const std::string cell = R"({"type": "layers", "layers": [{"E": 1e3, "nu": 0.5, "h": 1e-6}, {"E": 1e4, "nu": 0.5, "h": 2e-6}]})";
+  const BuiltScene c = build_scene_for_summary(parse_scene(scene(kPara, cell, R"(, "model": "auto", "tolerance": 0.1, "w": 1e-4)")));
+  CHECK(c.choice->model == ModelKind::incompressible);
+  CHECK(c.choice->estimated_error < 0.1);  // 6 % at a/H ~ 15
+  // on a half-space there is no candidate
+  const std::string hs = R"({"type": "layers", "layers": [{"E": 3e6, "nu": 0.3, "h": 1e-6}], "base": {"E": 1e7, "nu": 0.3}})";
+  CHECK(build_scene_for_summary(parse_scene(scene(kPara, hs, R"(, "model": "auto", "tolerance": 0.5, "w": 0.05)"))).choice->model ==
+        ModelKind::exact);
 }
 
 TEST_CASE("deep nesting is refused while parsing, naming the limit", "[scene][errors][limits]") {

@@ -1,0 +1,91 @@
+// What a stack of layers costs against a single layer: the one-off set-up (the stack's
+// kernel table, built once per stack and Context) and a state after it, at the same a/h1
+// (contact radius over the TOP layer's thickness), against the top layer alone on a bonded
+// rigid base. Issue 24 asks for at most 2x per state after set-up.
+//
+// How the data is made: a sphere R = 1e4 h1 (not a power law, so every state is solved, with
+// the default discretisation and without the error estimate: ExactLayerKernel::state), a
+// fresh Context per set-up (median of 3), the median of 5 states per a/h1.
+//
+// Run: build/bin/stack_cost   (~30 s; prints a markdown table)
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <vector>
+
+#include "layerjkr/exact_layer.hpp"
+#include "layerjkr/layered_medium.hpp"
+
+using namespace layerjkr;
+
+namespace {
+
+template <class F>
+double median_seconds(F f, int runs) {
+  std::vector<double> t;
+  for (int r = 0; r < runs; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+ExactLayerOptions options(const std::shared_ptr<Context>& context) {
+  ExactLayerOptions o;
+  o.context = context;
+  return o;
+}
+
+struct Case {
+  const char* name;
+  LayeredMedium medium;
+};
+
+LayeredMedium stack(std::vector<StackLayer> layers, Base base = Base::bonded) {
+  LayeredMedium m;
+  m.layers = std::move(layers);
+  m.base = base;
+  return m;
+}
+
+}  // namespace
+
+int main() {
+  LayeredMedium soft_substrate = stack({{1.0, 0.5, 1.0}, {10.0, 0.3, 2.0}});
+  soft_substrate.substrate = Substrate{0.2, 0.45};
+  LayeredMedium stiff_film = stack({{100.0, 0.3, 1.0}});
+  stiff_film.substrate = Substrate{1.0, 0.49};
+  const std::vector<Case> cases = {
+      {"Appendix A bi-layer (H = 20 h1)", stack({{3e6, 0.3, 0.1e-3}, {300e6, 0.3, 1.9e-3}})},
+      {"3 layers, frictionless (H = 3.5 h1)", stack({{1.0, 0.3, 1.0}, {20.0, 0.5, 0.5}, {0.1, 0.45, 2.0}}, Base::frictionless)},
+      {"2 layers on a soft half-space", soft_substrate},
+      {"stiff film (100x) on a half-space", stiff_film},
+  };
+  const double ratios[] = {1.0, 4.0, 20.0, 100.0};
+  std::printf("| stack | set-up [ms] | single layer set-up [ms] |");
+  for (double r : ratios) std::printf(" a/h1 = %g: stack / single [ms] |", r);
+  std::printf("\n|---|---|---|");
+  for (std::size_t i = 0; i < std::size(ratios); ++i) std::printf("---|");
+  std::printf("\n");
+  for (const Case& c : cases) {
+    const ElasticLayer top{c.medium.layers[0].E, c.medium.layers[0].nu, c.medium.layers[0].h, Base::bonded};
+    const double setup = median_seconds([&] { ExactLayerKernel k(c.medium, options(std::make_shared<Context>())); }, 3);
+    const double setup1 = median_seconds([&] { ExactLayerKernel k(top, options(std::make_shared<Context>())); }, 3);
+    std::printf("| %s | %.0f | %.0f |", c.name, 1e3 * setup, 1e3 * setup1);
+    const auto context = std::make_shared<Context>();
+    const ExactLayerKernel ks(c.medium, options(context)), k1(top, options(context));
+    const double h1 = top.h;
+    const auto sphere = make_sphere(1e4 * h1);
+    for (double r : ratios) {
+      const double a = r * h1;
+      const double ts = median_seconds([&] { (void)ks.state(*sphere, a); }, 5);
+      const double t1 = median_seconds([&] { (void)k1.state(*sphere, a); }, 5);
+      std::printf(" %.3g / %.3g = %.2fx |", 1e3 * ts, 1e3 * t1, ts / t1);
+    }
+    std::printf("\n");
+  }
+  return 0;
+}
