@@ -17,10 +17,8 @@
 namespace layerjkr {
 namespace {
 
-using detail::CurveEvaluator;
 using detail::CurveModel;
 using detail::CurveParameters;
-using detail::FitData;
 using detail::ParameterMap;
 
 bool has(const FitOptions& options, FitParameter q) {

@@ -254,15 +254,12 @@ double w_upper_bound(FitRun& run, const ParameterMap& map, double C0, double dof
       hi = have_hi ? std::min(hi, u) : u;
       have_hi = true;
     }
-    double next = u;
     // A power law through the last two finite points; near w = 0 the deviance grows like w^2.
     double n = 2.0;
     if (std::isfinite(prev_D) && std::isfinite(D) && D > 0.0 && prev_D > 0.0 && prev_w != w)
       n = std::clamp(std::log(D / prev_D) / std::log(w / prev_w), 0.25, 4.0);
-    if (std::isfinite(D) && D > 0.0)
-      next = u + std::log(target / D) / n;
-    else  // D <= 0 (holding w here is no worse than at 0): go up; a solve that failed: come down
-      next = D < target ? u + 2.0 : u - 2.0;
+    // D <= 0 (holding w here is no worse than at 0): go up; a solve that failed: come down.
+    double next = std::isfinite(D) && D > 0.0 ? u + std::log(target / D) / n : D < target ? u + 2.0 : u - 2.0;
     // The profile jumps where the model's pull-off crosses a sample: a tight bracket ends the
     // search at its upper end, the smallest w known to exceed the bound's deviance.
     if (have_lo && have_hi && hi - lo < kUpperBoundBracket) return std::exp(hi);

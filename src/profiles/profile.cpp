@@ -150,7 +150,7 @@ class Cone final : public Profile {
   double length_scale() const override { return 1e-6; }  // scale-free: any seed works
   std::optional<PowerLawForm> power_law_form() const override { return PowerLawForm{cot_, 1.0}; }
   std::string describe() const override {
-    const std::string cone = "cone(semi_angle_rad=" + format_double(alpha_) + ")";
+    std::string cone = "cone(semi_angle_rad=" + format_double(alpha_) + ")";
     if (!pyramid_) return cone;
     return "pyramid(sides=" + std::to_string(pyramid_->sides) +
            ", face_semi_angle_rad=" + format_double(pyramid_->face_semi_angle_rad) + ") as " + cone;
