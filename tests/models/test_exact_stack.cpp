@@ -4,9 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 
 #include <boost/math/differentiation/finite_difference.hpp>
@@ -17,24 +15,15 @@
 #include "layerjkr/exact_layer.hpp"
 #include "layerjkr/layered_medium.hpp"
 #include "support/test_support.hpp"
+#include "support/stack_media.hpp"
 
 using namespace layerjkr;
 using test::rel_err;
 
+using test::on_half_space;
+using test::stack;
+
 namespace {
-
-LayeredMedium stack(std::vector<StackLayer> layers, Base base = Base::bonded) {
-  LayeredMedium m;
-  m.layers = std::move(layers);
-  m.base = base;
-  return m;
-}
-
-LayeredMedium on_half_space(std::vector<StackLayer> layers, double Es, double nus) {
-  LayeredMedium m = stack(std::move(layers));
-  m.substrate = Substrate{Es, nus};
-  return m;
-}
 
 ExactLayerOptions range(double max_a_over_h, bool tables = true) {
   ExactLayerOptions o;
@@ -162,17 +151,9 @@ TEST_CASE("Stack: flat-punch factors against an independent Nystrom solve on the
       {"layer_on_stiffer_half_space", on_half_space({{1.0, 0.4, 1.0}}, 10.0, 0.3)},
       {"stiff_layer_on_soft_half_space", on_half_space({{10.0, 0.3, 1.0}}, 1.0, 0.45)},
   };
-  std::ifstream in(std::string(LAYERJKR_SOURCE_DIR) + "/data/stack/flat_punch_reference.csv");
-  REQUIRE(in);
-  std::string line;
   int rows = 0;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#' || line.rfind("case,", 0) == 0) continue;
-    std::stringstream ss(line);
-    std::string name, field;
-    std::getline(ss, name, ',');
-    std::vector<double> v;
-    while (std::getline(ss, field, ',')) v.push_back(std::stod(field));
+  for (const auto& [name, v] : test::read_reference_rows(std::string(LAYERJKR_SOURCE_DIR) +
+                                                          "/data/stack/flat_punch_reference.csv")) {
     REQUIRE(v.size() == 3);
     const ExactLayerKernel k(cases.at(name), range(10));
     const double f = k.flat_punch_factor(v[0]);

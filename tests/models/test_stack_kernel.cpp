@@ -8,30 +8,15 @@
 #include "layerjkr/layered_medium.hpp"
 #include "models/layer_kernel.hpp"
 #include "models/stack_symbol.hpp"
+#include "support/stack_media.hpp"
 
 using layerjkr::Base;
 using layerjkr::LayeredMedium;
-using layerjkr::StackLayer;
-using layerjkr::Substrate;
 using layerjkr::detail::LayerKernelFunction;
 using layerjkr::detail::StackSymbol;
 
-namespace {
-
-LayeredMedium stack(std::vector<StackLayer> layers, Base base = Base::bonded) {
-  LayeredMedium m;
-  m.layers = std::move(layers);
-  m.base = base;
-  return m;
-}
-
-LayeredMedium on_half_space(std::vector<StackLayer> layers, double Es, double nus) {
-  LayeredMedium m = stack(std::move(layers));
-  m.substrate = Substrate{Es, nus};
-  return m;
-}
-
-}  // namespace
+using test::on_half_space;
+using test::stack;
 
 TEST_CASE("One layer: the stack-built kernel equals the single layer's", "[stack][kernel]") {
   struct Case {

@@ -4,9 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -15,28 +13,18 @@
 #include "layerjkr/model.hpp"
 #include "models/layer_kernel.hpp"
 #include "models/stack_symbol.hpp"
+#include "support/stack_media.hpp"
 
 using layerjkr::Base;
 using layerjkr::LayeredMedium;
 using layerjkr::StackLayer;
-using layerjkr::Substrate;
 using layerjkr::detail::LayerKernelFunction;
 using layerjkr::detail::StackSymbol;
 
+using test::on_half_space;
+using test::stack;
+
 namespace {
-
-LayeredMedium stack(std::vector<StackLayer> layers, Base base = Base::bonded) {
-  LayeredMedium m;
-  m.layers = std::move(layers);
-  m.base = base;
-  return m;
-}
-
-LayeredMedium on_half_space(std::vector<StackLayer> layers, double Es, double nus) {
-  LayeredMedium m = stack(std::move(layers));
-  m.substrate = Substrate{Es, nus};
-  return m;
-}
 
 // The cases of tools/stack_reference.py, by name.
 std::map<std::string, LayeredMedium> reference_cases() {
@@ -66,21 +54,13 @@ double E_star(double E, double nu) { return E / (1.0 - nu * nu); }
 }  // namespace
 
 TEST_CASE("Stack symbol against the Papkovich-Neuber global solve in mpmath", "[stack]") {
-  std::ifstream in(std::string(LAYERJKR_SOURCE_DIR) + "/data/stack/symbol_reference.csv");
-  REQUIRE(in);
   const auto cases = reference_cases();
   std::map<std::string, StackSymbol> symbols;
   for (const auto& [name, medium] : cases) symbols.emplace(name, StackSymbol(medium));
-  std::string line;
   int rows = 0;
   double worst_L = 0.0, worst_q = 0.0;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#' || line.rfind("case,", 0) == 0) continue;
-    std::stringstream ss(line);
-    std::string name, field;
-    std::getline(ss, name, ',');
-    std::vector<double> v;
-    while (std::getline(ss, field, ',')) v.push_back(std::stod(field));
+  for (const auto& [name, v] : test::read_reference_rows(std::string(LAYERJKR_SOURCE_DIR) +
+                                                                    "/data/stack/symbol_reference.csv")) {
     REQUIRE(v.size() == 3);
     const auto it = symbols.find(name);
     REQUIRE(it != symbols.end());
