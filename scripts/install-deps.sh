@@ -3,7 +3,8 @@
 # and libclang-rt-14-dev for the fuzz and tidy presets).
 # libzip-dev's CMake package (libzip::zip) also imports the zipcmp, zipmerge and ziptool
 # programs and fails without them (Debian packages them separately).
-# python3-selenium, chromium and chromium-driver run the map report's test in a headless browser.
+# python3-selenium, chromium and chromium-driver run the map report's test in a headless browser
+# (fonts-liberation: with --no-install-recommends chromium would have no font to draw text with).
 # The Python module builds against Debian's /usr/bin/python3 and its packages (no PyPI needed).
 # Runs apt-get directly as root (CI, containers) and through sudo otherwise.
 set -euo pipefail
@@ -12,7 +13,7 @@ packages=(cmake ninja-build g++ libeigen3-dev libgsl-dev libboost-dev libceres-d
           clang clang-tidy libclang-rt-14-dev libzip-dev zipcmp zipmerge ziptool zlib1g-dev libssl-dev
           pybind11-dev python3-dev python3-pybind11 python3-numpy python3-pytest python3-setuptools
           python3-pip python3-matplotlib python3-dask python3-distributed
-          python3-selenium chromium chromium-driver)
+          python3-selenium chromium chromium-driver fonts-liberation)
 as_root=()
 [ "$(id -u)" -eq 0 ] || as_root=(sudo)
 missing=()
