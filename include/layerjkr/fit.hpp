@@ -194,6 +194,9 @@ struct FitSummary {
   const ParameterEstimate& operator[](FitParameter p) const;
   /// A few lines: status, estimates +- errors, rms, identifiability, warnings.
   std::string brief_report() const;
+  /// The verdict in one cell: "yes", or "no: " / "unknown: " followed by identifiability_reason
+  /// (the fit-map table's and the map report's identifiability column).
+  std::string identifiability() const;
 };
 
 /// Fits `curve` with the model of `scene`. Throws InputError for data that cannot be

@@ -48,7 +48,7 @@ std::string row(const BatchItem& it, std::size_t free) {
     const FitSummary& s = it.summary;
     csv << "," << s.model << "," << (s.converged ? 1 : 0) << "," << s.iterations << ","
         << format_double(s.rms_residual) << "," << (s.identifiable ? 1 : 0) << ","
-        << csv_cell(s.identifiable ? "yes" : (s.identifiability_known ? "no: " : "unknown: ") + s.identifiability_reason)
+        << csv_cell(s.identifiability())
         << "," << num(s.contact_point.value) << "," << num(s.contact_point.standard_error) << ","
         << s.contact_point.samples_in_range;
     for (const auto& e : s.parameters) csv << "," << num(e.value) << "," << num(e.standard_error);

@@ -72,4 +72,9 @@ std::string FitSummary::brief_report() const {
   return o.str();
 }
 
+std::string FitSummary::identifiability() const {
+  if (identifiable) return "yes";
+  return (identifiability_known ? "no: " : "unknown: ") + identifiability_reason;
+}
+
 }  // namespace layerjkr

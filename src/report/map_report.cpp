@@ -261,11 +261,8 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
     columns["iterations"].push_back(ok ? json(s.iterations) : json(nullptr));
     columns["rms_residual"].push_back(ok ? number(s.rms_residual) : json(nullptr));
     columns["identifiable"].push_back(ok ? json(s.identifiable ? 1 : 0) : json(nullptr));
-    // As fit-map's table writes them (fit_map.cpp): the verdict with its reason, the found point.
-    columns["identifiability"].push_back(
-        ok ? json(s.identifiable ? std::string("yes")
-                                 : (s.identifiability_known ? "no: " : "unknown: ") + s.identifiability_reason)
-           : json(nullptr));
+    // As fit-map's table writes them: the verdict with its reason, the found point.
+    columns["identifiability"].push_back(ok ? json(s.identifiability()) : json(nullptr));
     columns["contact_point"].push_back(ok ? number(s.contact_point.value) : json(nullptr));
     columns["contact_point_err"].push_back(ok ? number(s.contact_point.standard_error) : json(nullptr));
     columns["range_samples"].push_back(ok ? json(s.contact_point.samples_in_range) : json(nullptr));
