@@ -13,9 +13,11 @@
 
 namespace layerjkr {
 
-/// Adhesive (JKR) state at contact radius a, with the non-adhesive state it came from.
+/// Adhesive state at contact radius a, with the non-adhesive state it came from (JKR, DMT) or
+/// the contact problem's own values (Maugis-Dugdale: hertz.a = a, the rest NaN).
 struct AdhesiveState {
   double a = 0.0;      ///< contact radius [m]
+  double c = 0.0;      ///< outer radius of the adhesive zone [m]: a for JKR, > a for Maugis-Dugdale and DMT
   double P = 0.0;      ///< force [N], negative = tensile
   double delta = 0.0;  ///< approach [m]
   NonAdhesiveState hertz;    ///< the non-adhesive state at the same a

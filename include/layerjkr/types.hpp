@@ -73,6 +73,11 @@ enum class RetractControl {
 /// The baseline a fit subtracts (fit.hpp): "constant" (P0), "tilt" (P0 + slope delta).
 enum class Baseline { constant, tilt };
 
+/// How adhesion acts (maugis_dugdale.hpp, scene.hpp "adhesion"): "jkr" (at the contact edge
+/// only: the explicit transform, jkr.hpp), "dmt" (outside the contact, without deforming it),
+/// "maugis_dugdale" (a constant tensile stress sigma0 over a < r < c: the transition between them).
+enum class AdhesionModel { jkr, dmt, maugis_dugdale };
+
 /// How an approach fit finds the contact point (contact_point.hpp): "fit" (delta0 is a
 /// fitted parameter), "threshold" (baseline deviation), "rov" (ratio of variances), "gof"
 /// (goodness-of-fit scan of a power law).
@@ -115,6 +120,7 @@ LAYERJKR_REGISTERED_ENUM(RetractWindow)
 LAYERJKR_REGISTERED_ENUM(RetractControl)
 LAYERJKR_REGISTERED_ENUM(Baseline)
 LAYERJKR_REGISTERED_ENUM(ContactPointMethod)
+LAYERJKR_REGISTERED_ENUM(AdhesionModel)
 LAYERJKR_REGISTERED_ENUM(FitFamily)
 LAYERJKR_REGISTERED_ENUM(SegmentStyle)
 LAYERJKR_REGISTERED_ENUM(InstrumentFormat)

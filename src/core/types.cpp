@@ -46,6 +46,8 @@ LAYERJKR_NAMES(RetractControl, {RetractControl::automatic, "auto"}, {RetractCont
 LAYERJKR_NAMES(Baseline, {Baseline::constant, "constant"}, {Baseline::tilt, "tilt"})
 LAYERJKR_NAMES(ContactPointMethod, {ContactPointMethod::fit, "fit"}, {ContactPointMethod::threshold, "threshold"},
                {ContactPointMethod::rov, "rov"}, {ContactPointMethod::gof, "gof"})
+LAYERJKR_NAMES(AdhesionModel, {AdhesionModel::jkr, "jkr"}, {AdhesionModel::dmt, "dmt"},
+               {AdhesionModel::maugis_dugdale, "maugis_dugdale"})
 LAYERJKR_NAMES(FitFamily, {FitFamily::foundation, "foundation"}, {FitFamily::hertz, "hertz"},
                {FitFamily::tabulated, "tabulated"})
 LAYERJKR_NAMES(SegmentStyle, {SegmentStyle::extend, "extend"}, {SegmentStyle::retract, "retract"},
@@ -111,6 +113,7 @@ LAYERJKR_INSTANTIATE(RetractWindow)
 LAYERJKR_INSTANTIATE(RetractControl)
 LAYERJKR_INSTANTIATE(Baseline)
 LAYERJKR_INSTANTIATE(ContactPointMethod)
+LAYERJKR_INSTANTIATE(AdhesionModel)
 LAYERJKR_INSTANTIATE(FitFamily)
 LAYERJKR_INSTANTIATE(SegmentStyle)
 LAYERJKR_INSTANTIATE(InstrumentFormat)

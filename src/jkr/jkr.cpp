@@ -16,7 +16,7 @@ void require_w(const char* fn, double w) { detail::require_non_negative(fn, "w",
 
 AdhesiveState jkr_transform(const NonAdhesiveState& h, double w) {
   require_w("jkr_transform", w);
-  AdhesiveState s{h.a, h.P_H, h.delta_H, h};
+  AdhesiveState s{h.a, h.a, h.P_H, h.delta_H, h};
   if (w == 0.0) return s;
   if (!(h.S > 0.0) || !std::isfinite(h.S)) throw DomainError("jkr_transform", "S", h.S, "> 0");
   if (!(h.dS_da > 0.0) || !std::isfinite(h.dS_da))
@@ -40,6 +40,7 @@ AdhesiveState explicit_two_term(const char* fn, const Profile& p, double K, doub
   const double g_force = G == 0.0 ? 0.0 : (G * a / K) * (d.df - a * d.d2f);
   AdhesiveState s;
   s.a = a;
+  s.c = a;
   s.hertz = {a, kPi * K * (bracket + g_force), d.f - g_delta, kPi * K * a * a, 2.0 * kPi * K * a};
   s.delta = d.f - g_delta - root;
   s.P = kPi * K * (bracket + g_force - a * a * root);
