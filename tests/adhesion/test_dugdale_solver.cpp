@@ -1,0 +1,287 @@
+// Maugis-Dugdale and DMT for any profile on the half-space, layers and stacks
+// (adhesion/dugdale_solver): against Maugis' published half-space equations and against the
+// three limits - a thick layer is a half-space, lambda -> infinity is the JKR transform of the
+// exact layer, lambda -> 0 is DMT.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <boost/math/constants/constants.hpp>
+#include <boost/math/tools/roots.hpp>
+
+#include "adhesion/dugdale_solver.hpp"
+#include "layerjkr/error.hpp"
+#include "layerjkr/exact_layer.hpp"
+#include "layerjkr/jkr.hpp"
+#include "support/stack_media.hpp"
+#include "support/test_support.hpp"
+
+using namespace layerjkr;
+using detail::DugdaleSolver;
+using test::rel_err;
+
+namespace {
+
+constexpr double kPi = boost::math::constants::pi<double>();
+
+// Maugis 1992 (J. Colloid Interface Sci. 150, 243), eqs. for a paraboloid, in his units
+// K = 4 E*/3, A = a / (pi w R^2/K)^(1/3), Pbar = P/(pi w R), Delta = delta/(pi^2 w^2 R/K^2)^(1/3),
+// lambda = 2 sigma0 (R/(pi w K^2))^(1/3), m = c/a:
+//   lambda A^2/2 [sqrt(m^2-1) + (m^2-2) acos(1/m)] + 4 lambda^2 A/3 [sqrt(m^2-1) acos(1/m) - m + 1] = 1
+//   Pbar = A^3 - lambda A^2 [sqrt(m^2-1) + m^2 acos(1/m)],  Delta = A^2 - (4/3) A lambda sqrt(m^2-1).
+// A = 0 is the limit m -> inf with C = m A: lambda pi C^2/4 + 4 lambda^2 C (pi/2 - 1)/3 = 1,
+// Pbar = -lambda pi C^2/2, Delta = -(4/3) lambda C. Written here independently of the library.
+struct MaugisPoint {
+  double P_bar, Delta, C;  // C = c in units of (pi w R^2/K)^(1/3)
+};
+
+MaugisPoint maugis_1992(double lambda, double A) {
+  std::uintmax_t it = 200;
+  const auto tol = boost::math::tools::eps_tolerance<double>(50);
+  if (A == 0.0) {
+    auto f = [&](double C) { return lambda * kPi * C * C / 4.0 + 4.0 * lambda * lambda * C * (kPi / 2 - 1) / 3.0 - 1.0; };
+    const auto r = boost::math::tools::toms748_solve(f, 0.0, 1e3 / std::sqrt(lambda) + 1e3, tol, it);
+    const double C = 0.5 * (r.first + r.second);
+    return {-lambda * kPi * C * C / 2.0, -4.0 / 3.0 * lambda * C, C};
+  }
+  auto f = [&](double m) {
+    const double s = std::sqrt(m * m - 1.0), ac = std::acos(1.0 / m);
+    return lambda * A * A / 2.0 * (s + (m * m - 2.0) * ac) + 4.0 * lambda * lambda * A / 3.0 * (s * ac - m + 1.0) - 1.0;
+  };
+  double hi = 2.0;
+  while (f(hi) < 0.0) hi *= 2.0;
+  const auto r = boost::math::tools::toms748_solve(f, 1.0, hi, tol, it);
+  const double m = 0.5 * (r.first + r.second), s = std::sqrt(m * m - 1.0), ac = std::acos(1.0 / m);
+  return {A * A * A - lambda * A * A * (s + m * m * ac), A * A - 4.0 / 3.0 * A * lambda * s, m * A};
+}
+
+// A sphere of R = 10 um, E* = 1 MPa, w = 50 mJ/m^2 and the Maugis units.
+struct Case {
+  double R = 1e-5, E_star = 1e6, w = 0.05;
+  double K() const { return 4.0 * E_star / 3.0; }
+  double length() const { return std::cbrt(kPi * w * R * R / K()); }
+  double approach() const { return std::cbrt(kPi * kPi * w * w * R / (K() * K())); }
+  double sigma0(double lambda) const { return lambda / 2.0 * std::cbrt(kPi * w * K() * K() / R); }
+};
+
+std::shared_ptr<const ExactLayerKernel> layer_kernel(double E, double nu, double h, Base base = Base::bonded) {
+  ElasticLayer layer{E, nu, h, base};
+  return std::make_shared<const ExactLayerKernel>(layer);
+}
+
+}  // namespace
+
+TEST_CASE("half-space Maugis-Dugdale reproduces Maugis 1992 for a paraboloid", "[dugdale]") {
+  const Case k;
+  const DugdaleSolver solver(make_paraboloid(k.R), k.E_star);
+  for (double lambda : {0.1, 1.0, 10.0})
+    for (double A : {0.0, 0.3, 1.0, 2.0}) {
+      const MaugisPoint ref = maugis_1992(lambda, A);
+      const AdhesiveState s = solver.maugis_dugdale(A * k.length(), k.w, k.sigma0(lambda));
+      const double P_bar = s.P / (kPi * k.w * k.R), Delta = s.delta / k.approach();
+      INFO("lambda = " << lambda << ", A = " << A << ": P " << P_bar << " vs " << ref.P_bar << ", Delta " << Delta
+                       << " vs " << ref.Delta << ", c " << s.c / k.length() << " vs " << ref.C);
+      CHECK(std::abs(P_bar - ref.P_bar) < 1e-10 * (1.0 + std::abs(ref.P_bar)));
+      CHECK(std::abs(Delta - ref.Delta) < 1e-10 * (1.0 + std::abs(ref.Delta)));
+      CHECK(rel_err(s.c / k.length(), ref.C) < 1e-10);
+    }
+}
+
+TEST_CASE("a thick layer's Maugis-Dugdale state tends to the half-space's", "[dugdale]") {
+  // At fixed a the layer differs from the half-space, to first order in a/h, only by the
+  // rigid shift of the approach that the kernel's constant part Ft(0) brings:
+  // delta_layer = delta_half - Ft(0) P / (pi E* h). P agrees to O((a/h)^3) (measured: 1.7e-8 at
+  // a/h = 2.3e-3, 1.7e-5 at 2.3e-2); the shifted delta to O((a/h)^2).
+  const Case k;
+  const DugdaleSolver half(make_paraboloid(k.R), k.E_star);
+  for (double h : {1e-3, 1e-4}) {
+    const auto kernel = layer_kernel(k.E_star * (1 - 0.09), 0.3, h);
+    const DugdaleSolver layer(make_paraboloid(k.R), kernel);
+    const double a = 1.0 * k.length(), eps = a / h;  // 2.3e-3, 2.3e-2
+    for (double lambda : {0.3, 3.0}) {
+      const AdhesiveState s = layer.maugis_dugdale(a, k.w, k.sigma0(lambda));
+      const AdhesiveState r = half.maugis_dugdale(a, k.w, k.sigma0(lambda));
+      const double shifted = r.delta - kernel->kernel(0.0) * r.P / (kPi * k.E_star * h);
+      INFO("a/h = " << eps << ", lambda = " << lambda << ": P " << rel_err(s.P, r.P) << ", delta "
+                    << rel_err(s.delta, r.delta) << ", shifted delta " << rel_err(s.delta, shifted));
+      CHECK(rel_err(s.P, r.P) < 2.0 * eps * eps * eps);
+      CHECK(rel_err(s.c, r.c) < 2.0 * eps * eps * eps);
+      CHECK(rel_err(s.delta, r.delta) < 6.0 * eps);
+      CHECK(rel_err(s.delta, shifted) < 2.0 * eps * eps);
+    }
+  }
+}
+
+namespace {
+
+// sigma0 for Maugis' lambda (the half-space definition with the top layer's E*), R = 100 um.
+struct LayerCase {
+  double R = 1e-4, E_star = 1e6, w = 0.05, h = 1e-6;
+  double sigma0(double lambda) const {
+    const double K = 4.0 * E_star / 3.0;
+    return lambda / 2.0 * std::cbrt(kPi * w * K * K / R);
+  }
+};
+
+// lambda -> infinity at fixed a: the process zone c - a shrinks like lambda^-2 and so does the
+// distance to JKR (measured: the relative P error falls 100x a decade, 1.9e-5 .. 4.4e-6 at
+// lambda = 1000 over a/h = 0.5..10).
+void check_jkr_limit(const DugdaleSolver& md, const ContactModel& model, double a, const LayerCase& k) {
+  const AdhesiveState jkr = jkr_transform(model.state(a), k.w);
+  const AdhesiveState s100 = md.maugis_dugdale(a, k.w, k.sigma0(100.0));
+  const AdhesiveState s1000 = md.maugis_dugdale(a, k.w, k.sigma0(1000.0));
+  const double e100 = rel_err(s100.P, jkr.P), e1000 = rel_err(s1000.P, jkr.P);
+  INFO("a = " << a << ": P error " << e100 << " at lambda 100, " << e1000 << " at 1000; delta error "
+              << rel_err(s1000.delta, jkr.delta));
+  CHECK(e1000 < 3e-5);
+  CHECK(rel_err(s1000.delta, jkr.delta) < 3e-6);
+  CHECK(e100 / e1000 > 60.0);  // lambda^-2: 100
+  CHECK(e100 / e1000 < 160.0);
+  CHECK(s1000.c > a);
+}
+
+}  // namespace
+
+TEST_CASE("lambda to infinity on a layer gives the exact layer's JKR transform", "[dugdale]") {
+  const LayerCase k;
+  for (double nu : {0.45, 0.5})
+    for (double a_over_h : {0.5, 2.0, 10.0}) {
+      ElasticLayer layer{k.E_star * (1 - nu * nu), nu, k.h, Base::bonded};
+      const auto profile = make_paraboloid(k.R);
+      const DugdaleSolver md(profile, std::make_shared<const ExactLayerKernel>(layer));
+      check_jkr_limit(md, *make_exact_layer(profile, layer), a_over_h * k.h, k);
+    }
+}
+
+TEST_CASE("lambda to infinity on a stack gives the stack's JKR transform", "[dugdale]") {
+  const LayerCase k;
+  // A soft film on a stiffer one, bonded to a half-space: two layers and a substrate.
+  const LayeredMedium medium = test::on_half_space({{k.E_star * 0.75, 0.5, k.h}, {20e6, 0.3, 2 * k.h}}, 5e6, 0.4);
+  const auto profile = make_paraboloid(k.R);
+  const DugdaleSolver md(profile, std::make_shared<const ExactLayerKernel>(medium));
+  const auto model = make_exact_layer(profile, medium);
+  for (double a_over_h : {0.5, 2.0}) check_jkr_limit(md, *model, a_over_h * k.h, k);
+}
+
+TEST_CASE("lambda to zero on a layer gives DMT on the same layer", "[dugdale]") {
+  // The tension's own deformation, the one thing DMT leaves out, falls linearly with lambda
+  // (measured: |P_MD - P_DMT| / |P_DMT - P_H| = 7.0e-3 at a/h = 10, 2.8e-4 at a/h = 2 and 1.8e-5 at
+  // a/h = 0.5, lambda 0.01, ten times more at lambda 0.1).
+  const LayerCase k;
+  for (double nu : {0.45, 0.5})
+    for (double a_over_h : {0.5, 2.0, 10.0}) {
+      ElasticLayer layer{k.E_star * (1 - nu * nu), nu, k.h, Base::bonded};
+      const DugdaleSolver md(make_paraboloid(k.R), std::make_shared<const ExactLayerKernel>(layer));
+      const double a = a_over_h * k.h;
+      double P_gap[2], delta_gap[2], adhesion = 0.0;
+      int i = 0;
+      for (double lambda : {0.1, 0.01}) {
+        const AdhesiveState s = md.maugis_dugdale(a, k.w, k.sigma0(lambda));
+        const AdhesiveState d = md.dmt(a, k.w, k.sigma0(lambda));
+        CHECK(d.delta == d.hertz.delta_H);
+        CHECK(d.c > a);
+        P_gap[i] = std::abs(s.P - d.P);
+        delta_gap[i] = std::abs(s.delta - d.delta);
+        adhesion = std::abs(d.P - d.hertz.P_H);
+        ++i;
+      }
+      INFO("nu " << nu << ", a/h " << a_over_h << ": |dP| " << P_gap[0] << " -> " << P_gap[1] << " of "
+                 << adhesion << ", |d delta| " << delta_gap[0] << " -> " << delta_gap[1]);
+      CHECK(P_gap[1] < 0.01 * adhesion);
+      // (nu = 0.45, a/h = 0.5: the linear term nearly vanishes; 1.6e-5 of the adhesion remains.)
+      CHECK((P_gap[1] < 3e-5 * adhesion || P_gap[0] / P_gap[1] > 7.0));
+      CHECK((delta_gap[1] < 1e-9 * k.h || delta_gap[0] / delta_gap[1] > 7.0));
+    }
+}
+
+TEST_CASE("half-space DMT with a Dugdale law tends to P_H - 2 pi w R, and its gap is Johnson's", "[dugdale]") {
+  const double R = 1e-5, E_star = 1e6, w = 0.05, a = 1e-6;
+  const DugdaleSolver solver(make_paraboloid(R), E_star);
+  // The Hertz gap outside the contact (Johnson, Contact Mechanics, eq. 3.42 rearranged):
+  //   gap(r) = [a sqrt(r^2 - a^2) + (r^2 - 2 a^2) acos(a/r)] / (pi R).
+  for (double r : {1.0001 * a, 1.5 * a, 3.0 * a, 30.0 * a}) {
+    const double ref = (a * std::sqrt(r * r - a * a) + (r * r - 2 * a * a) * std::acos(a / r)) / (kPi * R);
+    CHECK(std::abs(solver.non_adhesive_gap(a, r) - ref) < 1e-13 * r * r / R);
+  }
+  // sigma0 pi (c^2 - a^2) -> 2 pi w R with an error sigma0 pi a^2 (c^2 = 2R(h0 + delta_H) + O(a^3/c)).
+  for (double sigma0 : {1e2, 1e1, 1e0}) {
+    const AdhesiveState d = solver.dmt(a, w, sigma0);
+    const double ref = d.hertz.P_H - 2 * kPi * w * R;
+    INFO("sigma0 = " << sigma0 << ": " << d.P << " vs " << ref);
+    CHECK(std::abs(d.P - ref) < 1.5 * sigma0 * kPi * a * a);
+    CHECK(rel_err(d.hertz.P_H, 4 * E_star * a * a * a / (3 * R)) < 1e-13);
+  }
+  // a = 0: the undeformed profile's gap, f(c) = h0 exactly.
+  const AdhesiveState d0 = solver.dmt(0.0, w, 1e3);
+  CHECK(rel_err(d0.c * d0.c / (2 * R), w / 1e3) < 1e-10);
+  CHECK(rel_err(d0.P, -kPi * 1e3 * d0.c * d0.c) < 1e-14);
+}
+
+TEST_CASE("layer Maugis-Dugdale: the gap closes at c, grows from zero at a, and the grid converges", "[dugdale]") {
+  const LayerCase k;
+  ElasticLayer layer{0.75e6, 0.5, k.h, Base::bonded};
+  const auto profile = make_paraboloid(k.R);
+  const double a = 2.0 * k.h, sigma0 = k.sigma0(1.0), h0 = k.w / sigma0;
+  std::vector<AdhesiveState> by_nodes;
+  for (int p : {8, 12, 16, 24}) {
+    ExactLayerOptions o;
+    o.points_per_panel = p;
+    const DugdaleSolver md(profile, std::make_shared<const ExactLayerKernel>(layer, o));
+    by_nodes.push_back(md.maugis_dugdale(a, k.w, sigma0));
+  }
+  const AdhesiveState& best = by_nodes.back();
+  const double d8 = rel_err(by_nodes[0].P, best.P), d12 = rel_err(by_nodes[1].P, best.P),
+               d16 = rel_err(by_nodes[2].P, best.P);
+  INFO("P against 24 nodes: " << d8 << " (8), " << d12 << " (12), " << d16 << " (16)");
+  CHECK(d16 < 1e-9);
+  CHECK(d12 <= d8);
+  CHECK(rel_err(by_nodes[2].delta, best.delta) < 1e-9);
+
+  const DugdaleSolver md(profile, std::make_shared<const ExactLayerKernel>(layer));
+  const detail::DugdaleEstimate e = md.maugis_dugdale_estimate(a, k.w, sigma0);
+  CHECK(e.P_error < 1e-7 * std::abs(e.state.P));
+  CHECK(std::abs(e.state.P - by_nodes[2].P) <= e.P_error + 1e-15 * std::abs(best.P));
+  const double c = e.state.c;
+  std::vector<double> radii{a};
+  for (int j = 1; j <= 12; ++j) radii.push_back(a + (3.0 * c - a) * j / 12.0);
+  radii.push_back(c);
+  const std::vector<double> gap = md.maugis_dugdale_gap(a, k.w, sigma0, radii);
+  CHECK(gap.front() == 0.0);
+  CHECK(rel_err(gap.back(), h0) < 1e-9);
+  for (std::size_t j = 1; j + 1 < gap.size(); ++j) CHECK(gap[j] > gap[j - 1]);
+}
+
+TEST_CASE("Dugdale solver: the adhesive disc alone (a = 0) on a layer", "[dugdale]") {
+  const LayerCase k;
+  ElasticLayer layer{0.75e6, 0.5, k.h, Base::bonded};
+  const auto profile = make_paraboloid(k.R);
+  const DugdaleSolver md(profile, std::make_shared<const ExactLayerKernel>(layer));
+  const double sigma0 = k.sigma0(1.0);
+  const AdhesiveState s0 = md.maugis_dugdale(0.0, k.w, sigma0);
+  CHECK(s0.P < 0.0);
+  CHECK(rel_err(s0.P, -kPi * sigma0 * s0.c * s0.c) < 1e-14);
+  // The a -> 0 limit of the contact states.
+  const AdhesiveState s1 = md.maugis_dugdale(1e-6 * k.h, k.w, sigma0);
+  CHECK(rel_err(s1.P, s0.P) < 1e-5);
+  CHECK(rel_err(s1.delta, s0.delta) < 1e-5);
+}
+
+TEST_CASE("Dugdale solver: bad inputs name the parameter", "[dugdale]") {
+  const DugdaleSolver half(make_sphere(1e-6), 1e9);
+  CHECK_THROWS_AS(half.maugis_dugdale(-1e-9, 0.05, 1e8), DomainError);
+  CHECK_THROWS_AS(half.maugis_dugdale(1e-7, 0.0, 1e8), DomainError);
+  CHECK_THROWS_AS(half.maugis_dugdale(1e-7, 0.05, std::nan("")), DomainError);
+  CHECK_THROWS_AS(half.dmt(2e-6, 0.05, 1e8), DomainError);  // a beyond the sphere
+  CHECK_THROWS_AS(half.non_adhesive_gap(1e-7, 0.5e-7), DomainError);
+  CHECK_THROWS_AS(DugdaleSolver(make_paraboloid(1.0), -1.0), DomainError);
+  // h0 = w / sigma0 = 1 mm: the zone would leave the 1 um sphere.
+  try {
+    half.maugis_dugdale(1e-7, 0.05, 50.0);
+    FAIL("no DomainError");
+  } catch (const DomainError& e) {
+    CHECK(e.parameter() == "sigma0");
+  }
+}
