@@ -69,6 +69,13 @@ class DugdaleSolver {
   std::vector<double> maugis_dugdale_gap(double a, double w, double sigma0,
                                          const std::vector<double>& radii) const;
 
+  /// Contact pressure [Pa] (positive = compressive) at radii r >= 0 [m] in the
+  /// Maugis-Dugdale state: -sigma0 on [a, c), 0 beyond; on [0, a) Copson's
+  /// -int_r^a g'(t)/sqrt(t^2 - r^2) dt with g' from the Nystrom interpolant, plus g_D's part
+  /// in closed form, -(sigma0/pi) acos((2a^2 - c^2 - r^2)/(c^2 - r^2)). Continuous at a.
+  std::vector<double> maugis_dugdale_pressure(double a, double w, double sigma0,
+                                              const std::vector<double>& radii) const;
+
   double effective_modulus() const { return E_star_; }
 
  private:

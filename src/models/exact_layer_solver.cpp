@@ -148,7 +148,15 @@ void detail::fill_symmetric_matrix(const ExactLayerKernel& k, const Grid& g, Eig
 
 double detail::profile_term(const Profile& profile, double x) { return x * profile.sneddon(x).I0; }
 
+Eigen::VectorXd detail::edge_row(const ExactLayerKernel& k, const Grid& g, double rho, Eigen::Index n) {
+  Eigen::VectorXd row(n);
+  for (Eigen::Index j = 0; j < n; ++j)
+    row(j) = (1.0 / kPi) * g.sqrt_w(j) * (k.kernel(rho - g.t(j)) + k.kernel(rho + g.t(j)));
+  return row;
+}
+
 namespace {
+using detail::edge_row;
 using detail::fill_symmetric_matrix;
 using detail::profile_term;
 
@@ -161,18 +169,6 @@ Eigen::MatrixXd right_hand_sides(const Profile& profile, double h, const Eigen::
   }
   return rhs;
 }
-
-}  // namespace
-
-Eigen::VectorXd detail::edge_row(const ExactLayerKernel& k, const Grid& g, double rho, Eigen::Index n) {
-  Eigen::VectorXd row(n);
-  for (Eigen::Index j = 0; j < n; ++j)
-    row(j) = (1.0 / kPi) * g.sqrt_w(j) * (k.kernel(rho - g.t(j)) + k.kernel(rho + g.t(j)));
-  return row;
-}
-
-namespace {
-using detail::edge_row;
 
 using Moments = detail::ExactMoments;
 using detail::exact_state_from;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <boost/math/constants/constants.hpp>
+#include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/tools/roots.hpp>
 
 #include "adhesion/dugdale_solver.hpp"
@@ -283,5 +284,52 @@ TEST_CASE("Dugdale solver: bad inputs name the parameter", "[dugdale]") {
     FAIL("no DomainError");
   } catch (const DomainError& e) {
     CHECK(e.parameter() == "sigma0");
+  }
+}
+
+namespace {
+
+// 2 pi int_0^c r p(r) dr from the pressure: r = a sin(phi) on [0, a] smooths p's square-root
+// approach to -sigma0 at a; the zone adds -sigma0 pi (c^2 - a^2).
+double integrated_load(const DugdaleSolver& md, double a, double w, double sigma0, double c) {
+  using rule = boost::math::quadrature::gauss<double, 40>;
+  std::vector<double> radii, weights;
+  for (std::size_t i = 0; i < rule::abscissa().size(); ++i)
+    for (double sign : {-1.0, 1.0}) {
+      if (rule::abscissa()[i] == 0.0 && sign < 0) continue;  // a centre node once
+      const double phi = kPi / 4 * (1.0 + sign * rule::abscissa()[i]);
+      radii.push_back(a * std::sin(phi));
+      weights.push_back(kPi / 4 * rule::weights()[i] * a * std::cos(phi));
+    }
+  const std::vector<double> p = md.maugis_dugdale_pressure(a, w, sigma0, radii);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) sum += 2 * kPi * radii[i] * p[i] * weights[i];
+  return sum - sigma0 * kPi * (c - a) * (c + a);
+}
+
+}  // namespace
+
+TEST_CASE("Dugdale solver: the pressure integrates to P and is continuous at a", "[dugdale]") {
+  const LayerCase k;
+  const auto profile = make_paraboloid(k.R);
+  const Case hk;
+  ElasticLayer layer{0.75e6, 0.5, k.h, Base::bonded};
+  const DugdaleSolver on_layer(profile, std::make_shared<const ExactLayerKernel>(layer));
+  const DugdaleSolver half(make_paraboloid(hk.R), hk.E_star);
+  struct Run {
+    const DugdaleSolver* md;
+    double a, w, sigma0;
+  };
+  for (const Run& run : {Run{&on_layer, 2.0 * k.h, k.w, k.sigma0(1.0)}, Run{&on_layer, 0.5 * k.h, k.w, k.sigma0(0.3)},
+                         Run{&half, hk.length(), hk.w, hk.sigma0(1.0)}}) {
+    const AdhesiveState s = run.md->maugis_dugdale(run.a, run.w, run.sigma0);
+    const double load = integrated_load(*run.md, run.a, run.w, run.sigma0, s.c);
+    INFO("a = " << run.a << ": P " << s.P << ", integrated " << load);
+    CHECK(std::abs(load - s.P) < 1e-10 * run.sigma0 * kPi * s.c * s.c);
+    const std::vector<double> edge = run.md->maugis_dugdale_pressure(run.a, run.w, run.sigma0,
+                                                                     {run.a * (1 - 1e-8), run.a, 2 * s.c});
+    CHECK(std::abs(edge[0] + run.sigma0) < 1e-3 * run.sigma0);
+    CHECK(edge[1] == -run.sigma0);
+    CHECK(edge[2] == 0.0);
   }
 }
