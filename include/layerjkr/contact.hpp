@@ -1,7 +1,8 @@
 // layerjkr: the adhesive contact solution of one scene - curves, critical points,
 // and inverse lookups.
 //
-// Data flow: ContactModel (non-adhesive state at a) -> jkr_transform -> JkrSolution.
+// Data flow: ContactModel (non-adhesive state at a) -> adhesive law (adhesion.hpp: JKR's
+// transform, DMT, Maugis-Dugdale) -> AdhesiveSolution.
 // Everything is computed on demand: a curve costs one model evaluation per radius;
 // critical points cost a log-grid scan plus a bracketed refinement, once per solution (see
 // JkrSolution).
@@ -17,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "layerjkr/adhesion.hpp"
 #include "layerjkr/jkr.hpp"
 #include "layerjkr/model.hpp"
 
@@ -46,7 +48,8 @@ namespace detail {
 struct JkrCriticalPoints;
 }
 
-/// The adhesive solution of one model and work of adhesion. The critical points (zero-load
+/// The adhesive solution of one adhesive law (a model, its work of adhesion and how adhesion
+/// acts; JkrSolution is its name for JKR). The critical points (zero-load
 /// radius, pull-off, fixed-grips point) are searched once, on first use, and kept: later
 /// calls of zero_load_radius(), pull_off(), fixed_grips_critical() and of the lookups that
 /// start from them (contact_radius_at_force, contact_radius_at_delta, force_at_delta,
@@ -56,10 +59,13 @@ struct JkrCriticalPoints;
 /// Thread safety: a JkrSolution (and its copies) may be used from several threads at once,
 /// if its model's state() may (every model in this library); concurrent first requests for a
 /// critical point run its search once, the others wait for it.
-class JkrSolution {
+class AdhesiveSolution {
  public:
-  /// w [J/m^2] >= 0. Throws DomainError for invalid w or options.
-  JkrSolution(ContactModelPtr model, double w, JkrOptions options = {});
+  /// JKR on `model`: w [J/m^2] >= 0. Throws DomainError for invalid w or options.
+  AdhesiveSolution(ContactModelPtr model, double w, JkrOptions options = {});
+  /// Any adhesive law (adhesion.hpp). Where the law has a state at a = 0 (DMT,
+  /// Maugis-Dugdale), load-controlled pull-off may sit there.
+  explicit AdhesiveSolution(AdhesiveLawPtr law, JkrOptions options = {});
 
   /// Adhesive state at contact radius a [m].
   AdhesiveState at(double a) const;
@@ -90,6 +96,7 @@ class JkrSolution {
 
   double w() const { return w_; }
   const ContactModel& model() const { return *model_; }
+  const AdhesiveLaw& law() const { return *law_; }
 
  private:
   double upper_radius() const;
@@ -101,15 +108,20 @@ class JkrSolution {
   std::optional<CriticalPoint> search_pull_off() const;
   std::optional<CriticalPoint> search_fixed_grips_critical() const;
 
-  ContactModelPtr model_;
+  AdhesiveLawPtr law_;
+  ContactModelPtr model_;  // law_->contact()
   double w_;
   JkrOptions options_;
   std::shared_ptr<detail::JkrCriticalPoints> critical_;  // found once, shared by copies
 };
 
+/// The name the JKR solution had before other adhesive laws: JkrSolution(model, w) is JKR.
+using JkrSolution = AdhesiveSolution;
+
 /// Summary of a scene's adhesive behaviour.
 struct ContactSummary {
   std::string model;
+  AdhesionModel adhesion = AdhesionModel::jkr;
   double w = 0.0;
   std::optional<double> zero_load_radius;
   std::optional<CriticalPoint> pull_off;
@@ -118,6 +130,6 @@ struct ContactSummary {
   std::string brief_report() const;
 };
 
-ContactSummary summarize(const JkrSolution& solution);
+ContactSummary summarize(const AdhesiveSolution& solution);
 
 }  // namespace layerjkr

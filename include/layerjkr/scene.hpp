@@ -20,6 +20,10 @@
 //                 squeeze film) | auto (needs "tolerance")
 // solver:         closed_form (default) | ode  (foundation models only)
 // w:              work of adhesion [J/m^2], >= 0 (absent = 0)
+// adhesion:       {"model": jkr (default) | dmt | maugis_dugdale, "sigma0": Dugdale stress [Pa] > 0
+//                 | "z0": Lennard-Jones spacing [m] > 0} (adhesion.hpp). maugis_dugdale needs sigma0
+//                 or z0; dmt without them is the classical P_H - 2 pi w R (a tip with a radius).
+//                 JKR answers are checked against Maugis-Dugdale with sigma0, z0 or z0 = 0.3 nm.
 // All values SI. Unknown keys, wrong types and invalid values throw InputError
 // naming the key and the value; nothing is ignored.
 #pragma once
@@ -28,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "layerjkr/adhesion.hpp"
 #include "layerjkr/layered_medium.hpp"
 #include "layerjkr/model_spec.hpp"
 #include "layerjkr/profile.hpp"
@@ -60,6 +65,7 @@ struct Scene {
   SceneModel model = SceneModel::winkler;  ///< the scene's model, or the medium's default
   Solver solver = Solver::closed_form;
   double w = 0.0;                     ///< [J/m^2]
+  AdhesionSpec adhesion;              ///< how adhesion acts (default JKR) and its Dugdale stress
   double tolerance = 0.0;             ///< relative error target of model "auto", in (0, 1)
   SceneOrigin origin;                 ///< the JSON and file it was read from (empty: built in code)
 };

@@ -55,24 +55,26 @@ void JkrOptions::validate() const {
     throw DomainError(fn, "max_bracket_steps", max_bracket_steps, ">= 10");
 }
 
-JkrSolution::JkrSolution(ContactModelPtr model, double w, JkrOptions options)
-    : model_(std::move(model)), w_(w), options_(options),
-      critical_(std::make_shared<detail::JkrCriticalPoints>()) {
-  if (!model_) throw Error("layerjkr::JkrSolution: the model is null");
-  detail::require_non_negative("JkrSolution", "w", w);
+AdhesiveSolution::AdhesiveSolution(ContactModelPtr model, double w, JkrOptions options)
+    : AdhesiveSolution(model ? make_jkr_law(std::move(model), w)
+                             : throw Error("layerjkr::JkrSolution: the model is null"),
+                       options) {}
+
+AdhesiveSolution::AdhesiveSolution(AdhesiveLawPtr law, JkrOptions options)
+    : law_(std::move(law)), options_(options), critical_(std::make_shared<detail::JkrCriticalPoints>()) {
+  if (!law_) throw Error("layerjkr::AdhesiveSolution: the adhesive law is null");
+  model_ = law_->contact();
+  w_ = law_->w();
   options_.validate();
 }
 
-AdhesiveState JkrSolution::at(double a) const { return jkr_transform(model_->state(a), w_); }
+AdhesiveState AdhesiveSolution::at(double a) const { return law_->at(a); }
 
-std::vector<AdhesiveState> JkrSolution::curve(const std::vector<double>& radii) const {
-  std::vector<AdhesiveState> out;
-  out.reserve(radii.size());
-  for (const NonAdhesiveState& h : model_->states(radii)) out.push_back(jkr_transform(h, w_));
-  return out;
+std::vector<AdhesiveState> AdhesiveSolution::curve(const std::vector<double>& radii) const {
+  return law_->curve(radii);
 }
 
-double JkrSolution::upper_radius() const {
+double AdhesiveSolution::upper_radius() const {
   const double m = model_->max_radius();
   if (!std::isfinite(m)) return kInf;
   // Data: the largest radius measured, less the ulp by which exp(log(m)) in the scans may pass it.
@@ -80,7 +82,7 @@ double JkrSolution::upper_radius() const {
   return model_->profile().contains(m) ? m : m * (1.0 - 1e-9);  // open bound (sphere: a < R)
 }
 
-double JkrSolution::seed_radius() const {
+double AdhesiveSolution::seed_radius() const {
   const double seed = std::min(model_->typical_radius(), 0.5 * upper_radius());
   return std::max(seed, 2.0 * model_->min_radius());
 }
@@ -90,13 +92,14 @@ double JkrSolution::seed_radius() const {
 // minimum is accepted only if it beats the lower edge by more than the rounding noise
 // of the two terms of (19); otherwise the curve is monotone there (e.g. Winkler's
 // delta(a)) and the search goes on below.
-std::optional<double> JkrSolution::minimise(bool force, double a_hi) const {
+std::optional<double> AdhesiveSolution::minimise(bool force, double a_hi) const {
   auto of = [force](const AdhesiveState& s) { return force ? s.P : s.delta; };
   auto value = [&](double x) { return of(at(std::exp(x))); };
   // Rounding noise of the two terms of (19), from a state the scan already holds.
   auto noise = [force](const AdhesiveState& s) {
-    const double terms = force ? std::abs(s.hertz.P_H) + std::abs(s.hertz.P_H - s.P)
-                               : std::abs(s.hertz.delta_H) + std::abs(s.hertz.delta_H - s.delta);
+    double terms = force ? std::abs(s.hertz.P_H) + std::abs(s.hertz.P_H - s.P)
+                         : std::abs(s.hertz.delta_H) + std::abs(s.hertz.delta_H - s.delta);
+    if (!std::isfinite(terms)) terms = std::abs(force ? s.P : s.delta);  // a law with no separate non-adhesive part
     return 64.0 * std::numeric_limits<double>::epsilon() * terms;
   };
   const int n = options_.scan_points;
@@ -149,7 +152,7 @@ std::optional<double> JkrSolution::minimise(bool force, double a_hi) const {
 
 // Smallest a above a_lo (or, for a_lo = 0, the crossing nearest the seed) where the
 // increasing quantity P(a) or delta(a) reaches target; nullopt if it cannot be bracketed.
-std::optional<double> JkrSolution::first_root(bool force, double target, double a_lo) const {
+std::optional<double> AdhesiveSolution::first_root(bool force, double target, double a_lo) const {
   auto g = [&](double a) {
     const AdhesiveState s = at(a);
     return (force ? s.P : s.delta) - target;
@@ -191,35 +194,41 @@ std::optional<double> JkrSolution::first_root(bool force, double target, double 
   return 0.5 * (r.first + r.second);
 }
 
-std::optional<double> JkrSolution::zero_load_radius() const {
+std::optional<double> AdhesiveSolution::zero_load_radius() const {
   return critical_->zero_load_radius.get([this] { return search_zero_load_radius(); });
 }
 
-std::optional<CriticalPoint> JkrSolution::pull_off() const {
+std::optional<CriticalPoint> AdhesiveSolution::pull_off() const {
   return critical_->pull_off.get([this] { return search_pull_off(); });
 }
 
-std::optional<CriticalPoint> JkrSolution::fixed_grips_critical() const {
+std::optional<CriticalPoint> AdhesiveSolution::fixed_grips_critical() const {
   return critical_->fixed_grips.get([this] { return search_fixed_grips_critical(); });
 }
 
-std::optional<double> JkrSolution::search_zero_load_radius() const {
+std::optional<double> AdhesiveSolution::search_zero_load_radius() const {
   if (w_ == 0.0) return 0.0;
   return first_root(true, 0.0, 0.0);
 }
 
-std::optional<CriticalPoint> JkrSolution::search_pull_off() const {
+std::optional<CriticalPoint> AdhesiveSolution::search_pull_off() const {
   if (w_ == 0.0) return std::nullopt;
   const std::optional<double> a0 = zero_load_radius();
   const double a_hi = a0 ? *a0 : upper_radius();
   if (!std::isfinite(a_hi)) return std::nullopt;
   const std::optional<double> a = minimise(true, a_hi);
+  // With a state at a = 0 (the adhesive zone pulling with no contact), load-controlled pull-off
+  // is the lowest force over a >= 0: it sits at a = 0 where P(a) rises from there.
+  if (law_->has_zero_radius_state()) {
+    const AdhesiveState zero = at(0.0);
+    if (!a || zero.P <= at(*a).P) return CriticalPoint{zero.a, zero.P, zero.delta};
+  }
   if (!a) return std::nullopt;
   const AdhesiveState s = at(*a);
   return CriticalPoint{s.a, s.P, s.delta};
 }
 
-std::optional<CriticalPoint> JkrSolution::search_fixed_grips_critical() const {
+std::optional<CriticalPoint> AdhesiveSolution::search_fixed_grips_critical() const {
   if (w_ == 0.0) return std::nullopt;
   // On the fixed-grips critical point dP/da = -S' sqrt(4 pi w a / S') < 0, so it lies
   // below the pull-off radius.
@@ -232,22 +241,22 @@ std::optional<CriticalPoint> JkrSolution::search_fixed_grips_critical() const {
   return CriticalPoint{s.a, s.P, s.delta};
 }
 
-double JkrSolution::contact_radius_at_force(double P) const {
-  detail::require_finite("JkrSolution::contact_radius_at_force", "P", P);
+double AdhesiveSolution::contact_radius_at_force(double P) const {
+  detail::require_finite("AdhesiveSolution::contact_radius_at_force", "P", P);
   double a_lo = 0.0;
   if (w_ == 0.0) {
     if (P < 0.0)
-      throw DomainError("JkrSolution::contact_radius_at_force", "P", P, ">= 0 for w = 0");
+      throw DomainError("AdhesiveSolution::contact_radius_at_force", "P", P, ">= 0 for w = 0");
     if (P == 0.0) return 0.0;
   } else if (const auto po = pull_off()) {
     if (P < po->P)
-      throw DomainError("JkrSolution::contact_radius_at_force", "P", P,
+      throw DomainError("AdhesiveSolution::contact_radius_at_force", "P", P,
                         ">= the pull-off force " + format_double(po->P));
     a_lo = po->a;
   }
   const std::optional<double> a = first_root(true, P, a_lo);
   if (!a)
-    throw DomainError("JkrSolution::contact_radius_at_force", "P", P,
+    throw DomainError("AdhesiveSolution::contact_radius_at_force", "P", P,
                       "forces reachable by " + model_->name() +
                           (model_->has_profile() ? " with " + model_->profile().describe() : std::string(" (data)")) +
                           " (a <= " +
@@ -255,31 +264,32 @@ double JkrSolution::contact_radius_at_force(double P) const {
   return *a;
 }
 
-double JkrSolution::contact_radius_at_delta(double delta) const {
-  detail::require_finite("JkrSolution::contact_radius_at_delta", "delta", delta);
+double AdhesiveSolution::contact_radius_at_delta(double delta) const {
+  detail::require_finite("AdhesiveSolution::contact_radius_at_delta", "delta", delta);
   double a_lo = 0.0;
   if (const auto fg = fixed_grips_critical()) {
     if (delta < fg->delta)
-      throw DomainError("JkrSolution::contact_radius_at_delta", "delta", delta,
+      throw DomainError("AdhesiveSolution::contact_radius_at_delta", "delta", delta,
                         ">= the fixed-grips critical approach " + format_double(fg->delta));
     a_lo = fg->a;
   }
   const std::optional<double> a = first_root(false, delta, a_lo);
   if (!a)
-    throw DomainError("JkrSolution::contact_radius_at_delta", "delta", delta,
+    throw DomainError("AdhesiveSolution::contact_radius_at_delta", "delta", delta,
                       "approaches reachable on the stable branch of " + model_->name());
   return *a;
 }
 
-double JkrSolution::force_at_delta(double delta) const {
+double AdhesiveSolution::force_at_delta(double delta) const {
   const double a = contact_radius_at_delta(delta);
-  if (a == 0.0) return 0.0;
+  if (a == 0.0 && !law_->has_zero_radius_state()) return 0.0;
   return at(a).P;
 }
 
-ContactSummary summarize(const JkrSolution& solution) {
+ContactSummary summarize(const AdhesiveSolution& solution) {
   ContactSummary s;
-  s.model = solution.model().name();
+  s.model = solution.law().name();
+  s.adhesion = solution.law().model();
   s.w = solution.w();
   s.zero_load_radius = solution.zero_load_radius();
   s.pull_off = solution.pull_off();
@@ -298,7 +308,7 @@ std::string ContactSummary::brief_report() const {
       out << "none\n";
   };
   out << "layerjkr contact summary: model " << model << ", w = " << format_double(w)
-      << " J/m^2\n";
+      << " J/m^2, adhesion " << to_string(adhesion) << "\n";
   out << "  zero-load contact radius: "
       << (zero_load_radius ? format_double(*zero_load_radius) + " m" : std::string("none"))
       << "\n";

@@ -223,6 +223,9 @@ json describe(const Scene& s) {
   d["solver"] = to_string(s.solver);
   d["w"] = to_value(s.w);
   d["tolerance"] = to_value(s.tolerance);
+  d["adhesion"] = {{"model", to_string(s.adhesion.model)},
+                   {"sigma0", s.adhesion.sigma0 ? to_value(*s.adhesion.sigma0) : json(nullptr)},
+                   {"z0", s.adhesion.z0 ? to_value(*s.adhesion.z0) : json(nullptr)}};
   return d;
 }
 

@@ -339,6 +339,26 @@ SceneModel read_model(const Reader& in, const json& root, MediumType medium) {
                        "' (available: " + list + ")");
 }
 
+// {"model": ..., "sigma0": ... | "z0": ...}; every value checked here, by key.
+AdhesionSpec read_adhesion(const Reader& in, const json& root) {
+  const json& obj = in.object(root, "adhesion", "adhesion");
+  in.only_keys(obj, "adhesion", {"model", "sigma0", "z0"});
+  AdhesionSpec a;
+  if (obj.contains("model")) a.model = read_enum<AdhesionModel>(in, in.string(obj, "model", "adhesion"), "adhesion.model");
+  for (const char* key : {"sigma0", "z0"}) {
+    if (!obj.contains(key)) continue;
+    const double v = in.number(obj, key, "adhesion");
+    if (!(v > 0.0))
+      in.fail(std::string("adhesion.") + key,
+              "= " + format_double(v) + " is invalid; valid range: > 0 " + (key[0] == 's' ? "[Pa]" : "[m]"));
+    (key[0] == 's' ? a.sigma0 : a.z0) = v;
+  }
+  if (a.sigma0 && a.z0) in.fail("adhesion", "gives both sigma0 and z0; give one (z0 sets sigma0 = 16 w / (9 sqrt(3) z0))");
+  if (a.model == AdhesionModel::maugis_dugdale && !a.sigma0 && !a.z0)
+    in.fail("adhesion", "model \"maugis_dugdale\" needs sigma0 [Pa] (the Dugdale stress) or z0 [m]");
+  return a;
+}
+
 // The scene's lengths and energies in dimensionless form. Outside these ranges the
 // quantities the solvers form (a^3, R^2, ratios of moments) overflow or underflow: the
 // answer would be non-finite or silently wrong (w = 1e308 found no pull-off), so the scene
@@ -369,7 +389,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   Reader in(source);
   const json root = parse_strict(text, source);
   if (!root.is_object()) in.fail("the scene", "must be a JSON object, got " + show(root));
-  in.only_keys(root, "scene", {"indenter", "medium", "model", "solver", "w", "tolerance"});
+  in.only_keys(root, "scene", {"indenter", "medium", "model", "solver", "w", "tolerance", "adhesion"});
   Scene s;
   s.profile = read_indenter(in, root);
   s.medium = read_medium(in, root);
@@ -386,6 +406,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     s.w = in.as_number(root.at("w"), "w");
     if (s.w < 0.0) in.fail("w", "= " + format_double(s.w) + " is invalid; valid range: >= 0");
   }
+  if (root.contains("adhesion")) s.adhesion = read_adhesion(in, root);
   if (s.model == SceneModel::automatic) {
     if (!root.contains("tolerance"))
       in.fail("tolerance", "is missing; model \"auto\" needs a relative error target in (0, 1)");
