@@ -147,7 +147,7 @@ TEST_CASE("Maugis-Dugdale at lambda = 1e4 is the library's JKR transform on the 
     const AdhesiveState jkr = jkr_transform(model->state(a), w);
     INFO("a = " << a << ": P = " << md.P << " (JKR " << jkr.P << ")");
     INFO("dP/(pi w R) = " << (md.P - jkr.P) / (kPi * w * R) << ", d delta / delta scale = " << (md.delta - jkr.delta) / std::abs(jkr.hertz.delta_H - jkr.delta));
-    // at fixed A the Dugdale correction is ~1.5 A^2 / lambda^2 of pi w R (docs/theory.md)
+    // at fixed A the Dugdale correction is (3/2 A^2 - 1.99 A^(1/2)) / lambda^2 of pi w R (docs/theory.md)
     const double A = a / std::cbrt(kPi * w * R * R / K);
     CHECK(std::abs(md.P - jkr.P) < 2e-8 * (1 + A * A) * kPi * w * R);
     CHECK(std::abs(md.delta - jkr.delta) < 1e-7 * std::abs(jkr.hertz.delta_H - jkr.delta));
