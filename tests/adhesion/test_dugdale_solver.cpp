@@ -11,12 +11,13 @@
 
 #include <boost/math/constants/constants.hpp>
 #include <boost/math/quadrature/gauss.hpp>
-#include <boost/math/tools/roots.hpp>
+#include <boost/math/tools/minima.hpp>
 
 #include "adhesion/dugdale_solver.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/exact_layer.hpp"
 #include "layerjkr/jkr.hpp"
+#include "layerjkr/maugis_dugdale.hpp"
 #include "support/stack_media.hpp"
 #include "support/test_support.hpp"
 
@@ -27,37 +28,6 @@ using test::rel_err;
 namespace {
 
 constexpr double kPi = boost::math::constants::pi<double>();
-
-// Maugis 1992 (J. Colloid Interface Sci. 150, 243), eqs. for a paraboloid, in his units
-// K = 4 E*/3, A = a / (pi w R^2/K)^(1/3), Pbar = P/(pi w R), Delta = delta/(pi^2 w^2 R/K^2)^(1/3),
-// lambda = 2 sigma0 (R/(pi w K^2))^(1/3), m = c/a:
-//   lambda A^2/2 [sqrt(m^2-1) + (m^2-2) acos(1/m)] + 4 lambda^2 A/3 [sqrt(m^2-1) acos(1/m) - m + 1] = 1
-//   Pbar = A^3 - lambda A^2 [sqrt(m^2-1) + m^2 acos(1/m)],  Delta = A^2 - (4/3) A lambda sqrt(m^2-1).
-// A = 0 is the limit m -> inf with C = m A: lambda pi C^2/4 + 4 lambda^2 C (pi/2 - 1)/3 = 1,
-// Pbar = -lambda pi C^2/2, Delta = -(4/3) lambda C. Written here independently of the library.
-struct MaugisPoint {
-  double P_bar, Delta, C;  // C = c in units of (pi w R^2/K)^(1/3)
-};
-
-MaugisPoint maugis_1992(double lambda, double A) {
-  std::uintmax_t it = 200;
-  const auto tol = boost::math::tools::eps_tolerance<double>(50);
-  if (A == 0.0) {
-    auto f = [&](double C) { return lambda * kPi * C * C / 4.0 + 4.0 * lambda * lambda * C * (kPi / 2 - 1) / 3.0 - 1.0; };
-    const auto r = boost::math::tools::toms748_solve(f, 0.0, 1e3 / std::sqrt(lambda) + 1e3, tol, it);
-    const double C = 0.5 * (r.first + r.second);
-    return {-lambda * kPi * C * C / 2.0, -4.0 / 3.0 * lambda * C, C};
-  }
-  auto f = [&](double m) {
-    const double s = std::sqrt(m * m - 1.0), ac = std::acos(1.0 / m);
-    return lambda * A * A / 2.0 * (s + (m * m - 2.0) * ac) + 4.0 * lambda * lambda * A / 3.0 * (s * ac - m + 1.0) - 1.0;
-  };
-  double hi = 2.0;
-  while (f(hi) < 0.0) hi *= 2.0;
-  const auto r = boost::math::tools::toms748_solve(f, 1.0, hi, tol, it);
-  const double m = 0.5 * (r.first + r.second), s = std::sqrt(m * m - 1.0), ac = std::acos(1.0 / m);
-  return {A * A * A - lambda * A * A * (s + m * m * ac), A * A - 4.0 / 3.0 * A * lambda * s, m * A};
-}
 
 // A sphere of R = 10 um, E* = 1 MPa, w = 50 mJ/m^2 and the Maugis units.
 struct Case {
@@ -75,20 +45,39 @@ std::shared_ptr<const ExactLayerKernel> layer_kernel(double E, double nu, double
 
 }  // namespace
 
+// The general-profile path (Sneddon's integrals, the gap by quadrature in theta) against the
+// closed form of maugis_dugdale.hpp (Maugis 1992's equations, checked there against a 50-digit
+// mpmath solution): two different routes to the same state.
 TEST_CASE("half-space Maugis-Dugdale reproduces Maugis 1992 for a paraboloid", "[dugdale]") {
   const Case k;
   const DugdaleSolver solver(make_paraboloid(k.R), k.E_star);
   for (double lambda : {0.1, 1.0, 10.0})
     for (double A : {0.0, 0.3, 1.0, 2.0}) {
-      const MaugisPoint ref = maugis_1992(lambda, A);
+      const MaugisPoint ref = maugis_point(lambda, A);
       const AdhesiveState s = solver.maugis_dugdale(A * k.length(), k.w, k.sigma0(lambda));
+      CHECK(rel_err(maugis_lambda(k.R, k.E_star, k.w, k.sigma0(lambda)), lambda) < 1e-14);
       const double P_bar = s.P / (kPi * k.w * k.R), Delta = s.delta / k.approach();
-      INFO("lambda = " << lambda << ", A = " << A << ": P " << P_bar << " vs " << ref.P_bar << ", Delta " << Delta
+      INFO("lambda = " << lambda << ", A = " << A << ": P " << P_bar << " vs " << ref.P << ", Delta " << Delta
                        << " vs " << ref.Delta << ", c " << s.c / k.length() << " vs " << ref.C);
-      CHECK(std::abs(P_bar - ref.P_bar) < 1e-10 * (1.0 + std::abs(ref.P_bar)));
+      CHECK(std::abs(P_bar - ref.P) < 1e-10 * (1.0 + std::abs(ref.P)));
       CHECK(std::abs(Delta - ref.Delta) < 1e-10 * (1.0 + std::abs(ref.Delta)));
       CHECK(rel_err(s.c / k.length(), ref.C) < 1e-10);
     }
+}
+
+TEST_CASE("half-space Maugis-Dugdale pull-off by the general path matches maugis_pull_off", "[dugdale]") {
+  const Case k;
+  const DugdaleSolver solver(make_paraboloid(k.R), k.E_star);
+  for (double lambda : {0.1, 1.0, 10.0}) {
+    const MaugisPoint ref = maugis_pull_off(lambda);
+    auto load = [&](double A) { return solver.maugis_dugdale(A * k.length(), k.w, k.sigma0(lambda)).P; };
+    std::uintmax_t it = 200;
+    const auto min = boost::math::tools::brent_find_minima(load, 0.5 * ref.A, 2.0 * ref.A, 40, it);
+    INFO("lambda = " << lambda << ": A " << min.first << " vs " << ref.A << ", Pbar "
+                     << min.second / (kPi * k.w * k.R) << " vs " << ref.P);
+    CHECK(rel_err(min.second / (kPi * k.w * k.R), ref.P) < 1e-10);
+    CHECK(rel_err(min.first, ref.A) < 1e-5);  // a minimum: A to sqrt of P's precision
+  }
 }
 
 TEST_CASE("a thick layer's Maugis-Dugdale state tends to the half-space's", "[dugdale]") {
