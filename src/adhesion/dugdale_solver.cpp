@@ -8,12 +8,12 @@
 
 #include <Eigen/Dense>
 #include <boost/math/constants/constants.hpp>
-#include <boost/math/differentiation/finite_difference.hpp>
 #include <boost/math/quadrature/tanh_sinh.hpp>
 #include <boost/math/tools/roots.hpp>
 
 #include "core/gsl_support.hpp"
 #include "layerjkr/error.hpp"
+#include "adhesion/dugdale_parts.hpp"
 #include "models/exact_layer_solver.hpp"
 
 namespace layerjkr::detail {
@@ -31,32 +31,6 @@ int theta_panels(const ExactLayerOptions& o, double arc_over_h, bool layer) {
 }
 
 }  // namespace
-
-// The factorised system on [0, a] and its flat-punch and profile columns.
-struct DugdaleSolver::Inner {
-  double a = 0.0, rho = 0.0;  // rho = a/h
-  int nodes = 0;              // Gauss-Legendre nodes a panel, inner and outer rules alike
-  Grid grid;                  // empty for a = 0 and for the half-space
-  Eigen::LLT<Eigen::MatrixXd> llt;
-  Eigen::MatrixXd psi;  // W^1/2 phi0, W^1/2 phi_f
-  Eigen::VectorXd row;  // the interpolant's row at rho
-  ExactMoments mo;      // int0, intf [units of h, m h], end0, endf
-  bool system() const { return grid.t.size() > 0; }
-};
-
-// One adhesive configuration: the Dugdale zone [a, c] under s0 = sigma0/E* (none for DMT's
-// non-adhesive state) and the resulting q = (pi/E*) g on the inner nodes.
-struct DugdaleSolver::Zone {
-  double c = 0.0, gamma = 0.0, s0 = 0.0;  // c [m], c/h, sigma0/E*
-  double delta = 0.0;                     // [m]
-  double intD = 0.0;                      // int_0^a phi_D dt/h [m]
-  Eigen::VectorXd psi_q;                  // W^1/2 q on the inner nodes [m]
-  Grid theta;                             // Gauss-Legendre in theta on [0, acos(a/c)]
-  Eigen::VectorXd t_out, wt_out, q_out;   // t/h, weight in t/h, q = -2 s0 sqrt(c^2 - t^2) [m]
-  double q_outer(double t_over_h, double h) const {
-    return t_over_h < gamma ? -2.0 * s0 * h * std::sqrt((gamma - t_over_h) * (gamma + t_over_h)) : 0.0;
-  }
-};
 
 DugdaleSolver::DugdaleSolver(ProfilePtr profile, std::shared_ptr<const ExactLayerKernel> kernel)
     : profile_(std::move(profile)), kernel_(std::move(kernel)) {
@@ -140,28 +114,48 @@ DugdaleSolver::Zone DugdaleSolver::zone(const Inner& in, double c, double sigma0
     z.wt_out(k) = z.theta.w(k) * z.gamma * sn;  // dt/h = (c/h) sin(theta) dtheta
     z.q_out(k) = -2.0 * z.s0 * c * sn;
   }
-  // The kernel's action on g_D: phi_D's right-hand side (1/pi) int_a^c q_D K(x, t) dt.
+  // The kernel between the [a, c] nodes and themselves and the inner nodes, each value once:
+  // phi_D's right-hand side (1/pi) int_a^c q_D K(x, t) dt and the gap at c both use them.
+  const Eigen::VectorXd wq = z.wt_out.cwiseProduct(z.q_out);
+  const Eigen::Index n = in.grid.t.size();
+  auto K = [&](double x, double t) { return kernel_->kernel(x - t) + kernel_->kernel(x + t); };
+  Eigen::VectorXd self = Eigen::VectorXd::Zero(m);
+  Eigen::MatrixXd cross(m, n);
+  if (kernel_) {
+    for (Eigen::Index k = 0; k < m; ++k) {
+      for (Eigen::Index l = 0; l < k; ++l) {
+        const double v = K(z.t_out(k), z.t_out(l));
+        self(k) += wq(l) * v;
+        self(l) += wq(k) * v;
+      }
+      self(k) += wq(k) * K(z.t_out(k), z.t_out(k));
+      for (Eigen::Index j = 0; j < n; ++j) cross(k, j) = K(z.t_out(k), in.grid.t(j));
+    }
+  }
   auto rhs_D = [&](double x) {
     double sum = 0.0;
-    for (Eigen::Index k = 0; k < m; ++k)
-      sum += z.wt_out(k) * z.q_out(k) * (kernel_->kernel(x - z.t_out(k)) + kernel_->kernel(x + z.t_out(k)));
+    for (Eigen::Index k = 0; k < m; ++k) sum += wq(k) * K(x, z.t_out(k));
     return sum / kPi;
   };
   double endD = 0.0;
   Eigen::VectorXd psiD;
   if (in.system()) {
-    const Grid& g = in.grid;
-    Eigen::VectorXd rhs(g.t.size());
-    for (Eigen::Index i = 0; i < g.t.size(); ++i) rhs(i) = g.sqrt_w(i) * rhs_D(g.t(i));
-    psiD = in.llt.solve(rhs);
+    psiD = in.llt.solve(Eigen::VectorXd(in.grid.sqrt_w.cwiseProduct(cross.transpose() * wq) / kPi));
     endD = rhs_D(in.rho) + in.row.dot(psiD);
-    z.intD = g.sqrt_w.dot(psiD);
+    z.intD = in.grid.sqrt_w.dot(psiD);
   } else if (kernel_) {
     endD = rhs_D(0.0);  // a = 0: no unknowns, the zone's own displacement at the centre
   }
   // g continuous at a: delta end0 - endf + endD = q_D(a).
   z.delta = (z.q_outer(in.rho, h_) - endD + in.mo.endf) / in.mo.end0;
   if (in.system()) z.psi_q = z.delta * in.psi.col(0) - in.psi.col(1) + psiD;
+  // The gap at c on the same theta rule: (2/pi) sum omega_k H(t_k) (see gap_at).
+  Eigen::VectorXd kernel_part = self;
+  if (in.system()) kernel_part += cross * in.grid.sqrt_w.cwiseProduct(z.psi_q);
+  double sum = 0.0;
+  for (Eigen::Index k = 0; k < m; ++k)
+    sum += z.theta.w(k) * (z.q_out(k) - kernel_part(k) / kPi - z.delta + profile_term(*profile_, h_ * z.t_out(k)));
+  z.gap_c = (2.0 / kPi) * sum;
   return z;
 }
 
@@ -169,6 +163,7 @@ DugdaleSolver::Zone DugdaleSolver::zone(const Inner& in, double c, double sigma0
 // surface term (q on the zone, minus the kernel's action on q over [0, c]), D = delta - t I0.
 double DugdaleSolver::gap_at(const Inner& in, const Zone* zp, double r) const {
   if (r <= in.a) return 0.0;
+  if (zp && r == zp->c) return zp->gap_c;
   const Zone empty{};
   const Zone& z = zp ? *zp : empty;
   const double delta = zp ? z.delta : in.mo.endf / in.mo.end0;
@@ -193,15 +188,14 @@ double DugdaleSolver::gap_at(const Inner& in, const Zone* zp, double r) const {
   // theta in [0, theta_a]: t = r cos(theta); sqrt(r^2 - t^2) dtheta-cancels the Abel kernel.
   auto integrand = [&](double theta) { return H(rho_r * std::cos(theta)); };
   const double theta_a = std::acos(in.a / r);
-  const bool smooth = !zp || r == z.c;  // q_D's square root sits at an endpoint or nowhere
-  if (smooth) {
+  if (!zp) {  // smooth: no q_D
     const Grid rule = make_grid(theta_a, theta_panels(options_, rho_r * theta_a, kernel_ != nullptr), in.nodes);
     double sum = 0.0;
     for (Eigen::Index k = 0; k < rule.t.size(); ++k) sum += rule.w(k) * integrand(rule.t(k));
     return (2.0 / kPi) * sum;
   }
   // Inside the zone or beyond it q_D(r cos theta) has a square root at theta_c = acos(c/r) (or a
-  // near one at theta = 0): tanh-sinh, split there.
+  // near one at theta = 0): tanh-sinh, split there. (At r = c, zone() has the gap on its rule.)
   static thread_local boost::math::quadrature::tanh_sinh<double> rule;
   const double tol = 1e-12;
   if (r < z.c) return (2.0 / kPi) * rule.integrate(integrand, 0.0, theta_a, tol);
@@ -250,8 +244,7 @@ AdhesiveState DugdaleSolver::solve_md(double a, double w, double sigma0, int nod
   const Inner in = inner(a, nodes);
   const double h0 = w / sigma0;
   const double c = find_c(a, h0, "DugdaleSolver::maugis_dugdale", sigma0, [&](double cc) {
-    const Zone z = zone(in, cc, sigma0);
-    return gap_at(in, &z, cc);
+    return zone(in, cc, sigma0).gap_c;
   });
   const Zone z = zone(in, c, sigma0);
   AdhesiveState s;
@@ -342,57 +335,6 @@ std::vector<double> DugdaleSolver::maugis_dugdale_gap(double a, double w, double
   std::vector<double> out;
   out.reserve(radii.size());
   for (double r : radii) out.push_back(gap_at(in, &z, r));
-  return out;
-}
-
-std::vector<double> DugdaleSolver::maugis_dugdale_pressure(double a, double w, double sigma0,
-                                                           const std::vector<double>& radii) const {
-  const char* fn = "DugdaleSolver::maugis_dugdale_pressure";
-  check(fn, a, w, sigma0);
-  for (double r : radii)
-    if (!std::isfinite(r) || r < 0.0) throw DomainError(fn, "r", r, "finite and >= 0");
-  const AdhesiveState s = solve_md(a, w, sigma0, fine_nodes(options_));
-  const Inner in = inner(a, fine_nodes(options_));
-  const Zone z = zone(in, s.c, sigma0);
-  const double c = s.c;
-  // q'(t) [1] on [0, a]: -(t I0)' (6th-order differences in ln t) plus the kernel's action on q.
-  auto q_slope = [&](double t) {
-    auto term = [&](double x) { return profile_term(*profile_, std::exp(x)); };
-    double slope = -boost::math::differentiation::finite_difference_derivative<decltype(term), double, 6>(
-                       term, std::log(t)) / t;
-    if (kernel_) {
-      const double x = t / h_;
-      double sum = 0.0;
-      for (Eigen::Index j = 0; j < in.grid.t.size(); ++j)
-        sum += in.grid.sqrt_w(j) * z.psi_q(j) *
-               (kernel_->kernel_derivative(x - in.grid.t(j)) + kernel_->kernel_derivative(x + in.grid.t(j)));
-      for (Eigen::Index k = 0; k < z.t_out.size(); ++k)
-        sum += z.wt_out(k) * z.q_out(k) *
-               (kernel_->kernel_derivative(x - z.t_out(k)) + kernel_->kernel_derivative(x + z.t_out(k)));
-      slope += sum / (kPi * h_);
-    }
-    return slope;
-  };
-  static thread_local boost::math::quadrature::tanh_sinh<double> rule;
-  std::vector<double> out;
-  out.reserve(radii.size());
-  for (double r : radii) {
-    if (r >= a) {
-      out.push_back(r < c ? -sigma0 : 0.0);
-      continue;
-    }
-    // t^2 = r^2 + s^2 removes the inverse square root; q' is odd, so q'(t)/t is regular at 0
-    // (below t = 1e-3 a its value there is used, as ExactLayerKernel::pressure does).
-    const double smax = std::sqrt((a - r) * (a + r));
-    const double inner_part = rule.integrate(
-        [&](double u) {
-          const double t = std::max(std::sqrt(r * r + u * u * smax * smax), 1e-3 * a);
-          return q_slope(t) / t * smax;
-        },
-        0.0, 1.0, 1e-10);
-    const double zone_part = std::acos(std::max(-1.0, (2 * a * a - c * c - r * r) / ((c - r) * (c + r))));
-    out.push_back(-(E_star_ / kPi) * inner_part - (sigma0 / kPi) * zone_part);
-  }
   return out;
 }
 
