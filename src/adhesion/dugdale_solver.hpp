@@ -83,7 +83,7 @@ class DugdaleSolver {
   struct Zone;
   Inner inner(double a, int nodes) const;
   Zone zone(const Inner& in, double c, double sigma0) const;
-  double gap_at(const Inner& in, const Zone* zone, double r) const;
+  double gap_at(const Inner& in, const Zone* zp, double r) const;  // zp null: non-adhesive
   AdhesiveState solve_md(double a, double w, double sigma0, int nodes) const;
   AdhesiveState solve_dmt(double a, double w, double sigma0, int nodes) const;
   double find_c(double a, double h0, const char* function, double sigma0,
