@@ -315,6 +315,12 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("G", &SummaryAnswer::G)
       .def_readonly("g_is_tension", &SummaryAnswer::g_is_tension)
       .def_readonly("E_star", &SummaryAnswer::E_star)
+      .def_property_readonly("adhesion_model", [](const SummaryAnswer& s) { return std::string(to_string(s.contact.adhesion)); })
+      .def_property_readonly("adhesion", [](const SummaryAnswer& s) -> py::object {
+        if (!s.adhesion) return py::none();
+        const AdhesionCheck& c = *s.adhesion;
+        return py::make_tuple(c.lambda, c.sigma0, c.sigma0_assumed, c.pull_off_error, c.basis);
+      })
       .def_readonly("choice", &SummaryAnswer::choice)
       .def_readonly("warnings", &SummaryAnswer::warnings)
       .def_readonly("seconds", &SummaryAnswer::seconds);
