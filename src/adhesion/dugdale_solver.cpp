@@ -55,7 +55,7 @@ void DugdaleSolver::check(const char* function, double a, double w, double sigma
     else
       profile_->require_contact_radius(function, a);
   }
-  require_positive(function, "w", w);
+  require_non_negative(function, "w", w);
   require_positive(function, "sigma0", sigma0);
 }
 
@@ -240,8 +240,23 @@ double DugdaleSolver::find_c(double a, double h0, const char* function, double s
   return 0.5 * (root.first + root.second);
 }
 
+namespace {
+
+// w = 0: no adhesive zone (c = a), the non-adhesive state for either law.
+AdhesiveState non_adhesive(const ExactMoments& mo, double a, double h, double E_star) {
+  AdhesiveState s;
+  s.a = s.c = a;
+  s.hertz = exact_state_from(mo, a, h, E_star);
+  s.P = s.hertz.P_H;
+  s.delta = s.hertz.delta_H;
+  return s;
+}
+
+}  // namespace
+
 AdhesiveState DugdaleSolver::solve_md(double a, double w, double sigma0, int nodes) const {
   const Inner in = inner(a, nodes);
+  if (w == 0.0) return non_adhesive(in.mo, a, h_, E_star_);
   const double h0 = w / sigma0;
   const double c = find_c(a, h0, "DugdaleSolver::maugis_dugdale", sigma0, [&](double cc) {
     return zone(in, cc, sigma0).gap_c;
@@ -263,6 +278,7 @@ AdhesiveState DugdaleSolver::solve_md(double a, double w, double sigma0, int nod
 
 AdhesiveState DugdaleSolver::solve_dmt(double a, double w, double sigma0, int nodes) const {
   const Inner in = inner(a, nodes);
+  if (w == 0.0) return non_adhesive(in.mo, a, h_, E_star_);
   const double h0 = w / sigma0;
   const double c = find_c(a, h0, "DugdaleSolver::dmt", sigma0, [&](double cc) { return gap_at(in, nullptr, cc); });
   AdhesiveState s;

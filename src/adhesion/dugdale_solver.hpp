@@ -50,8 +50,9 @@ class DugdaleSolver {
   DugdaleSolver(ProfilePtr profile, double E_star);
 
   /// Maugis-Dugdale state at contact radius a [m] (>= 0; 0 is the adhesive disc alone, the
-  /// surfaces touching at r = 0) for work of adhesion w [J/m^2] (> 0) and cohesive stress
-  /// sigma0 [Pa] (> 0). hertz carries a and NaN otherwise. Throws DomainError for bad
+  /// surfaces touching at r = 0) for work of adhesion w [J/m^2] (>= 0) and cohesive stress
+  /// sigma0 [Pa] (> 0). hertz carries a and NaN otherwise; w = 0 gives the non-adhesive
+  /// state (c = a, hertz filled), as dmt() does. Throws DomainError for bad
   /// inputs and when the zone would pass the profile's max_radius or max_a_over_h.
   AdhesiveState maugis_dugdale(double a, double w, double sigma0) const;
   DugdaleEstimate maugis_dugdale_estimate(double a, double w, double sigma0) const;

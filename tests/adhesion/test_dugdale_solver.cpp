@@ -271,10 +271,26 @@ TEST_CASE("Dugdale solver: the adhesive disc alone (a = 0) on a layer", "[dugdal
   CHECK(rel_err(s1.delta, s0.delta) < 1e-5);
 }
 
+TEST_CASE("Dugdale solver: w = 0 is the non-adhesive state", "[dugdale]") {
+  const LayerCase k;
+  const ElasticLayer layer{0.75e6, 0.45, k.h, Base::bonded};
+  const auto kernel = std::make_shared<const ExactLayerKernel>(layer);
+  const auto profile = make_paraboloid(k.R);
+  const DugdaleSolver md(profile, kernel);
+  for (double a : {0.0, 0.5 * k.h, 3.0 * k.h}) {
+    const NonAdhesiveState ref = a > 0 ? kernel->state(*profile, a) : NonAdhesiveState{};
+    for (const AdhesiveState& s : {md.maugis_dugdale(a, 0.0, 1e3), md.dmt(a, 0.0, 1e3)}) {
+      CHECK(s.c == a);
+      CHECK(std::abs(s.P - ref.P_H) <= 1e-13 * std::abs(ref.P_H));
+      CHECK(std::abs(s.delta - ref.delta_H) <= 1e-13 * std::abs(ref.delta_H));
+    }
+  }
+}
+
 TEST_CASE("Dugdale solver: bad inputs name the parameter", "[dugdale]") {
   const DugdaleSolver half(make_sphere(1e-6), 1e9);
   CHECK_THROWS_AS(half.maugis_dugdale(-1e-9, 0.05, 1e8), DomainError);
-  CHECK_THROWS_AS(half.maugis_dugdale(1e-7, 0.0, 1e8), DomainError);
+  CHECK_THROWS_AS(half.maugis_dugdale(1e-7, -0.05, 1e8), DomainError);
   CHECK_THROWS_AS(half.maugis_dugdale(1e-7, 0.05, std::nan("")), DomainError);
   CHECK_THROWS_AS(half.dmt(2e-6, 0.05, 1e8), DomainError);  // a beyond the sphere
   CHECK_THROWS_AS(half.non_adhesive_gap(1e-7, 0.5e-7), DomainError);
