@@ -30,9 +30,10 @@ struct AdhesionCheck {
   /// Estimated |P_model / P_MD - 1| of the load-controlled pull-off force against
   /// Maugis-Dugdale with the same w and sigma0; 0 for a Maugis-Dugdale answer.
   double pull_off_error = 0.0;
-  /// How the error was found: "closed form" (a paraboloid on a half-space: Maugis 1992) or
-  /// "half-space estimate" (Maugis' pull-off at the contact's lambda; its accuracy on layers
-  /// is measured in docs/models.md, "Adhesion map").
+  /// How the error was found: "closed form" (a paraboloid on a half-space: Maugis 1992),
+  /// "solved on the medium" (Maugis-Dugdale's pull-off by the Dugdale solver), or "half-space
+  /// estimate" (Maugis' pull-off at the contact's lambda: exact on a half-space, an upper
+  /// bound on the layers measured in docs/models.md, "Adhesion map").
   std::string basis;
   /// One line, e.g. "lambda = 0.856 (sigma0 = 1.71e+08 Pa, from z0 = 0.3 nm assumed; set
   /// adhesion.sigma0 or adhesion.z0), pull-off force estimated 7.59 % off Maugis-Dugdale
@@ -45,11 +46,22 @@ struct AdhesionCheck {
 /// a paraboloid R on a half-space to rounding.
 double contact_lambda(const NonAdhesiveState& at_jkr_pull_off, double w, double sigma0);
 
-/// The check of adhesion model `model` on a contact, from the contact's JKR solution `jkr`
-/// (its law must be JKR: lambda comes from its pull-off, which is searched here unless found
-/// already) with the Dugdale stress of `adhesion` (AdhesionSpec::dugdale_stress). nullopt for
-/// w = 0 or without a JKR pull-off (a profile too small to pull off).
-std::optional<AdhesionCheck> check_adhesion(const AdhesiveSolution& jkr, AdhesionModel model,
-                                            const AdhesionSpec& adhesion);
+/// The pull-off error above which check_adhesion solves Maugis-Dugdale on the medium instead
+/// of trusting the half-space estimate: 1 %. Below it the estimate stands, because it is an
+/// upper bound wherever it was measured on layers (docs/models.md, "Adhesion map").
+inline constexpr double kAdhesionSolveAbove = 0.01;
+
+/// The check of `answer`'s adhesion model on its contact, from the contact's JKR solution
+/// `jkr` (its law must be JKR: lambda comes from its pull-off; `answer` may be `jkr` itself),
+/// with the Dugdale stress of `adhesion` (AdhesionSpec::dugdale_stress).
+///
+/// The error: for a paraboloid on a half-space, Maugis' closed form. Otherwise the half-space
+/// estimate at the contact's lambda, and where that exceeds kAdhesionSolveAbove and `medium`
+/// is given (the spec `jkr`'s model was built from, when that model solves its medium
+/// exactly: model_spec.hpp kinds half_space and exact), Maugis-Dugdale's pull-off solved on
+/// the medium (a Dugdale solve per radius of a pull-off search: ~0.5 s on a layer,
+/// docs/benchmarks.md). nullopt for w = 0 or without a JKR pull-off.
+std::optional<AdhesionCheck> check_adhesion(const AdhesiveSolution& jkr, const AdhesiveSolution& answer,
+                                            const AdhesionSpec& adhesion, const ModelSpec* medium = nullptr);
 
 }  // namespace layerjkr

@@ -229,7 +229,7 @@ class ModelError(NamedTuple):
     """The reference model's name, or "none"."""
 
 
-_CURVE_ROWS = ("a", "P", "delta", "P_H", "delta_H", "S", "dS_da", "error_estimate")
+_CURVE_ROWS = ("a", "P", "delta", "P_H", "delta_H", "S", "dS_da", "error_estimate", "c")
 
 
 class Curve:
@@ -290,6 +290,12 @@ class Curve:
     def error_est(self) -> npt.NDArray[np.float64]:
         """Alias of :attr:`error_estimate` (the CLI's column name)."""
         return self._block[7]
+
+    @property
+    def c(self) -> npt.NDArray[np.float64]:
+        """Outer radius of the adhesive zone [m]: a for JKR, beyond it for Maugis-Dugdale
+        (the Dugdale zone's edge) and DMT (inf for the classical limit)."""
+        return self._block[8]
 
     @property
     def warnings(self) -> List[str]:

@@ -77,8 +77,8 @@ class SummaryAnswer:
 
 def curve(scene: Scene, a: npt.ArrayLike, warning_threshold: float
           ) -> Tuple[npt.NDArray[np.float64], List[str], str, str, Optional[AutoChoice], float]:
-    """(block, warnings, model, reference, choice, seconds); block is (8, n): a, P, delta, P_H,
-    delta_H, S, dS_da, error_estimate."""
+    """(block, warnings, model, reference, choice, seconds); block is (9, n): a, P, delta, P_H,
+    delta_H, S, dS_da, error_estimate, c."""
 
 def summary(scene: Scene, warning_threshold: float) -> SummaryAnswer: ...
 

@@ -41,8 +41,8 @@ double contact_lambda(const NonAdhesiveState& h, double w, double sigma0) {
   return kappa() * delta_a * sigma0 / w;
 }
 
-std::optional<AdhesionCheck> check_adhesion(const AdhesiveSolution& jkr, AdhesionModel model,
-                                            const AdhesionSpec& adhesion) {
+std::optional<AdhesionCheck> check_adhesion(const AdhesiveSolution& jkr, const AdhesiveSolution& answer,
+                                            const AdhesionSpec& adhesion, const ModelSpec* medium) {
   if (jkr.law().model() != AdhesionModel::jkr)
     throw Error("layerjkr::check_adhesion: needs the contact's JKR solution, got a " +
                 std::string(to_string(jkr.law().model())) + " one");
@@ -51,17 +51,26 @@ std::optional<AdhesionCheck> check_adhesion(const AdhesiveSolution& jkr, Adhesio
   const std::optional<CriticalPoint> jkr_pull_off = jkr.pull_off();
   if (!jkr_pull_off || !(jkr_pull_off->a > 0.0)) return std::nullopt;
   AdhesionCheck c;
-  c.model = model;
+  c.model = answer.law().model();
   c.sigma0 = adhesion.dugdale_stress(w);
   c.sigma0_assumed = adhesion.stress_assumed();
   c.lambda = contact_lambda(jkr.model().state(jkr_pull_off->a), w, c.sigma0);
   const ContactModel& contact = jkr.model();
   const bool closed_form = contact.name() == "half_space" && contact.has_profile() && contact.profile().is_paraboloid();
   c.basis = closed_form ? "closed form" : "half-space estimate";
-  if (model != AdhesionModel::maugis_dugdale) {
-    const double md = maugis_pull_off_force(c.lambda);
-    c.pull_off_error = std::abs(limit_pull_off(model) / md - 1.0);
-  }
+  if (c.model == AdhesionModel::maugis_dugdale) return c;
+  c.pull_off_error = std::abs(limit_pull_off(c.model) / maugis_pull_off_force(c.lambda) - 1.0);
+  const bool solvable = medium && (medium->kind == ModelKind::half_space || medium->kind == ModelKind::exact);
+  if (closed_form || !solvable || c.pull_off_error <= kAdhesionSolveAbove) return c;
+  AdhesionSpec md;
+  md.model = AdhesionModel::maugis_dugdale;
+  md.sigma0 = c.sigma0;
+  const std::optional<CriticalPoint> md_pull_off =
+      AdhesiveSolution(make_adhesive_law(jkr.law().contact(), *medium, w, md)).pull_off();
+  const std::optional<CriticalPoint> own = answer.pull_off();
+  if (!md_pull_off || !own) return c;
+  c.pull_off_error = std::abs(own->P / md_pull_off->P - 1.0);
+  c.basis = "solved on the medium";
   return c;
 }
 

@@ -64,9 +64,13 @@ AdhesiveSolution jkr_solution(const BuiltScene& built, const AdhesiveSolution& s
 
 // The adhesion check, and its warning when the answer's adhesion model is off Maugis-Dugdale
 // by more than the threshold.
-std::optional<AdhesionCheck> checked_adhesion(const Scene& scene, const AdhesiveSolution& jkr,
-                                              const AnswerOptions& options, std::vector<std::string>* warnings) {
-  std::optional<AdhesionCheck> c = check_adhesion(jkr, scene.adhesion.model, scene.adhesion);
+std::optional<AdhesionCheck> checked_adhesion(const Scene& scene, const BuiltScene& built, const AdhesiveSolution& jkr,
+                                              const AdhesiveSolution& answer, const AnswerOptions& options,
+                                              std::vector<std::string>* warnings) {
+  // Maugis-Dugdale is solved on the medium only where the scene's model solves it exactly: a
+  // thin-layer law's answer would mix its own model error into the adhesion check's.
+  const ModelSpec* medium = built.reference || built.choice ? nullptr : &built.resolved.spec;
+  std::optional<AdhesionCheck> c = check_adhesion(jkr, answer, scene.adhesion, medium);
   if (!c) return c;
   require_not_nan("adhesion check's lambda", c->lambda);
   require_not_nan("adhesion check's pull-off error", c->pull_off_error);
@@ -108,7 +112,7 @@ SummaryAnswer solve_summary(const Scene& scene, const AnswerOptions& options) {
     s.warnings.push_back("model '" + s.contact.model + "' is estimated " + percent(s.error.pull_off_force) +
                          " off its reference model '" + s.error.reference + "' in the pull-off force and " +
                          percent(s.error.zero_load_radius) + " in the zero-load radius");
-  s.adhesion = checked_adhesion(scene, jkr, options, &s.warnings);
+  s.adhesion = checked_adhesion(scene, built, jkr, solution, options, &s.warnings);
   require_finite(s.contact);
   require_not_nan("pull-off force error estimate", s.error.pull_off_force);
   require_not_nan("zero-load radius error estimate", s.error.zero_load_radius);
@@ -135,7 +139,7 @@ CurveAnswer solve_curve(const Scene& scene, const std::vector<double>& radii, co
   c.reference = estimator.reference_name();
   c.choice = built.choice;
   c.warnings = std::move(built.resolved.warnings);
-  c.adhesion = checked_adhesion(scene, jkr_solution(built, solution), options, &c.warnings);
+  c.adhesion = checked_adhesion(scene, built, jkr_solution(built, solution), solution, options, &c.warnings);
   double worst = 0.0, worst_a = 0.0;
   for (std::size_t i = 0; i < c.states.size(); ++i) {
     const std::string at = " at a = " + format_double(c.states[i].a) + " m";

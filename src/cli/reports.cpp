@@ -143,12 +143,12 @@ json summary_json(const SummaryAnswer& a) {
 }
 
 std::string curve_csv(const CurveAnswer& c) {
-  std::string out = "a,P,delta,P_H,delta_H,S,error_est\n";
+  std::string out = "a,P,delta,P_H,delta_H,S,error_est,c\n";
   for (std::size_t i = 0; i < c.states.size(); ++i) {
     const AdhesiveState& s = c.states[i];
     out += format_double(s.a) + "," + format_double(s.P) + "," + format_double(s.delta) + "," +
            format_double(s.hertz.P_H) + "," + format_double(s.hertz.delta_H) + "," + format_double(s.hertz.S) + "," +
-           format_double(c.error_estimate[i]) + "\n";
+           format_double(c.error_estimate[i]) + "," + format_double(s.c) + "\n";
   }
   return out;
 }

@@ -31,7 +31,7 @@ TEST_CASE("curve --at prints the CSV contract at full precision", "[cli]") {
   REQUIRE(r.code == 0);
   const auto rows = lines(r.out);
   REQUIRE(rows.size() == 3);
-  CHECK(rows[0] == "a,P,delta,P_H,delta_H,S,error_est");
+  CHECK(rows[0] == "a,P,delta,P_H,delta_H,S,error_est,c");
   // Values round-trip: parse and compare with the library.
   const layerjkr::Scene s = layerjkr::load_scene(kScene);
   const layerjkr::BuiltScene built = layerjkr::build_scene(s);
