@@ -16,24 +16,10 @@
 
 #include "adhesion/dugdale_solver.hpp"
 #include "layerjkr/exact_layer.hpp"
+#include "median_time.hpp"
 
 using namespace layerjkr;
-
-namespace {
-
-template <class F>
-double median_seconds(F f, int runs) {
-  std::vector<double> t;
-  for (int r = 0; r < runs; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
-
-}  // namespace
+using layerjkr::bench::median_seconds;
 
 int main() {
   const double h = 1e-6, R = 100 * h, E_star = 1e6, w = 0.05, pi = std::acos(-1.0);
