@@ -32,7 +32,8 @@ std::string short_number(double x) {
 
 }  // namespace
 
-double contact_lambda(const NonAdhesiveState& h, double w, double sigma0) {
+double contact_lambda(const NonAdhesiveState& at_jkr_pull_off, double w, double sigma0) {
+  const NonAdhesiveState& h = at_jkr_pull_off;
   detail::require_positive("contact_lambda", "w", w);
   detail::require_positive("contact_lambda", "sigma0", sigma0);
   detail::require_positive("contact_lambda", "a", h.a);
