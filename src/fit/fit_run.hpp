@@ -41,6 +41,8 @@ class FitRun {
   /// The cost with w held at xw and the other parameters refitted from the current solution;
   /// the run's state is unchanged. NaN if that solve is not usable.
   double cost_with_w_held(double xw);
+  /// The same for any free parameter q held at its internal coordinate xq.
+  double cost_with_held(FitParameter q, double xq);
   /// The slot of x held fixed (w at its bound), or -1.
   int held_slot() const { return held_; }
 

@@ -23,6 +23,7 @@ namespace {
 
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kPi = 3.141592653589793238462643383279502884;
 
 // w ends "at its bound" when its dimensionless sqrt(w) coordinate is below this.
 constexpr double kAtBound = 1e-9;
@@ -274,6 +275,49 @@ double w_upper_bound(FitRun& run, const ParameterMap& map, double C0, double dof
   return kNaN;
 }
 
+// Maugis' lambda at which a free sigma0 is held to ask whether the data exclude JKR (large) or
+// DMT (small): within the closed form's range [1e-4, 1e4] with room for the refit to move E and w,
+// and close to the limits (pull-off within 1e-7 of JKR's, 3e-5 of DMT's).
+constexpr double kJkrLimitLambda = 1e3;
+constexpr double kDmtLimitLambda = 1e-3;
+
+// A free sigma0 with an error bar is identifiable only if the data exclude both limits it lies
+// between: holding it where the contact is JKR (or DMT), with the other parameters refitted, must
+// raise the deviance beyond the one-sided 95 % point (as w's upper bound). Otherwise the error bar
+// is a local curvature of a cost that stays flat out to the limit, and sigma0 has only a bound.
+void check_sigma0_limits(FitRun& run, CurveEvaluator& ev, const ParameterMap& map, const std::vector<double>& x,
+                         std::size_t residuals, FitSummary* out) {
+  if (!map.is_free(FitParameter::sigma0)) return;
+  ParameterEstimate* e = nullptr;
+  for (auto& p : out->parameters)
+    if (p.parameter == FitParameter::sigma0) e = &p;
+  if (!e || !e->identifiable) return;
+  const double C = run.final_cost();
+  const double dof = static_cast<double>(residuals - map.free.size());
+  if (!(C > kNoiselessCost * dof)) return;  // noiseless data: the curvature is the whole story
+  CurveParameters<double> p;
+  double d0 = 0.0, P0 = 0.0;
+  map.physical(x.data(), &p, &d0, &P0);
+  const double E_star = p.E / ((1.0 - map.fixed.nu) * (1.0 + map.fixed.nu));
+  const double lambda = 2.0 * p.sigma0 * std::cbrt(p.R / (kPi * p.s * p.s * (16.0 / 9.0) * E_star * E_star));
+  const double x_sigma0 = x[static_cast<std::size_t>(map.index(FitParameter::sigma0))];
+  for (const auto& [limit, name] : {std::pair{kJkrLimitLambda, "JKR"}, std::pair{kDmtLimitLambda, "DMT"}}) {
+    const double held = run.cost_with_held(FitParameter::sigma0, x_sigma0 + std::log(limit / lambda));
+    const double deviance = std::isfinite(held) ? (held - C) * dof / C : kNaN;
+    if (std::isfinite(deviance) && deviance < kUpperBoundDeviance) {
+      out->unidentifiable.push_back(std::string("sigma0 from the ") + name + " limit (holding it at lambda = " +
+                                    short_number(limit) + " and refitting the others raises the deviance by " +
+                                    short_number(deviance) + ", below the one-sided 95 % point " +
+                                    short_number(kUpperBoundDeviance) + ")");
+      e->identifiable = false;
+      e->standard_error = kNaN;
+      e->reason = "not separable: " + out->unidentifiable.back();
+      break;
+    }
+  }
+  if (!ev.evaluate(x.data(), true)) throw NumericalError("fit: the model cannot be evaluated at the solution");
+}
+
 // Summary-level verdict from the parameters'.
 void conclude(FitSummary* out) {
   out->identifiable = std::all_of(out->parameters.begin(), out->parameters.end(),
@@ -344,6 +388,7 @@ void assess_uncertainty(FitRun& run, CurveEvaluator& ev, const ParameterMap& map
     }
   }
   if (at_zero && !held) assess_once(run, ev, map, x, options, residuals, out);
+  check_sigma0_limits(run, ev, map, x, residuals, out);
   conclude(out);
 }
 
