@@ -14,6 +14,7 @@
 #include "layerjkr/instrument.hpp"
 #include "layerjkr/jkr.hpp"
 #include "layerjkr/map_report.hpp"
+#include "layerjkr/maugis_dugdale.hpp"
 #include "layerjkr/model.hpp"
 #include "layerjkr/model_choice.hpp"
 #include "layerjkr/model_error.hpp"
