@@ -8,10 +8,15 @@
 // which shares no code path with the fit's Jet derivatives or its radius search.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <random>
+#include <sstream>
 #include <utility>
+
+#include <nlohmann/json.hpp>
 
 #include <boost/math/constants/constants.hpp>
 
@@ -20,6 +25,7 @@
 #include "layerjkr/fit.hpp"
 #include "layerjkr/maugis_dugdale.hpp"
 #include "layerjkr/model.hpp"
+#include "support/cli_support.hpp"
 #include "support/test_support.hpp"
 
 using namespace layerjkr;
@@ -257,4 +263,43 @@ TEST_CASE("Maugis-Dugdale with a spacing z0: sigma0 follows w in the fit", "[fit
   CHECK(s.converged);
   CHECK(rel_err(s[FitParameter::E].value, kE) < 1e-6);
   CHECK(rel_err(s[FitParameter::w].value, kW) < 1e-6);
+}
+
+TEST_CASE("CLI: fit --free E,w,sigma0 on a Maugis-Dugdale scene, and bad combinations exit 2 with one line",
+          "[fit][adhesion][cli]") {
+  namespace cli = test::cli;
+  const double lambda = 1.0, sigma0 = sigma0_for(lambda);
+  const CurveData c = maugis_retract(lambda, 0.0, 1);
+  std::ostringstream csv;
+  csv.precision(17);
+  csv << "delta,P,segment\n";
+  for (std::size_t i = 0; i < c.delta.size(); ++i) csv << c.delta[i] << "," << c.P[i] << "," << c.segment[i] << "\n";
+  const std::string curve = cli::write_file("md_curve.csv", csv.str());
+  const std::string md = cli::write_file("md.json", afm_scene(R"({"model": "maugis_dugdale", "sigma0": )" +
+                                                              std::to_string(2.0 * sigma0) + "}", 2.0 * kE));
+  const std::string report = cli::unique("md_report.json");
+  const cli::Run r = cli::run("fit " + curve + " --scene " + md + " --branch retract --free E,w,sigma0 --out " + report);
+  INFO(r.err << r.out);
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(cli::slurp(report));
+  const auto& p = j["parameters"];
+  CHECK(rel_err(p["E"]["value"].get<double>(), kE) < 1e-6);
+  CHECK(rel_err(p["w"]["value"].get<double>(), kW) < 1e-6);
+  CHECK(rel_err(p["sigma0"]["value"].get<double>(), sigma0) < 1e-6);
+  CHECK(j["identifiable"] == true);
+  CHECK(r.out.find("sigma0") != std::string::npos);
+
+  auto one_line_exit_2 = [&](const std::string& scene_json, const std::string& free, const std::string& needle) {
+    const std::string scene = cli::write_file("bad.json", scene_json);
+    const cli::Run bad = cli::run("fit " + curve + " --scene " + scene + " --branch retract --free " + free);
+    INFO(bad.err);
+    CHECK(bad.code == 2);
+    CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
+    CHECK(bad.err.find(needle) != std::string::npos);
+  };
+  one_line_exit_2(afm_scene(R"({"model": "jkr"})"), "E,w,sigma0", "sigma0");
+  one_line_exit_2(R"({"indenter": {"shape": "paraboloid", "R": 2e-8}, "medium": {"type": "layer", "E": 1e9, "nu": 0.3,
+      "h": 1e-8}, "model": "exact", "adhesion": {"model": "maugis_dugdale", "sigma0": 1e8}})", "E,w", "maugis_dugdale");
+  one_line_exit_2(afm_scene(R"({"model": "dmt", "z0": 3e-10})"), "E,w", "classical DMT");
+  std::remove(report.c_str());
 }
