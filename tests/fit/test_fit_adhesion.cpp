@@ -146,6 +146,25 @@ TEST_CASE("DMT on a layer (tabulated exact model): fitted back to E and w", "[fi
   CHECK(std::abs(s[FitParameter::delta0].value - d0) < 1e-6 * d0);
 }
 
+TEST_CASE("DMT on a Winkler foundation: the closed-form inverse without the JKR root", "[fit][adhesion]") {
+  // p = K (delta - r^2/(2R)) on r < a: delta_H = a^2/(2R), P_H = pi K a^4/(4R); DMT subtracts
+  // 2 pi w R. The foundation family inverts delta(a) in closed form (FoundationCurve::invert).
+  const double K = 1e12, R = 1e-4, w = 0.03, d0 = 1e-7;
+  const StateAt dmt = [&](double a) {
+    return std::make_pair(a * a / (2.0 * R), kPi * K * a * a * a * a / (4.0 * R) - 2.0 * kPi * w * R);
+  };
+  const CurveData c = retract_curve(dmt, 2e-5, 0.0, d0, 0.0, 0.0, 1);
+  const Scene scene = scene_from(R"({"indenter": {"shape": "paraboloid", "R": 1e-4}, "medium": {"type": "winkler",
+      "K": 3e11}, "adhesion": {"model": "dmt"}})");
+  const FitSummary s = fit(c, scene, retract_options({FitParameter::K, FitParameter::w, FitParameter::delta0}));
+  INFO(s.brief_report());
+  CHECK(s.converged);
+  CHECK(s.model == "dmt on winkler");
+  CHECK(rel_err(s[FitParameter::K].value, K) < 1e-6);
+  CHECK(rel_err(s[FitParameter::w].value, w) < 1e-6);
+  CHECK(std::abs(s[FitParameter::delta0].value - d0) < 1e-6 * d0);
+}
+
 TEST_CASE("Maugis-Dugdale on the half-space: E, w and sigma0 fitted back at lambda 0.1, 1, 5", "[fit][adhesion]") {
   for (const double lambda : {0.1, 1.0, 5.0}) {
     DYNAMIC_SECTION("lambda = " << lambda) {
