@@ -202,6 +202,45 @@ TEST_CASE("Maugis-Dugdale on the half-space: E, w and sigma0 fitted back at lamb
   }
 }
 
+TEST_CASE("Maugis-Dugdale on approach and retract: the approach snaps in at zero load", "[fit][adhesion]") {
+  const double lambda = 1.0, sigma0 = sigma0_for(lambda), d0 = 2e-9;
+  const auto state = [&](double a) { return maugis_dugdale_half_space(kR, kEstar, kW, sigma0, a); };
+  // The zero-load radius by bisection on the closed form (P < 0 below it).
+  double lo = 1e-12, hi = 30e-9;
+  for (int i = 0; i < 200; ++i) (state(0.5 * (lo + hi)).P < 0.0 ? lo : hi) = 0.5 * (lo + hi);
+  const double a0 = 0.5 * (lo + hi), a_max = 20e-9;
+  CurveData c;
+  const double d_zero = state(a0).delta;
+  for (int i = 1; i <= 100; ++i) {  // free before contact
+    c.delta.push_back(d_zero - 10e-9 * (101 - i) / 100.0 + d0);
+    c.P.push_back(0.0);
+    c.segment.push_back(0);
+  }
+  for (int i = 0; i < 200; ++i) {
+    const AdhesiveState st = state(a0 + (a_max - a0) * i / 199.0);
+    c.delta.push_back(st.delta + d0);
+    c.P.push_back(st.P);
+    c.segment.push_back(0);
+  }
+  const CurveData retract = maugis_retract(lambda, 0.0, 1, d0);
+  for (std::size_t i = 0; i < retract.delta.size(); ++i) {
+    c.delta.push_back(retract.delta[i]);
+    c.P.push_back(retract.P[i]);
+    c.segment.push_back(1);
+  }
+  const Scene scene = scene_from(afm_scene(R"({"model": "maugis_dugdale", "sigma0": )" +
+                                           std::to_string(2.0 * sigma0) + "}", 2.0 * kE));
+  FitOptions o = retract_options({FitParameter::E, FitParameter::w, FitParameter::sigma0, FitParameter::delta0});
+  o.branch = Branch::all;
+  const FitSummary s = fit(c, scene, o);
+  INFO(s.brief_report());
+  CHECK(s.converged);
+  CHECK(rel_err(s[FitParameter::E].value, kE) < 1e-6);
+  CHECK(rel_err(s[FitParameter::w].value, kW) < 1e-6);
+  CHECK(rel_err(s[FitParameter::sigma0].value, sigma0) < 1e-6);
+  CHECK(std::abs(s[FitParameter::delta0].value - d0) < 1e-6 * d0);
+}
+
 TEST_CASE("a JKR fit of a Maugis-Dugdale curve: the bias towards DMT's 4/3", "[fit][adhesion]") {
   // At small lambda the pull-off is near 2 pi w R; JKR reads it as 1.5 pi w_JKR R, so
   // w_JKR -> 4/3 w as lambda -> 0. Measured (docs/fitting.md): the ratio at each lambda.
