@@ -20,6 +20,7 @@
 
 #include <boost/math/constants/constants.hpp>
 
+#include "fit/adhesive_curve.hpp"
 #include "layerjkr/built_scene.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/fit.hpp"
@@ -95,6 +96,40 @@ std::string afm_scene(const std::string& adhesion, double E = kE) {
 }
 
 }  // namespace
+
+TEST_CASE("the fit's Maugis-Dugdale point and its Jet derivatives against the closed form", "[fit][adhesion]") {
+  // Values against maugis_dugdale_half_space (double, TOMS 748 on m); derivatives in E*, w, R,
+  // sigma0 and a against central differences of it (step 1e-5 relative: truncation ~1e-10,
+  // rounding ~1e-11 / 1e-5).
+  using J = ceres::Jet<double, 5>;
+  for (const double lambda : {0.01, 0.1, 1.0, 5.0, 100.0}) {
+    const double sigma0 = sigma0_for(lambda);
+    for (const double a_po_factor : {0.05, 1.0, 4.0}) {
+      const double a = a_po_factor * maugis_dugdale_pull_off(kR, kEstar, kW, sigma0).a + 1e-10;
+      const double x[5] = {kEstar, kW, kR, sigma0, a};
+      J delta, P;
+      detail::maugis_curve(J(a, 4), J(kEstar, 0), J(kW, 1), J(kR, 2), J(sigma0, 3), &delta, &P);
+      const AdhesiveState ref = maugis_dugdale_half_space(kR, kEstar, kW, sigma0, a);
+      INFO("lambda = " << lambda << ", a = " << a);
+      CHECK(rel_err(P.a, ref.P) < 1e-12);
+      CHECK(rel_err(delta.a, ref.delta) < 1e-12);
+      for (int k = 0; k < 5; ++k) {
+        double lo[5], hi[5];
+        std::copy(x, x + 5, lo);
+        std::copy(x, x + 5, hi);
+        const double h = 1e-5 * x[k];
+        lo[k] -= h;
+        hi[k] += h;
+        const AdhesiveState m = maugis_dugdale_half_space(lo[2], lo[0], lo[1], lo[3], lo[4]);
+        const AdhesiveState p = maugis_dugdale_half_space(hi[2], hi[0], hi[1], hi[3], hi[4]);
+        INFO("parameter " << k);
+        // Scaled by the value: a derivative near zero is compared at the value's size.
+        CHECK(std::abs(P.v[k] - (p.P - m.P) / (2 * h)) * x[k] < 1e-7 * std::abs(ref.P));
+        CHECK(std::abs(delta.v[k] - (p.delta - m.delta) / (2 * h)) * x[k] < 1e-7 * std::abs(ref.delta));
+      }
+    }
+  }
+}
 
 TEST_CASE("DMT on a half-space: closed-form curves fitted back to E and w", "[fit][adhesion]") {
   const double d0 = 3e-9, P0 = 2e-9;
