@@ -112,11 +112,13 @@ void FitRun::solve() {
   }
 }
 
-bool FitRun::hold_w(double xw) {
-  const int slot = map_.index(FitParameter::w);
+bool FitRun::hold_w(double xw) { return hold(FitParameter::w, xw); }
+
+bool FitRun::hold(FitParameter q, double xq) {
+  const int slot = map_.index(q);
   const std::vector<double> before = x_;
   const int held_before = held_;
-  x_[static_cast<std::size_t>(slot)] = xw;
+  x_[static_cast<std::size_t>(slot)] = xq;
   held_ = slot;
   if (!ev_.evaluate(x_.data(), false) || (x_.size() > 1 && !resolve_in_place())) {
     x_ = before;

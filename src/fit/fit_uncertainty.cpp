@@ -285,21 +285,30 @@ constexpr double kDmtLimitLambda = 1e-3;
 // between: holding it where the contact is JKR (or DMT), with the other parameters refitted, must
 // raise the deviance beyond the one-sided 95 % point (as w's upper bound). Otherwise the error bar
 // is a local curvature of a cost that stays flat out to the limit, and sigma0 has only a bound.
-void check_sigma0_limits(FitRun& run, CurveEvaluator& ev, const ParameterMap& map, const std::vector<double>& x,
-                         std::size_t residuals, FitSummary* out) {
-  if (!map.is_free(FitParameter::sigma0)) return;
-  ParameterEstimate* e = nullptr;
-  for (auto& p : out->parameters)
-    if (p.parameter == FitParameter::sigma0) e = &p;
-  if (!e || !e->identifiable) return;
-  const double C = run.final_cost();
-  const double dof = static_cast<double>(residuals - map.free.size());
-  if (!(C > kNoiselessCost * dof)) return;  // noiseless data: the curvature is the whole story
+// Maugis' lambda at x (NaN at w = 0).
+double maugis_lambda_at(const ParameterMap& map, const std::vector<double>& x) {
   CurveParameters<double> p;
   double d0 = 0.0, P0 = 0.0;
   map.physical(x.data(), &p, &d0, &P0);
   const double E_star = p.E / ((1.0 - map.fixed.nu) * (1.0 + map.fixed.nu));
-  const double lambda = 2.0 * p.sigma0 * std::cbrt(p.R / (kPi * p.s * p.s * (16.0 / 9.0) * E_star * E_star));
+  return 2.0 * p.sigma0 * std::cbrt(p.R / (kPi * p.s * p.s * (16.0 / 9.0) * E_star * E_star));
+}
+
+ParameterEstimate* estimate_of(FitSummary* out, FitParameter q) {
+  for (auto& p : out->parameters)
+    if (p.parameter == q) return &p;
+  return nullptr;
+}
+
+void check_sigma0_limits(FitRun& run, CurveEvaluator& ev, const ParameterMap& map, const std::vector<double>& x,
+                         std::size_t residuals, FitSummary* out) {
+  if (!map.is_free(FitParameter::sigma0)) return;
+  ParameterEstimate* e = estimate_of(out, FitParameter::sigma0);
+  if (!e || !e->identifiable) return;
+  const double C = run.final_cost();
+  const double dof = static_cast<double>(residuals - map.free.size());
+  if (!(C > kNoiselessCost * dof)) return;  // noiseless data: the curvature is the whole story
+  const double lambda = maugis_lambda_at(map, x);
   const double x_sigma0 = x[static_cast<std::size_t>(map.index(FitParameter::sigma0))];
   for (const auto& [limit, name] : {std::pair{kJkrLimitLambda, "JKR"}, std::pair{kDmtLimitLambda, "DMT"}}) {
     const double held = run.cost_with_held(FitParameter::sigma0, x_sigma0 + std::log(limit / lambda));
@@ -316,6 +325,31 @@ void check_sigma0_limits(FitRun& run, CurveEvaluator& ev, const ParameterMap& ma
     }
   }
   if (!ev.evaluate(x.data(), true)) throw NumericalError("fit: the model cannot be evaluated at the solution");
+}
+
+// A free sigma0 that ran beyond a limit (lambda above kJkrLimitLambda or below kDmtLimitLambda,
+// towards the closed form's bounds, where the covariance fails: the cost is flat there) is held
+// where it stopped, so the others keep their error bars, and reported without one. Returns the
+// limit's name, or nullptr when sigma0 is inside them (or not free, or w is at 0).
+const char* hold_sigma0_at_limit(FitRun& run, const ParameterMap& map, const std::vector<double>& x) {
+  if (!map.is_free(FitParameter::sigma0)) return nullptr;
+  const double lambda = maugis_lambda_at(map, x);
+  const char* name = lambda >= kJkrLimitLambda ? "JKR" : lambda <= kDmtLimitLambda ? "DMT" : nullptr;
+  if (!name || !run.hold(FitParameter::sigma0, x[static_cast<std::size_t>(map.index(FitParameter::sigma0))]))
+    return nullptr;
+  return name;
+}
+
+void report_sigma0_at_limit(const char* name, double lambda, FitSummary* out) {
+  out->unidentifiable.push_back(std::string("sigma0 from the ") + name + " limit (it ran to lambda = " +
+                                short_number(lambda) + ", where the curve no longer depends on it)");
+  ParameterEstimate* e = estimate_of(out, FitParameter::sigma0);
+  e->identifiable = false;
+  e->standard_error = kNaN;
+  e->reason = "not separable: " + out->unidentifiable.back();
+  out->warnings.push_back(std::string("sigma0 ran to the ") + name + " limit (lambda = " + short_number(lambda) +
+                          "): the data do not determine it; the other parameters and their error bars are from "
+                          "the fit with sigma0 held there");
 }
 
 // Summary-level verdict from the parameters'.
@@ -349,6 +383,14 @@ void assess_uncertainty(FitRun& run, CurveEvaluator& ev, const ParameterMap& map
   // or so near it that the covariance cannot be scaled. Refit with w held at 0 and keep that
   // fit when the deviance says w = 0 is as good.
   const bool at_zero = w_slot < p_free && x[w_slot] <= kAtBound;
+  const char* sigma0_limit = at_zero ? nullptr : hold_sigma0_at_limit(run, map, x);
+  if (sigma0_limit) {
+    run.record(out);
+    assess_once(run, ev, map, x, options, residuals, out);
+    report_sigma0_at_limit(sigma0_limit, maugis_lambda_at(map, x), out);
+    conclude(out);
+    return;
+  }
   const std::string failed = at_zero ? std::string() : assess_once(run, ev, map, x, options, residuals, out);
   bool held = false;
   if (w_slot < p_free && (at_zero || !failed.empty())) {

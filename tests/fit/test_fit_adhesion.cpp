@@ -310,6 +310,37 @@ TEST_CASE("sigma0 is reported not identifiable where Maugis-Dugdale is JKR", "[f
   CHECK_FALSE(s[FitParameter::sigma0].reason.empty());
   CHECK_THAT(s.identifiability(), Catch::StartsWith("no: "));
   CHECK_THAT(s.identifiability(), Catch::Contains("sigma0"));
+  CHECK_THAT(s.identifiability(), Catch::Contains("JKR limit"));
+  // E and w keep their error bars (from the fit with sigma0 held where it stopped, or at the
+  // solution when only the limit test failed), and they cover the truth.
+  for (const auto& [q, truth] : {std::pair{FitParameter::E, kE}, std::pair{FitParameter::w, kW}}) {
+    INFO(to_string(q));
+    REQUIRE(std::isfinite(s[q].standard_error));
+    CHECK(std::abs(s[q].value - truth) < 3.0 * s[q].standard_error);
+  }
+}
+
+TEST_CASE("a sigma0 that runs to the JKR limit is held there, and E and w keep their error bars",
+          "[fit][adhesion][identifiability]") {
+  // lambda = 5 at 1 % noise: in seed 5 the solver takes sigma0 to the closed form's bound
+  // (lambda ~ 1e4), where the covariance of all three fails.
+  const double noise = 0.01 * std::abs(maugis_dugdale_pull_off(kR, kEstar, kW, sigma0_for(5.0)).P);
+  const Scene scene = scene_from(afm_scene(R"({"model": "maugis_dugdale", "sigma0": )" +
+                                           std::to_string(2.0 * sigma0_for(5.0)) + "}", 2.0 * kE));
+  const FitSummary s = fit(maugis_retract(5.0, noise, 5), scene,
+                           retract_options({FitParameter::E, FitParameter::w, FitParameter::sigma0}));
+  INFO(s.brief_report());
+  REQUIRE(s[FitParameter::sigma0].value > 100.0 * sigma0_for(5.0));  // it did run away
+  CHECK_FALSE(s[FitParameter::sigma0].identifiable);
+  CHECK(std::isnan(s[FitParameter::sigma0].standard_error));
+  CHECK_THAT(s[FitParameter::sigma0].reason, Catch::Contains("JKR limit") && Catch::Contains("ran to lambda"));
+  CHECK(s.identifiability_known);
+  CHECK(std::isfinite(s[FitParameter::E].standard_error));
+  CHECK(std::isfinite(s[FitParameter::w].standard_error));
+  CHECK(std::abs(s[FitParameter::E].value - kE) < 3.0 * s[FitParameter::E].standard_error);
+  bool warned = false;
+  for (const auto& line : s.warnings) warned = warned || line.find("sigma0 ran to the JKR limit") != std::string::npos;
+  CHECK(warned);
 }
 
 TEST_CASE("bad adhesion combinations in a fit are refused with one clear message", "[fit][adhesion]") {
