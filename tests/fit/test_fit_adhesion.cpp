@@ -101,7 +101,7 @@ TEST_CASE("the fit's Maugis-Dugdale point and its Jet derivatives against the cl
   // Values against maugis_dugdale_half_space (double, TOMS 748 on m); derivatives in E*, w, R,
   // sigma0 and a against central differences of it (step 1e-5 relative: truncation ~1e-10,
   // rounding ~1e-11 / 1e-5).
-  using J = ceres::Jet<double, 5>;
+  using J = detail::Jet8;  // slots 0-4: E*, w, R, sigma0, a
   for (const double lambda : {0.01, 0.1, 1.0, 5.0, 100.0}) {
     const double sigma0 = sigma0_for(lambda);
     for (const double a_po_factor : {0.05, 1.0, 4.0}) {
