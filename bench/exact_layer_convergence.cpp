@@ -17,26 +17,16 @@
 #include <vector>
 
 #include "layerjkr/exact_layer.hpp"
+#include "median_time.hpp"
 
 using namespace layerjkr;
+using layerjkr::bench::median_seconds;
 
 namespace {
 
 double worst_rel_err(const NonAdhesiveState& s, const NonAdhesiveState& r) {
   auto e = [](double v, double ref) { return std::abs(v / ref - 1.0); };
   return std::max({e(s.P_H, r.P_H), e(s.delta_H, r.delta_H), e(s.S, r.S), e(s.dS_da, r.dS_da)});
-}
-
-template <class F>
-double median_seconds(F f) {
-  std::vector<double> t;
-  for (int r = 0; r < 5; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
 }
 
 }  // namespace
@@ -83,7 +73,7 @@ int main() {
         for (std::size_t i = 0; i < refs.size(); ++i)
           std::printf(" %.1e |", worst_rel_err(k.solve(*paraboloid, ratios[i]).state, refs[i]));
         const int unknowns = k.solve(*paraboloid, 50.0).unknowns;
-        const double t = median_seconds([&] { (void)k.solve(*paraboloid, 50.0); });
+        const double t = median_seconds([&] { (void)k.solve(*paraboloid, 50.0); }, 5);
         std::printf(" %d | %.2f |\n", unknowns, 1e3 * t);
       }
   }

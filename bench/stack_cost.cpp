@@ -16,22 +16,12 @@
 
 #include "layerjkr/exact_layer.hpp"
 #include "layerjkr/layered_medium.hpp"
+#include "median_time.hpp"
 
 using namespace layerjkr;
+using layerjkr::bench::median_seconds;
 
 namespace {
-
-template <class F>
-double median_seconds(F f, int runs) {
-  std::vector<double> t;
-  for (int r = 0; r < runs; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
 
 ExactLayerOptions options(const std::shared_ptr<Context>& context) {
   ExactLayerOptions o;

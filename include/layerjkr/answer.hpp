@@ -22,6 +22,7 @@
 
 #include "layerjkr/built_scene.hpp"
 #include "layerjkr/contact.hpp"
+#include "layerjkr/adhesion_check.hpp"
 #include "layerjkr/jkr.hpp"
 #include "layerjkr/model_error.hpp"
 #include "layerjkr/scene.hpp"
@@ -45,7 +46,10 @@ struct SummaryAnswer {
   bool g_is_tension = false;     ///< Filonenko-Borodich: reports name G "T"
   std::optional<double> E_star;  ///< plane-strain modulus [Pa]: layers and the half-space
   std::optional<AutoChoice> choice;   ///< model "auto": what it chose
-  std::vector<std::string> warnings;  ///< validity of constants, model error above threshold
+  /// Whether the scene's adhesion model applies (adhesion_check.hpp); none for w = 0 or
+  /// without a JKR pull-off.
+  std::optional<AdhesionCheck> adhesion;
+  std::vector<std::string> warnings;  ///< validity of constants, model and adhesion error above threshold
   double seconds = 0.0;               ///< wall time of the answer [s]
 };
 
@@ -56,7 +60,8 @@ struct CurveAnswer {
   std::string model;                   ///< the model that answered (ContactModel::name)
   std::string reference;               ///< what it was judged against, or "none"
   std::optional<AutoChoice> choice;    ///< model "auto": what it chose
-  std::vector<std::string> warnings;   ///< validity of constants, model error above threshold
+  std::optional<AdhesionCheck> adhesion;  ///< as SummaryAnswer::adhesion
+  std::vector<std::string> warnings;   ///< validity of constants, model and adhesion error above threshold
   double seconds = 0.0;                ///< wall time of the answer [s]
 };
 

@@ -66,6 +66,10 @@ MaugisPoint maugis_point(double lambda, double A);
 ///         Pbar = -3/2 - (3/2)^(5/3) / (12 lambda^2) + ... as lambda -> infinity.
 MaugisPoint maugis_pull_off(double lambda);
 
+/// The pull-off force Pbar of maugis_pull_off for any lambda > 0: beyond [1e-4, 1e4] the two
+/// limits above (their next terms are below 1e-9 there). Throws DomainError for lambda <= 0.
+double maugis_pull_off_force(double lambda);
+
 /// The instability under fixed grips: the minimum of Deltabar(A) at A > 0. It exists only for
 /// lambda > 0.93794745721071221 (below, Deltabar rises from A = 0 and nullopt is returned);
 /// it tends to JKR's A = 6^(-1/3), Pbar = -5/6 as lambda -> infinity.

@@ -36,7 +36,7 @@ from ._core import DomainError, Error, InputError, NumericalError, Scene
 __version__: str = _core.__version__
 
 __all__ = ["__version__", "Error", "DomainError", "InputError", "NumericalError", "ModelWarning", "Scene",
-           "AutoChoice", "FixedGrips", "ModelError", "Curve", "Summary", "NamedArray", "FitResult", "BatchResult",
+           "AutoChoice", "AdhesionCheck", "FixedGrips", "ModelError", "Curve", "Summary", "NamedArray", "FitResult", "BatchResult",
            "Instrument", "scene", "curve", "summary", "fit", "fit_batch", "fit_files", "read_instrument",
            "open_instrument"]
 
@@ -202,6 +202,22 @@ class FixedGrips(NamedTuple):
     """Approach [m]."""
 
 
+class AdhesionCheck(NamedTuple):
+    """Whether the answer's adhesion model applies: Maugis' lambda of the contact and the
+    estimated error of its pull-off force against Maugis-Dugdale (adhesion_check.hpp)."""
+
+    lambda_: float
+    """Maugis' lambda, from the contact's own compliance (``lambda`` in as_dict)."""
+    sigma0: float
+    """The Dugdale stress it was judged with [Pa]."""
+    sigma0_assumed: bool
+    """True when sigma0 comes from the assumed spacing z0 = 0.3 nm (none was given)."""
+    pull_off_error: float
+    """Estimated |P_model / P_MD - 1| of the pull-off force (0 for Maugis-Dugdale)."""
+    basis: str
+    """"closed form" or "half-space estimate"."""
+
+
 class ModelError(NamedTuple):
     """Estimated relative model errors of a summary, against its reference model."""
 
@@ -213,7 +229,7 @@ class ModelError(NamedTuple):
     """The reference model's name, or "none"."""
 
 
-_CURVE_ROWS = ("a", "P", "delta", "P_H", "delta_H", "S", "dS_da", "error_estimate")
+_CURVE_ROWS = ("a", "P", "delta", "P_H", "delta_H", "S", "dS_da", "error_estimate", "c")
 
 
 class Curve:
@@ -274,6 +290,12 @@ class Curve:
     def error_est(self) -> npt.NDArray[np.float64]:
         """Alias of :attr:`error_estimate` (the CLI's column name)."""
         return self._block[7]
+
+    @property
+    def c(self) -> npt.NDArray[np.float64]:
+        """Outer radius of the adhesive zone [m]: a for JKR, beyond it for Maugis-Dugdale
+        (the Dugdale zone's edge) and DMT (inf for the classical limit)."""
+        return self._block[8]
 
     @property
     def warnings(self) -> List[str]:
@@ -376,6 +398,8 @@ class _SummaryFields(NamedTuple):  # the bound SummaryAnswer as plain (picklable
     G: Optional[float]
     g_is_tension: bool
     E_star: Optional[float]
+    adhesion_model: str
+    adhesion: Optional[Tuple[float, float, bool, float, str]]
     warnings: List[str]
     seconds: float
 
@@ -470,6 +494,17 @@ class Summary:
         return self._choice
 
     @property
+    def adhesion_model(self) -> str:
+        """How adhesion acts in the answer: "jkr", "dmt" or "maugis_dugdale"."""
+        return self._a.adhesion_model
+
+    @property
+    def adhesion(self) -> Optional[AdhesionCheck]:
+        """Whether the adhesion model applies (lambda, its pull-off error), or None for w = 0."""
+        c = self._a.adhesion
+        return None if c is None else AdhesionCheck(*c)
+
+    @property
     def warnings(self) -> List[str]:
         """The library's warnings (also emitted as :class:`ModelWarning`)."""
         return list(self._a.warnings)
@@ -485,16 +520,17 @@ class Summary:
         Returns
         -------
         dict
-            model, profile, w, pull_off_force, pull_off_radius, pull_off_delta,
+            model, profile, w, adhesion_model, pull_off_force, pull_off_radius, pull_off_delta,
             zero_load_radius, fixed_grips_critical ({force, radius, delta} or None),
             model_error_estimate ({pull_off_force, zero_load_radius, reference}), K and G (or
-            T) where known, E_star where known, model_choice for model "auto", warnings.
+            T) where known, E_star where known, adhesion_check ({lambda, sigma0, sigma0_assumed,
+            pull_off_error, basis} or None), model_choice for model "auto", warnings.
         """
         fg = self.fixed_grips
         err = self.model_error
         d: Dict[str, Any] = {
             "model": self.model, "profile": self.profile, "w": self.w,
-            "pull_off_force": self.pull_off_force, "pull_off_radius": self.pull_off_radius,
+            "adhesion_model": self.adhesion_model, "pull_off_force": self.pull_off_force, "pull_off_radius": self.pull_off_radius,
             "pull_off_delta": self.pull_off_delta, "zero_load_radius": self.zero_load_radius,
             "fixed_grips_critical": None if fg is None else fg._asdict(),
             "model_error_estimate": {"pull_off_force": _finite_or_none(err.pull_off_force),
@@ -506,6 +542,10 @@ class Summary:
             d["T" if self._a.g_is_tension else "G"] = self._a.G if self._a.G is not None else 0.0
         if self._a.E_star is not None:
             d["E_star"] = self._a.E_star
+        c = self.adhesion
+        d["adhesion_check"] = None if c is None else {
+            "lambda": c.lambda_, "sigma0": c.sigma0, "sigma0_assumed": c.sigma0_assumed,
+            "pull_off_error": c.pull_off_error, "basis": c.basis}
         if self._choice is not None:
             d["model_choice"] = {"model": self._choice.model, "estimated_error": self._choice.estimated_error,
                                  "tolerance": self._choice.tolerance}

@@ -64,6 +64,11 @@ class SummaryAnswer:
     @property
     def E_star(self) -> Optional[float]: ...
     @property
+    def adhesion_model(self) -> str: ...
+    @property
+    def adhesion(self) -> Optional[Tuple[float, float, bool, float, str]]:
+        """(lambda, sigma0, sigma0_assumed, pull_off_error, basis) or None."""
+    @property
     def choice(self) -> Optional[AutoChoice]: ...
     @property
     def warnings(self) -> List[str]: ...
@@ -72,8 +77,8 @@ class SummaryAnswer:
 
 def curve(scene: Scene, a: npt.ArrayLike, warning_threshold: float
           ) -> Tuple[npt.NDArray[np.float64], List[str], str, str, Optional[AutoChoice], float]:
-    """(block, warnings, model, reference, choice, seconds); block is (8, n): a, P, delta, P_H,
-    delta_H, S, dS_da, error_estimate."""
+    """(block, warnings, model, reference, choice, seconds); block is (9, n): a, P, delta, P_H,
+    delta_H, S, dS_da, error_estimate, c."""
 
 def summary(scene: Scene, warning_threshold: float) -> SummaryAnswer: ...
 

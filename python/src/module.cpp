@@ -87,8 +87,8 @@ py::tuple curve(const Scene& scene, const Array& radii, double warning_threshold
   const AnswerOptions options = answer_options(warning_threshold);
   std::vector<double> a = to_vector(radii, "a");
   const auto n = static_cast<py::ssize_t>(a.size());
-  py::array_t<double> block({py::ssize_t{8}, n});
-  std::fill_n(block.mutable_data(), 8 * n, 0.0);
+  py::array_t<double> block({py::ssize_t{9}, n});
+  std::fill_n(block.mutable_data(), 9 * n, 0.0);
   double* out = block.mutable_data();
   CurveAnswer c;
   {
@@ -97,8 +97,8 @@ py::tuple curve(const Scene& scene, const Array& radii, double warning_threshold
     for (py::ssize_t i = 0; i < n; ++i) {
       const auto k = static_cast<std::size_t>(i);
       const AdhesiveState& s = c.states[k];
-      const double row[8] = {s.a, s.P, s.delta, s.hertz.P_H, s.hertz.delta_H, s.hertz.S, s.hertz.dS_da, c.error_estimate[k]};
-      for (py::ssize_t r = 0; r < 8; ++r) out[r * n + i] = row[r];
+      const double row[9] = {s.a, s.P, s.delta, s.hertz.P_H, s.hertz.delta_H, s.hertz.S, s.hertz.dS_da, c.error_estimate[k], s.c};
+      for (py::ssize_t r = 0; r < 9; ++r) out[r * n + i] = row[r];
     }
     c.states = {};
     c.error_estimate = {};
@@ -315,6 +315,12 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("G", &SummaryAnswer::G)
       .def_readonly("g_is_tension", &SummaryAnswer::g_is_tension)
       .def_readonly("E_star", &SummaryAnswer::E_star)
+      .def_property_readonly("adhesion_model", [](const SummaryAnswer& s) { return std::string(to_string(s.contact.adhesion)); })
+      .def_property_readonly("adhesion", [](const SummaryAnswer& s) -> py::object {
+        if (!s.adhesion) return py::none();
+        const AdhesionCheck& c = *s.adhesion;
+        return py::make_tuple(c.lambda, c.sigma0, c.sigma0_assumed, c.pull_off_error, c.basis);
+      })
       .def_readonly("choice", &SummaryAnswer::choice)
       .def_readonly("warnings", &SummaryAnswer::warnings)
       .def_readonly("seconds", &SummaryAnswer::seconds);

@@ -34,7 +34,7 @@ def test_curve_equals_cli_bit_for_bit(cli, source):
     # The two-term law is ~33 % off the exact layer at a = h/2: the CLI's warning, word for word.
     assert [str(w.message) for w in record] == c.warnings
     assert ["layerjkr: warning: " + w for w in c.warnings] == err.splitlines()
-    assert rows[0] == "a,P,delta,P_H,delta_H,S,error_est"
+    assert rows[0] == "a,P,delta,P_H,delta_H,S,error_est,c"
     table = np.array([[float(v) for v in r.split(",")] for r in rows[1:]])
     for k, name in enumerate(["a", "P", "delta", "P_H", "delta_H", "S", "error_estimate"]):
         assert np.array_equal(getattr(c, name), table[:, k]), name

@@ -7,7 +7,9 @@
 #include <utility>
 
 #include "adhesion/dmt_formula.hpp"
+#include "adhesion/dugdale_solver.hpp"
 #include "layerjkr/error.hpp"
+#include "layerjkr/maugis_dugdale.hpp"
 
 namespace layerjkr {
 namespace {
@@ -48,6 +50,67 @@ class ClassicalDmtLaw final : public AdhesiveLaw {
  private:
   double R_;
 };
+
+// Maugis-Dugdale of a paraboloid on a half-space: Maugis' closed form (maugis_dugdale.hpp).
+class ClosedFormMaugisLaw final : public AdhesiveLaw {
+ public:
+  ClosedFormMaugisLaw(ContactModelPtr model, double w, double R, double E_star, double sigma0)
+      : AdhesiveLaw(std::move(model), w), R_(R), E_star_(E_star), sigma0_(sigma0) {}
+  AdhesiveState at(double a) const override { return maugis_dugdale_half_space(R_, E_star_, w(), sigma0_, a); }
+  AdhesionModel model() const override { return AdhesionModel::maugis_dugdale; }
+  bool has_zero_radius_state() const override { return true; }
+  std::string name() const override {
+    return "maugis_dugdale (sigma0 = " + format_double(sigma0_) + " Pa) on " + contact()->name();
+  }
+
+ private:
+  double R_, E_star_, sigma0_;
+};
+
+// A Dugdale law solved on the medium (detail::DugdaleSolver): Maugis-Dugdale, or DMT over
+// the non-adhesive state's gap. The non-adhesive state at a fills hertz, so every answer
+// prints P_H, delta_H and S (the solver's own Maugis-Dugdale states carry only a).
+class DugdaleLaw final : public AdhesiveLaw {
+ public:
+  DugdaleLaw(ContactModelPtr model, double w, double sigma0, AdhesionModel kind,
+             std::shared_ptr<const detail::DugdaleSolver> solver)
+      : AdhesiveLaw(std::move(model), w), sigma0_(sigma0), kind_(kind), solver_(std::move(solver)) {}
+  AdhesiveState at(double a) const override {
+    if (w() == 0.0) return jkr_transform(contact()->state(a), 0.0);
+    if (kind_ == AdhesionModel::dmt) return solver_->dmt(a, w(), sigma0_);
+    AdhesiveState s = solver_->maugis_dugdale(a, w(), sigma0_);
+    s.hertz = a > 0.0 ? contact()->state(a) : NonAdhesiveState{};
+    return s;
+  }
+  AdhesionModel model() const override { return kind_; }
+  bool has_zero_radius_state() const override { return w() > 0.0; }
+  std::string name() const override {
+    return std::string(to_string(kind_)) + " (sigma0 = " + format_double(sigma0_) + " Pa) on " + contact()->name();
+  }
+
+ private:
+  double sigma0_;
+  AdhesionModel kind_;
+  std::shared_ptr<const detail::DugdaleSolver> solver_;
+};
+
+// The medium's Dugdale solver: the half-space or the exact layer / stack of `spec`.
+std::shared_ptr<const detail::DugdaleSolver> dugdale_solver(const ContactModel& model, const ModelSpec& spec,
+                                                            const char* what) {
+  if (!model.has_profile())
+    throw InputError(std::string(what) + " needs an indenter profile; this model was built from data");
+  ProfilePtr profile = model.profile_ptr();
+  if (spec.kind == ModelKind::half_space)
+    return std::make_shared<detail::DugdaleSolver>(std::move(profile),
+                                                   effective_modulus(spec.layer.E, spec.layer.nu));
+  if (spec.kind == ModelKind::exact) {
+    auto kernel = spec.stack ? std::make_shared<ExactLayerKernel>(*spec.stack, spec.exact)
+                             : std::make_shared<ExactLayerKernel>(spec.layer, spec.exact);
+    return std::make_shared<detail::DugdaleSolver>(std::move(profile), std::move(kernel));
+  }
+  throw InputError(std::string(what) + " is solved on the half-space and on the exact layer or stack (model \"exact\"), not on model \"" +
+                   std::string(to_string(spec.kind)) + "\": the thin-layer and foundation laws do not give the gap outside the contact");
+}
 
 // The tip's radius of curvature 1/f''(0), where the profile has one.
 double tip_radius(const ContactModel& model, const char* what) {
@@ -105,22 +168,23 @@ std::vector<AdhesiveState> AdhesiveLaw::curve(const std::vector<double>& radii) 
 AdhesiveLawPtr make_jkr_law(ContactModelPtr model, double w) { return std::make_shared<JkrLaw>(std::move(model), w); }
 
 AdhesiveLawPtr make_adhesive_law(ContactModelPtr model, const ModelSpec& spec, double w, const AdhesionSpec& adhesion) {
-  (void)spec;
   adhesion.validate();
   if (!model) throw Error("layerjkr::make_adhesive_law: the contact model is null");
-  switch (adhesion.model) {
-    case AdhesionModel::jkr:
-      return make_jkr_law(std::move(model), w);
-    case AdhesionModel::dmt:
-      if (!adhesion.sigma0 && !adhesion.z0) {
-        const double R = tip_radius(*model, "adhesion model \"dmt\" without sigma0");
-        return std::make_shared<ClassicalDmtLaw>(std::move(model), w, R);
-      }
-      break;
-    case AdhesionModel::maugis_dugdale:
-      break;
+  if (adhesion.model == AdhesionModel::jkr) return make_jkr_law(std::move(model), w);
+  if (adhesion.model == AdhesionModel::dmt && adhesion.stress_assumed()) {
+    const double R = tip_radius(*model, "adhesion model \"dmt\" without sigma0");
+    return std::make_shared<ClassicalDmtLaw>(std::move(model), w, R);
   }
-  throw InputError("adhesion model \"" + std::string(to_string(adhesion.model)) + "\" with a Dugdale stress is not built yet");
+  if (adhesion.model == AdhesionModel::maugis_dugdale && adhesion.stress_assumed())
+    throw InputError("adhesion model \"maugis_dugdale\" needs sigma0 [Pa] (the Dugdale stress) or z0 [m]");
+  const double sigma0 = w > 0.0 ? adhesion.dugdale_stress(w) : adhesion.sigma0.value_or(0.0);
+  const std::string what = "adhesion model \"" + std::string(to_string(adhesion.model)) + "\" with sigma0";
+  if (adhesion.model == AdhesionModel::maugis_dugdale && w > 0.0 && spec.kind == ModelKind::half_space &&
+      model->has_profile() && model->profile().is_paraboloid())
+    return std::make_shared<ClosedFormMaugisLaw>(model, w, tip_radius(*model, what.c_str()),
+                                                 effective_modulus(spec.layer.E, spec.layer.nu), sigma0);
+  auto solver = dugdale_solver(*model, spec, what.c_str());
+  return std::make_shared<DugdaleLaw>(std::move(model), w, sigma0, adhesion.model, std::move(solver));
 }
 
 }  // namespace layerjkr

@@ -148,6 +148,13 @@ MaugisPoint maugis_point(double lambda, double A) {
   return point_at(lambda, A);
 }
 
+double maugis_pull_off_force(double lambda) {
+  if (!(lambda > 0.0) || !std::isfinite(lambda)) throw DomainError("maugis_pull_off_force", "lambda", lambda, "finite and > 0");
+  if (lambda < kLambdaMin) return -2.0 + 16.0 * (0.5 * kPi - 1.0) / (3.0 * std::sqrt(kPi)) * std::pow(lambda, 1.5);
+  if (lambda > kLambdaMax) return -1.5 - std::pow(1.5, 5.0 / 3.0) / (12.0 * lambda * lambda);
+  return maugis_pull_off(lambda).P;
+}
+
 MaugisPoint maugis_pull_off(double lambda) {
   require_lambda("maugis_pull_off", lambda);
   // Small lambda: the minimum of A^3 - 2 - pi lambda A^2; large: JKR's (3/2)^(1/3).

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "layerjkr/adhesion_check.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr {
@@ -50,6 +51,36 @@ void require_not_nan(const std::string& what, double v) {
   if (std::isnan(v)) require_finite(what, v);
 }
 
+// The scene's adhesive law on its built model.
+AdhesiveSolution adhesive_solution(const Scene& scene, const BuiltScene& built) {
+  return AdhesiveSolution(make_adhesive_law(built.model, built.resolved.spec, scene.w, scene.adhesion));
+}
+
+// The contact's JKR solution: the answer's own, or one beside it (the adhesion check's lambda
+// and the model error estimate are judged on it).
+AdhesiveSolution jkr_solution(const BuiltScene& built, const AdhesiveSolution& solution) {
+  return solution.law().model() == AdhesionModel::jkr ? solution : AdhesiveSolution(built.model, solution.w());
+}
+
+// The adhesion check, and its warning when the answer's adhesion model is off Maugis-Dugdale
+// by more than the threshold.
+std::optional<AdhesionCheck> checked_adhesion(const Scene& scene, const BuiltScene& built, const AdhesiveSolution& jkr,
+                                              const AdhesiveSolution& answer, const AnswerOptions& options,
+                                              std::vector<std::string>* warnings) {
+  // Maugis-Dugdale is solved on the medium only where the scene's model solves it exactly: a
+  // thin-layer law's answer would mix its own model error into the adhesion check's.
+  const ModelSpec* medium = built.reference || built.choice ? nullptr : &built.resolved.spec;
+  std::optional<AdhesionCheck> c = check_adhesion(jkr, answer, scene.adhesion, medium);
+  if (!c) return c;
+  require_not_nan("adhesion check's lambda", c->lambda);
+  require_not_nan("adhesion check's pull-off error", c->pull_off_error);
+  if (c->pull_off_error > options.warning_threshold)
+    warnings->push_back(std::string(c->model == AdhesionModel::jkr ? "JKR" : "DMT") +
+                        " is outside its range here: " + c->brief_report() +
+                        "; adhesion.model \"maugis_dugdale\" solves the transition");
+  return c;
+}
+
 }  // namespace
 
 void AnswerOptions::validate() const {
@@ -60,10 +91,13 @@ SummaryAnswer solve_summary(const Scene& scene, const AnswerOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   options.validate();
   BuiltScene built = build_scene_for_summary(scene);
-  const JkrSolution solution(built.model, scene.w);
+  const AdhesiveSolution solution = adhesive_solution(scene, built);
+  const AdhesiveSolution jkr = jkr_solution(built, solution);
   SummaryAnswer s;
   s.contact = summarize(solution);
-  s.error = error_estimator(scene, built).summary(s.contact);
+  // The model error is the medium model's, judged on the JKR summary for every adhesion model.
+  s.error = error_estimator(scene, built).summary(scene.adhesion.model == AdhesionModel::jkr ? s.contact
+                                                                                           : summarize(jkr));
   s.profile = scene.profile->describe();
   s.K = built.resolved.K;
   s.G = built.resolved.G;
@@ -78,6 +112,7 @@ SummaryAnswer solve_summary(const Scene& scene, const AnswerOptions& options) {
     s.warnings.push_back("model '" + s.contact.model + "' is estimated " + percent(s.error.pull_off_force) +
                          " off its reference model '" + s.error.reference + "' in the pull-off force and " +
                          percent(s.error.zero_load_radius) + " in the zero-load radius");
+  s.adhesion = checked_adhesion(scene, built, jkr, solution, options, &s.warnings);
   require_finite(s.contact);
   require_not_nan("pull-off force error estimate", s.error.pull_off_force);
   require_not_nan("zero-load radius error estimate", s.error.zero_load_radius);
@@ -95,15 +130,16 @@ CurveAnswer solve_curve(const Scene& scene, const std::vector<double>& radii, co
     if (!(a > 0.0) || !std::isfinite(a))
       throw InputError("contact radius a = " + format_double(a) + " is invalid; valid range: finite and > 0 [m]");
   BuiltScene built = build_scene_for_radii(scene, radii);
-  const JkrSolution solution(built.model, scene.w);
+  const AdhesiveSolution solution = adhesive_solution(scene, built);
   const ModelErrorEstimator estimator = error_estimator(scene, built);
   CurveAnswer c;
   c.error_estimate = estimator.along(radii);
   c.states = solution.curve(radii);
-  c.model = built.model->name();
+  c.model = solution.law().name();
   c.reference = estimator.reference_name();
   c.choice = built.choice;
   c.warnings = std::move(built.resolved.warnings);
+  c.adhesion = checked_adhesion(scene, built, jkr_solution(built, solution), solution, options, &c.warnings);
   double worst = 0.0, worst_a = 0.0;
   for (std::size_t i = 0; i < c.states.size(); ++i) {
     const std::string at = " at a = " + format_double(c.states[i].a) + " m";

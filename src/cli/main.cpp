@@ -88,7 +88,7 @@ static int run_main(int argc, char** argv) {
   int points = 0;
 
   CLI::App* curve = app.add_subcommand(
-      "curve", "Adhesive curve at given contact radii: CSV a,P,delta,P_H,delta_H,S,error_est (SI; error_est: "
+      "curve", "Adhesive curve at given contact radii: CSV a,P,delta,P_H,delta_H,S,error_est,c (SI; c: the adhesive zone's outer radius; error_est: "
                "estimated relative model error)");
   curve->add_option("scene", scene_path, "Scene JSON file")->required();
   auto* at_opt = curve->add_option("--at", at, "Comma-separated contact radii [m]");

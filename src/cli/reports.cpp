@@ -99,6 +99,7 @@ json contact_json(const ContactSummary& s, const std::string& profile) {
   j["model"] = s.model;
   j["profile"] = profile;
   j["w"] = s.w;
+  j["adhesion_model"] = to_string(s.adhesion);
   auto opt = [](const std::optional<double>& v) { return v ? json(*v) : json(nullptr); };
   j["pull_off_force"] = s.pull_off ? json(s.pull_off->P) : json(nullptr);
   j["pull_off_radius"] = s.pull_off ? json(s.pull_off->a) : json(nullptr);
@@ -111,6 +112,17 @@ json contact_json(const ContactSummary& s, const std::string& profile) {
   return j;
 }
 
+namespace {
+json adhesion_json(const std::optional<AdhesionCheck>& c) {
+  if (!c) return nullptr;
+  return {{"lambda", c->lambda},
+          {"sigma0", c->sigma0},
+          {"sigma0_assumed", c->sigma0_assumed},
+          {"pull_off_error", c->pull_off_error},
+          {"basis", c->basis}};
+}
+}  // namespace
+
 json summary_json(const SummaryAnswer& a) {
   json j = contact_json(a.contact, a.profile);
   j["model_error_estimate"] = {{"pull_off_force", finite_or_null(a.error.pull_off_force)},
@@ -121,6 +133,7 @@ json summary_json(const SummaryAnswer& a) {
     j[a.g_is_tension ? "T" : "G"] = a.G.value_or(0.0);
   }
   if (a.E_star) j["E_star"] = *a.E_star;
+  j["adhesion_check"] = adhesion_json(a.adhesion);
   if (a.choice)
     j["model_choice"] = {{"model", to_string(a.choice->model)},
                          {"estimated_error", a.choice->estimated_error},
@@ -130,12 +143,12 @@ json summary_json(const SummaryAnswer& a) {
 }
 
 std::string curve_csv(const CurveAnswer& c) {
-  std::string out = "a,P,delta,P_H,delta_H,S,error_est\n";
+  std::string out = "a,P,delta,P_H,delta_H,S,error_est,c\n";
   for (std::size_t i = 0; i < c.states.size(); ++i) {
     const AdhesiveState& s = c.states[i];
     out += format_double(s.a) + "," + format_double(s.P) + "," + format_double(s.delta) + "," +
            format_double(s.hertz.P_H) + "," + format_double(s.hertz.delta_H) + "," + format_double(s.hertz.S) + "," +
-           format_double(c.error_estimate[i]) + "\n";
+           format_double(c.error_estimate[i]) + "," + format_double(s.c) + "\n";
   }
   return out;
 }

@@ -22,6 +22,7 @@ std::vector<double> parse_radii(const std::string& text);
 nlohmann::ordered_json contact_json(const ContactSummary& s, const std::string& profile);
 
 /// `layerjkr summary`: contact_json plus model_error_estimate, K, G (T), E_star,
+/// adhesion_check (lambda, sigma0, sigma0_assumed, pull_off_error, basis; null for w = 0),
 /// model_choice and warnings.
 nlohmann::ordered_json summary_json(const SummaryAnswer& a);
 

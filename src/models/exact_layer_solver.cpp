@@ -125,14 +125,11 @@ detail::KernelBlocks detail::kernel_blocks(const ExactLayerKernel& k, const Grid
   return out;
 }
 
-namespace {
-
-// The symmetrised Nystrom matrix B = I - (1/pi) W^1/2 [Ft(t_i - t_j) + Ft(t_i + t_j)] W^1/2.
 // With equal panels the first part is block Toeplitz and the second block Hankel, so only
 // (2m-1) p^2 + m p^2 distinct kernel values are needed instead of (m p)^2. B is symmetric
 // positive definite: the operator's symbol is L(u) > 0, a compliance (for one layer the
 // kernel's 1 - L lies in (0, 1]; for a stack on a soft substrate 1 - L may be negative).
-void fill_symmetric_matrix(const ExactLayerKernel& k, const Grid& g, Eigen::MatrixXd& B) {
+void detail::fill_symmetric_matrix(const ExactLayerKernel& k, const Grid& g, Eigen::MatrixXd& B) {
   const int m = g.panels, p = g.p, n = m * p;
   const detail::KernelBlocks blocks = detail::kernel_blocks(k, g);
   B.resize(n, n);
@@ -149,8 +146,19 @@ void fill_symmetric_matrix(const ExactLayerKernel& k, const Grid& g, Eigen::Matr
     }
 }
 
-// The profile's right-hand side x I0(x) = x int_0^x f'(r)/sqrt(x^2 - r^2) dr [m].
-double profile_term(const Profile& profile, double x) { return x * profile.sneddon(x).I0; }
+double detail::profile_term(const Profile& profile, double x) { return x * profile.sneddon(x).I0; }
+
+Eigen::VectorXd detail::edge_row(const ExactLayerKernel& k, const Grid& g, double rho, Eigen::Index n) {
+  Eigen::VectorXd row(n);
+  for (Eigen::Index j = 0; j < n; ++j)
+    row(j) = (1.0 / kPi) * g.sqrt_w(j) * (k.kernel(rho - g.t(j)) + k.kernel(rho + g.t(j)));
+  return row;
+}
+
+namespace {
+using detail::edge_row;
+using detail::fill_symmetric_matrix;
+using detail::profile_term;
 
 // Right-hand sides on the nodes: 1 (flat punch) and the profile term at x = h t.
 Eigen::MatrixXd right_hand_sides(const Profile& profile, double h, const Eigen::VectorXd& t) {
@@ -160,15 +168,6 @@ Eigen::MatrixXd right_hand_sides(const Profile& profile, double h, const Eigen::
     rhs(i, 1) = profile_term(profile, h * t(i));
   }
   return rhs;
-}
-
-// The Nystrom interpolant's kernel row at the edge t = rho, premultiplied by W^1/2 so that
-// edge = rhs(rho) + row . psi for psi = W^1/2 phi.
-Eigen::VectorXd edge_row(const ExactLayerKernel& k, const Grid& g, double rho, Eigen::Index n) {
-  Eigen::VectorXd row(n);
-  for (Eigen::Index j = 0; j < n; ++j)
-    row(j) = (1.0 / kPi) * g.sqrt_w(j) * (k.kernel(rho - g.t(j)) + k.kernel(rho + g.t(j)));
-  return row;
 }
 
 using Moments = detail::ExactMoments;

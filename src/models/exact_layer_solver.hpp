@@ -49,6 +49,17 @@ struct KernelBlocks {
 };
 KernelBlocks kernel_blocks(const ExactLayerKernel& kernel, const Grid& grid);
 
+// The symmetrised Nystrom matrix B = I - (1/pi) W^1/2 [Ft(t_i - t_j) + Ft(t_i + t_j)] W^1/2 on
+// the grid (symmetric positive definite: the operator's symbol L(u) is a compliance).
+void fill_symmetric_matrix(const ExactLayerKernel& kernel, const Grid& grid, Eigen::MatrixXd& B);
+
+// The Nystrom interpolant's kernel row at t = rho (units of h) over the first n nodes,
+// premultiplied by W^1/2, so that phi(rho) = rhs(rho) + row . psi for psi = W^1/2 phi.
+Eigen::VectorXd edge_row(const ExactLayerKernel& kernel, const Grid& grid, double rho, Eigen::Index n);
+
+// The profile's right-hand side x I0(x) = x int_0^x f'(r)/sqrt(x^2 - r^2) dr [m] at x [m].
+double profile_term(const Profile& profile, double x);
+
 // One Nystrom solve at a/h = rho with the kernel's options (no range checks).
 ExactMoments exact_moments(const ExactLayerKernel& kernel, const Profile& profile, double rho);
 

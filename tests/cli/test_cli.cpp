@@ -31,7 +31,7 @@ TEST_CASE("curve --at prints the CSV contract at full precision", "[cli]") {
   REQUIRE(r.code == 0);
   const auto rows = lines(r.out);
   REQUIRE(rows.size() == 3);
-  CHECK(rows[0] == "a,P,delta,P_H,delta_H,S,error_est");
+  CHECK(rows[0] == "a,P,delta,P_H,delta_H,S,error_est,c");
   // Values round-trip: parse and compare with the library.
   const layerjkr::Scene s = layerjkr::load_scene(kScene);
   const layerjkr::BuiltScene built = layerjkr::build_scene(s);
@@ -40,7 +40,7 @@ TEST_CASE("curve --at prints the CSV contract at full precision", "[cli]") {
   std::vector<double> v;
   std::stringstream row(rows[2]);
   for (std::string cell; std::getline(row, cell, ',');) v.push_back(std::stod(cell));
-  REQUIRE(v.size() == 7);
+  REQUIRE(v.size() == 8);
   CHECK(v[0] == 4e-4);
   CHECK(v[1] == st.P);
   CHECK(v[2] == st.delta);
@@ -48,6 +48,8 @@ TEST_CASE("curve --at prints the CSV contract at full precision", "[cli]") {
   CHECK(v[4] == st.hertz.delta_H);
   CHECK(v[5] == st.hertz.S);
   CHECK(v[6] == layerjkr::error_estimator(s, built).at(4e-4));
+  CHECK(v[7] == st.c);  // JKR: the adhesive zone ends at the contact edge
+  CHECK(st.c == 4e-4);
   // a/h = 4 with the two-term model: several per cent off the exact layer, so it warns.
   CHECK(v[6] > 0.05);
   CHECK(r.err.find("column error_est") != std::string::npos);
