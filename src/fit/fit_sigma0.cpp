@@ -82,14 +82,14 @@ const char* hold_sigma0_at_limit(FitRun& run, const ParameterMap& map, const std
   return name;
 }
 
-void report_sigma0_at_limit(const char* name, double lambda, FitSummary* out) {
-  out->unidentifiable.push_back(std::string("sigma0 from the ") + name + " limit (it ran to lambda = " +
+void report_sigma0_at_limit(const char* limit, double lambda, FitSummary* out) {
+  out->unidentifiable.push_back(std::string("sigma0 from the ") + limit + " limit (it ran to lambda = " +
                                 short_number(lambda) + ", where the curve no longer depends on it)");
   ParameterEstimate* e = estimate_of(out, FitParameter::sigma0);
   e->identifiable = false;
   e->standard_error = kNaN;
   e->reason = "not separable: " + out->unidentifiable.back();
-  out->warnings.push_back(std::string("sigma0 ran to the ") + name + " limit (lambda = " + short_number(lambda) +
+  out->warnings.push_back(std::string("sigma0 ran to the ") + limit + " limit (lambda = " + short_number(lambda) +
                           "): the data do not determine it; the other parameters and their error bars are from "
                           "the fit with sigma0 held there");
 }
