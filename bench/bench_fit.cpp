@@ -5,8 +5,11 @@
 // The real-curve benchmark is registered only when ../shared/data/real is present.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
+#include <string>
 
 #include "layerjkr/layerjkr.hpp"
 
@@ -94,6 +97,43 @@ void BM_FitExactLayer(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(fit(data, truth, o));
 }
 BENCHMARK(BM_FitExactLayer)->Arg(200)->Arg(500)->Unit(benchmark::kMillisecond);
+
+// One AFM-like Maugis-Dugdale retract (R = 20 nm, E = 1 GPa, w = 0.05 J/m^2, lambda = 1; 300
+// samples to the pull-off and 150 free, 1 % noise; tools/adhesion_fit_study.cpp's curve), fitted
+// with the adhesion model of the argument: 0 JKR, 1 DMT (E, w), 2 Maugis-Dugdale with sigma0 fixed
+// (E, w), 3 Maugis-Dugdale with sigma0 free (E, w, sigma0, which adds the two refits of its limit check).
+void BM_FitAdhesionModel(benchmark::State& state) {
+  constexpr double R = 20e-9, E = 1e9, nu = 0.3, w = 0.05, pi = 3.141592653589793;
+  const double E_star = E / (1 - nu * nu), sigma0 = 1.0 / maugis_lambda(R, E_star, w, 1.0);
+  const CriticalPoint po = maugis_dugdale_pull_off(R, E_star, w, sigma0);
+  const double a_max = po.a + 4.0 * std::cbrt(pi * w * R * R / (4.0 * E_star / 3.0));
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> g(0.0, 0.01 * std::abs(po.P));
+  CurveData c;
+  for (int i = 0; i < 300; ++i) {
+    const AdhesiveState st = maugis_dugdale_half_space(R, E_star, w, sigma0, a_max - (a_max - po.a) * i / 299.0);
+    c.delta.push_back(st.delta);
+    c.P.push_back(st.P + g(rng));
+    c.segment.push_back(1);
+  }
+  for (int i = 1; i <= 150; ++i) {
+    c.delta.push_back(po.delta - (c.delta.front() - po.delta) * i / 300.0);
+    c.P.push_back(g(rng));
+    c.segment.push_back(1);
+  }
+  const int kind = static_cast<int>(state.range(0));
+  const std::string adhesion = kind == 0 ? R"({"model": "jkr"})"
+                               : kind == 1 ? R"({"model": "dmt"})"
+                                           : R"({"model": "maugis_dugdale", "sigma0": )" + std::to_string(sigma0) + "}";
+  const Scene scene = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 2e-8}, "medium": {"type": "half_space",
+      "E": 2e9, "nu": 0.3}, "adhesion": )" + adhesion + "}");
+  FitOptions o;
+  o.free = {FitParameter::E, FitParameter::w};
+  if (kind == 3) o.free.push_back(FitParameter::sigma0);
+  o.branch = Branch::retract;
+  for (auto _ : state) benchmark::DoNotOptimize(fit(c, scene, o));
+}
+BENCHMARK(BM_FitAdhesionModel)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

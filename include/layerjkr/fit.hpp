@@ -8,7 +8,15 @@
 // The forward model. The scene fixes the indenter, the medium and the model; the free
 // parameters replace the scene's values. A sample (delta_i, P_i) is predicted as
 //   P0 + P(a_i)  with delta(a_i) = delta_i - delta0 on the branch's stable part, else P0,
-// where P(a), delta(a) is the JKR curve of the scene (jkr.hpp). The stable part is
+// where P(a), delta(a) is the adhesive curve of the scene: JKR (jkr.hpp, the default), or
+// what its "adhesion" key asks for (adhesion.hpp) - the classical DMT (delta = delta_H,
+// P = P_H - 2 pi w R, R the tip's radius, a varying R for a paraboloid) on every family, or
+// Maugis-Dugdale on the hertz family (maugis_dugdale.hpp), whose Dugdale stress sigma0 is the
+// scene's, follows w where the scene gives z0, or is free (FitParameter::sigma0, fitted in
+// log like E). A free sigma0 is identifiable only when the data exclude both its limits:
+// holding it at lambda = 1e3 (JKR) and at 1e-3 (DMT) with the others refitted must raise the
+// deviance beyond the one-sided 95 % point. Maugis-Dugdale on another family, and DMT with
+// sigma0 or z0, throw InputError naming the scene's adhesion and model. The stable part is
 // a >= a_0 (zero load) on approach: a soft cantilever snaps in at zero load, so the curve
 // is continuous at P0; and a >= a_po (pull-off) on retract: after pull-off the tip is
 // free. Samples with measured contact radii add residuals (a_model - a_i) / a_scale.
@@ -21,12 +29,13 @@
 //   foundation (winkler, pasternak / filonenko_borodich asymptotic and full, layer
 //     leading / two_term): K, G (T for Filonenko-Borodich), or E for a layer (K and G
 //     follow from E, nu, h), w, delta0, P0, and R for a paraboloid.
-//   hertz (half_space with a paraboloid): E, w, delta0, P0, R.
+//   hertz (half_space with a paraboloid): E, w, delta0, P0, R, and sigma0 with adhesion
+//     maugis_dugdale.
 //   tabulated (exact, edge_corrected, auto, half_space with any other profile): E, w,
 //     delta0, P0. The scene's model is evaluated once on a log grid of radii and splined
 //     (FitOptions::table_points_per_decade); its stiffness scales exactly with E.
 //
-// Internally parameters are dimensionless: log(K/K0), log(E/E0), log(R/R0),
+// Internally parameters are dimensionless: log(K/K0), log(E/E0), log(R/R0), log(sigma0/sigma0_0),
 // G/(K0 L^2), sqrt(w/w0) (so w = 0 is a regular bound), delta0/L, P0/F, with L and F
 // the data's length and force scales; residuals are divided by F.
 #pragma once

@@ -52,9 +52,10 @@ enum class Solver { closed_form, ode };
 /// Which part of a curve a fit uses: "approach", "retract", "all".
 enum class Branch { approach, retract, all };
 
-/// A fitted quantity (fit.hpp): "K", "G", "w", "delta0", "P0", "E", "R". ("T", a
-/// Filonenko-Borodich tension, is read as G by from_string.)
-enum class FitParameter { K, G, w, delta0, P0, E, R };
+/// A fitted quantity (fit.hpp): "K", "G", "w", "delta0", "P0", "E", "R", "sigma0" (the
+/// Dugdale stress of a Maugis-Dugdale fit). ("T", a Filonenko-Borodich tension, is read as G
+/// by from_string.)
+enum class FitParameter { K, G, w, delta0, P0, E, R, sigma0 };
 
 /// Robust loss on force residuals (fit.hpp): "none", "huber", "cauchy".
 enum class LossType { none, huber, cauchy };

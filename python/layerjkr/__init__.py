@@ -961,7 +961,7 @@ def _range(name: str, value: Optional[Tuple[float, float]]) -> Optional[Tuple[fl
 
 _FIT_PARAMETERS_DOC = """
     free : sequence of str or str, default ("E", "w", "delta0")
-        Parameters to identify: K, G (or T), w, delta0, P0, E, R; a comma-separated string is
+        Parameters to identify: K, G (or T), w, delta0, P0, E, R, sigma0; a comma-separated string is
         accepted too. The others come from the scene (delta0 = P0 = 0 unless freed).
     branch : {"approach", "retract", "all"}, default "approach"
         Which part of the curve to fit.

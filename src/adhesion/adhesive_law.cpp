@@ -6,16 +6,13 @@
 #include <limits>
 #include <utility>
 
-#include <boost/math/constants/constants.hpp>
-
+#include "adhesion/dmt_formula.hpp"
 #include "adhesion/dugdale_solver.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/maugis_dugdale.hpp"
 
 namespace layerjkr {
 namespace {
-
-constexpr double kPi = boost::math::constants::pi<double>();
 
 class JkrLaw final : public AdhesiveLaw {
  public:
@@ -150,7 +147,7 @@ AdhesiveState dmt_transform(const NonAdhesiveState& hertz, double w, double R) {
   AdhesiveState s;
   s.a = hertz.a;
   s.c = w > 0.0 ? std::numeric_limits<double>::infinity() : hertz.a;
-  s.P = hertz.P_H - 2.0 * kPi * w * R;
+  s.P = detail::dmt_force(hertz.P_H, w, R);
   s.delta = hertz.delta_H;
   s.hertz = hertz;
   return s;

@@ -37,7 +37,7 @@ LAYERJKR_NAMES(Solver, {Solver::closed_form, "closed_form"}, {Solver::ode, "ode"
 LAYERJKR_NAMES(Branch, {Branch::approach, "approach"}, {Branch::retract, "retract"}, {Branch::all, "all"})
 LAYERJKR_NAMES(FitParameter, {FitParameter::K, "K"}, {FitParameter::G, "G"}, {FitParameter::w, "w"},
                {FitParameter::delta0, "delta0"}, {FitParameter::P0, "P0"}, {FitParameter::E, "E"},
-               {FitParameter::R, "R"})
+               {FitParameter::R, "R"}, {FitParameter::sigma0, "sigma0"})
 LAYERJKR_NAMES(LossType, {LossType::none, "none"}, {LossType::huber, "huber"}, {LossType::cauchy, "cauchy"})
 LAYERJKR_NAMES(RetractWindow, {RetractWindow::all, "all"}, {RetractWindow::to_pull_off, "pull_off"},
                {RetractWindow::force_fraction, "fraction"})

@@ -31,6 +31,11 @@ void ParameterMap::physical(const T* x, CurveParameters<T>* p, T* delta0, T* P0)
   p->R = get(FitParameter::R) ? ref[idx(FitParameter::R)] * exp(*get(FitParameter::R)) : T(f.R);
   p->s = get(FitParameter::w) ? s_scale * *get(FitParameter::w) : T(f.s);
   p->E = get(FitParameter::E) ? ref[idx(FitParameter::E)] * exp(*get(FitParameter::E)) : T(f.E);
+  // A Dugdale stress from a spacing z0 follows w (sigma0 = 16 w / (9 sqrt 3 z0)) unless freed.
+  if (get(FitParameter::sigma0))
+    p->sigma0 = ref[idx(FitParameter::sigma0)] * exp(*get(FitParameter::sigma0));
+  else
+    p->sigma0 = fixed.sigma0_per_w > 0.0 ? fixed.sigma0_per_w * p->s * p->s : T(f.sigma0);
   if (fixed.layer_foundation && get(FitParameter::E)) {
     p->K = fixed.k_per_E * p->E;
     p->G = fixed.g_per_E * p->E;
@@ -63,6 +68,7 @@ double ParameterMap::value(FitParameter q, const double* x) const {
     case FitParameter::P0: return P0;
     case FitParameter::E: return p.E;
     case FitParameter::R: return p.R;
+    case FitParameter::sigma0: return p.sigma0;
   }
   return kNaN;
 }
@@ -72,7 +78,8 @@ double ParameterMap::derivative(FitParameter q, const double* x) const {
   switch (q) {
     case FitParameter::K:
     case FitParameter::E:
-    case FitParameter::R: return value(q, x);
+    case FitParameter::R:
+    case FitParameter::sigma0: return value(q, x);
     case FitParameter::G: return G_log ? value(q, x) : G_scale;
     case FitParameter::w: return 2.0 * s_scale * s_scale * xv;
     case FitParameter::delta0: return L;
@@ -115,7 +122,7 @@ CurveEvaluator::CurveEvaluator(const CurveModel& model, const ParameterMap& map,
 
 void CurveEvaluator::curve(const CurveParameters<double>& p, double a, double* delta, double* P,
                            double* ddelta, double* dP) const {
-  const CurveParameters<Jet1> pj{Jet1(p.K), Jet1(p.G), Jet1(p.E), Jet1(p.s), Jet1(p.R)};
+  const CurveParameters<Jet1> pj{Jet1(p.K), Jet1(p.G), Jet1(p.E), Jet1(p.s), Jet1(p.R), Jet1(p.sigma0)};
   Jet1 d, F;
   model_.evaluate(Jet1(a, 0), pj, &d, &F);
   *delta = d.a;
@@ -239,8 +246,8 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
   CurveParameters<double> p;
   double delta0 = 0.0, P0 = 0.0;
   map_.physical(x, &p, &delta0, &P0);
-  if (!(p.K >= 0.0 && p.E >= 0.0 && p.R >= 0.0) || !std::isfinite(p.K) || !std::isfinite(p.E) ||
-      !std::isfinite(p.R) || !std::isfinite(p.G) || !std::isfinite(p.s))
+  if (!(p.K >= 0.0 && p.E >= 0.0 && p.R >= 0.0 && p.sigma0 >= 0.0) || !std::isfinite(p.K) || !std::isfinite(p.E) ||
+      !std::isfinite(p.R) || !std::isfinite(p.G) || !std::isfinite(p.s) || !std::isfinite(p.sigma0))
     return false;
   CurveParameters<J> pj;
   J d0j, P0j;

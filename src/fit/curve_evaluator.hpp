@@ -12,8 +12,8 @@ namespace layerjkr::detail {
 /// Maps the internal dimensionless vector x to physical parameters (see fit.hpp).
 struct ParameterMap {
   std::vector<FitParameter> free;
-  std::array<int, 7> slot{};        ///< index into x per FitParameter, -1 if fixed
-  std::array<double, 7> ref{};      ///< reference value per FitParameter
+  std::array<int, 8> slot{};        ///< index into x per FitParameter, -1 if fixed
+  std::array<double, 8> ref{};      ///< reference value per FitParameter
   SceneParameters fixed;
   double L = 1.0, F = 1.0;          ///< length and force scales [m], [N]
   double G_scale = 1.0;             ///< linear G: G = G_scale * x

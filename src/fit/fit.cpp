@@ -26,7 +26,12 @@ bool has(const FitOptions& options, FitParameter q) {
 }
 
 // Every free parameter must be one the model family can vary.
-void require_supported(const CurveModel& model, const FitOptions& options) {
+void require_supported(const CurveModel& model, const FitOptions& options, const Scene& scene) {
+  for (FitParameter q : options.free)
+    if (q == FitParameter::sigma0 && !model.supports(q))
+      throw InputError(std::string("fit: free parameter sigma0 (the Dugdale stress) needs adhesion 'maugis_dugdale' on "
+                                   "model half_space with a paraboloid; the scene's adhesion is '") +
+                       to_string(scene.adhesion.model) + "' on model '" + model.model_name() + "'");
   for (FitParameter q : options.free)
     if (!model.supports(q)) {
       std::string why = q == FitParameter::R ? "R can vary only for a paraboloid indenter with a closed-form model"
@@ -57,6 +62,7 @@ ParameterMap make_parameter_map(const FitOptions& options, const ResolvedModel& 
   map.ref[static_cast<int>(FitParameter::E)] = f.E;
   map.ref[static_cast<int>(FitParameter::R)] = f.R;
   map.ref[static_cast<int>(FitParameter::G)] = f.G;
+  map.ref[static_cast<int>(FitParameter::sigma0)] = f.sigma0;
   map.G_log = resolved.spec.kind == ModelKind::full_foundation && !resolved.automatic;
   map.G_scale = f.G != 0.0 ? std::abs(f.G) : f.K * span * span;
   map.s_scale = std::sqrt(force_span / span) * 0.1;
@@ -114,8 +120,11 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   const std::unique_ptr<CurveModel> model = detail::make_curve_model(scene, resolved, options, span, &fixed);
   out.model = model->model_name();
   out.family = model->family();
-  require_supported(*model, options);
+  require_supported(*model, options, scene);
   ParameterMap map = make_parameter_map(options, resolved, fixed, span, force_span);  // the start refines it
+  if (map.is_free(FitParameter::sigma0) && !(fixed.values.sigma0 > 0.0))
+    throw InputError("fit: free parameter sigma0 starts from the scene's Dugdale stress, which is 0 here "
+                     "(adhesion.z0 with w = 0): give adhesion.sigma0 or a work of adhesion w > 0");
   if (resolved.spec.ode)
     out.warnings.push_back("solver 'ode' verifies the closed forms; the fit evaluates the same "
                            "foundation in closed form");

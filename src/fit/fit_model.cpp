@@ -8,10 +8,12 @@
 #include <boost/math/constants/constants.hpp>
 #include <gsl/gsl_spline.h>
 
+#include "adhesive_curve.hpp"
 #include "core/gsl_support.hpp"
 #include "core/scalar.hpp"
 #include "jkr/jkr_transform.hpp"
 #include "models/state_formulas.hpp"
+#include "layerjkr/adhesion.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/built_scene.hpp"
 #include "layerjkr/model_spec.hpp"
@@ -34,17 +36,6 @@ ProfileAt<T> profile_at(const Profile& p, bool paraboloid, const T& a, const T& 
           lift(p.moment(av), av * d.f, a)};
 }
 
-// The JKR curve point of a non-adhesive state (the one transform, jkr_transform.hpp); the
-// curve's adhesion parameter is s = sqrt(w).
-template <int N>
-void adhesive(const ceres::Jet<double, N>& a, const StateOf<ceres::Jet<double, N>>& h,
-              const ceres::Jet<double, N>& s, ceres::Jet<double, N>* delta, ceres::Jet<double, N>* P) {
-  jkr_from_state_sqrt_w(a, h.P_H, h.delta_H, h.S, h.dS_da, s, delta, P);
-}
-void adhesive(double a, const StateOf<double>& h, double s, double* delta, double* P) {
-  jkr_from_state(a, h.P_H, h.delta_H, h.S, h.dS_da, s * s, delta, P);
-}
-
 template <class Derived>
 class CurveModelBase : public CurveModel {
  public:
@@ -65,27 +56,28 @@ class CurveModelBase : public CurveModel {
 // Two-term / Winkler (asymptotic) or full Pasternak / Filonenko-Borodich.
 class FoundationCurve final : public CurveModelBase<FoundationCurve> {
  public:
-  FoundationCurve(ProfilePtr profile, bool full, bool layer, ModelKind name)
+  FoundationCurve(ProfilePtr profile, bool full, bool layer, ModelKind name, StateLaw law)
       : profile_(std::move(profile)), paraboloid_(profile_->is_paraboloid()), full_(full),
-        layer_(layer), name_(name) {}
+        layer_(layer), name_(name), law_(law) {}
 
   template <class T>
   void curve(const T& a, const CurveParameters<T>& p, T* delta, T* P) const {
     using std::sqrt;
     if (paraboloid_ && !full_) {
-      adhesive(a, two_term_paraboloid_state(a, p.R, p.K, p.G), p.s, delta, P);
+      law_.apply(a, two_term_paraboloid_state(a, p.R, p.K, p.G), p, delta, P);
       return;
     }
     const ProfileAt<T> g = profile_at(*profile_, paraboloid_, a, p.R);
     const StateOf<T> h =
         full_ ? full_foundation_state(a, g, p.K, p.G, T(sqrt(p.K / p.G))) : two_term_state(a, g, p.K, p.G);
-    adhesive(a, h, p.s, delta, P);
+    law_.apply(a, h, p, delta, P);
   }
 
-  // Paraboloid, asymptotic: delta = a^2/(2R) - 2G/(KR) - sqrt(2w/K) is a quadratic in a.
+  // Paraboloid, asymptotic: delta = a^2/(2R) - 2G/(KR) - sqrt(2w/K) is a quadratic in a
+  // (DMT's delta = delta_H as well, without the root).
   bool invert(const CurveParameters<double>& p, double target, double* a, double* P) const override {
     if (!paraboloid_ || full_) return false;
-    const double root = p.s * std::sqrt(2.0 / p.K);
+    const double root = law_.model == AdhesionModel::dmt ? 0.0 : p.s * std::sqrt(2.0 / p.K);
     const double a2 = 2.0 * p.R * (target + 2.0 * p.G / (p.K * p.R) + root);
     if (!(a2 > 0.0)) return false;
     *a = std::sqrt(a2);
@@ -98,28 +90,37 @@ class FoundationCurve final : public CurveModelBase<FoundationCurve> {
     switch (q) {
       case FitParameter::E: return layer_;
       case FitParameter::R: return paraboloid_;
+      case FitParameter::sigma0: return false;
       default: return true;
     }
   }
   double min_radius() const override { return 0.0; }
   double max_radius() const override { return profile_->max_radius(); }
   FitFamily family() const override { return FitFamily::foundation; }
-  std::string model_name() const override { return to_string(name_); }
+  std::string model_name() const override { return law_.name(to_string(name_)); }
 
  private:
   ProfilePtr profile_;
   bool paraboloid_, full_, layer_;
   ModelKind name_;
+  StateLaw law_;
 };
 
-// Half-space with a paraboloid: delta_H = a^2/R, P_H = 4 E* a^3 / (3R).
+// Half-space with a paraboloid: delta_H = a^2/R, P_H = 4 E* a^3 / (3R); JKR, DMT or
+// Maugis-Dugdale (which, with w = 0, is Hertz).
 class HertzCurve final : public CurveModelBase<HertzCurve> {
  public:
-  explicit HertzCurve(double nu) : one_minus_nu2_((1.0 - nu) * (1.0 + nu)) {}
+  HertzCurve(double nu, StateLaw law, bool maugis)
+      : one_minus_nu2_((1.0 - nu) * (1.0 + nu)), law_(law), maugis_(maugis) {}
   template <class T>
   void curve(const T& a, const CurveParameters<T>& p, T* delta, T* P) const {
+    const T E_star = p.E / one_minus_nu2_;
+    if (maugis_ && value_of(p.s) > 0.0) {
+      maugis_curve(a, E_star, T(p.s * p.s), p.R, p.sigma0, delta, P);
+      return;
+    }
     const T a_R = a / p.R;  // a paraboloid's Sneddon integrals: I0 = a/R, I2 = 2a/(3R)
-    adhesive(a, half_space_state(a, a_R, (2.0 / 3.0) * a_R, T(p.E / one_minus_nu2_)), p.s, delta, P);
+    law_.apply(a, half_space_state(a, a_R, (2.0 / 3.0) * a_R, E_star), p, delta, P);
   }
   // Without adhesion delta = a^2/R inverts in closed form.
   bool invert(const CurveParameters<double>& p, double target, double* a, double* P) const override {
@@ -130,15 +131,21 @@ class HertzCurve final : public CurveModelBase<HertzCurve> {
     return true;
   }
   bool supports(FitParameter q) const override {
+    if (q == FitParameter::sigma0) return maugis_;
     return q != FitParameter::K && q != FitParameter::G;
   }
   double min_radius() const override { return 0.0; }
   double max_radius() const override { return std::numeric_limits<double>::infinity(); }
   FitFamily family() const override { return FitFamily::hertz; }
-  std::string model_name() const override { return to_string(ModelKind::half_space); }
+  std::string model_name() const override {
+    const std::string medium = to_string(ModelKind::half_space);
+    return maugis_ ? std::string(to_string(AdhesionModel::maugis_dugdale)) + " on " + medium : law_.name(medium);
+  }
 
  private:
   double one_minus_nu2_;
+  StateLaw law_;
+  bool maugis_;
 };
 
 // Natural cubic spline in t = ln a, evaluated with a NULL accelerator (thread-safe).
@@ -161,8 +168,8 @@ class LogSpline {
 // ln P_H, ln S, ln S' and delta_H (or ln delta_H when positive) are splined in ln a.
 class TabulatedCurve final : public CurveModelBase<TabulatedCurve> {
  public:
-  TabulatedCurve(ContactModelPtr model, double E_ref, double delta_span, int per_decade)
-      : model_(std::move(model)), E_ref_(E_ref) {
+  TabulatedCurve(ContactModelPtr model, double E_ref, double delta_span, int per_decade, StateLaw law)
+      : model_(std::move(model)), E_ref_(E_ref), law_(law) {
     const double lo_bound = model_->min_radius();
     const double hi_bound = model_->max_radius();
     // Upper radius: delta_H reaches 4x the data's span, or the model's bound.
@@ -234,16 +241,16 @@ class TabulatedCurve final : public CurveModelBase<TabulatedCurve> {
       delta_H = T(delta_->value(tv)) + delta_->slope(tv) * dt;
     }
     // P_H, S and S' scale with E; delta_H does not.
-    adhesive(a, StateOf<T>{kappa * P_H, delta_H, kappa * S, kappa * Sp}, p.s, delta, P);
+    law_.apply(a, StateOf<T>{kappa * P_H, delta_H, kappa * S, kappa * Sp}, p, delta, P);
   }
 
   bool supports(FitParameter q) const override {
-    return q != FitParameter::K && q != FitParameter::G && q != FitParameter::R;
+    return q != FitParameter::K && q != FitParameter::G && q != FitParameter::R && q != FitParameter::sigma0;
   }
   double min_radius() const override { return a_lo_; }
   double max_radius() const override { return a_hi_; }
   FitFamily family() const override { return FitFamily::tabulated; }
-  std::string model_name() const override { return model_->name(); }
+  std::string model_name() const override { return law_.name(model_->name()); }
   std::vector<std::string> notes() const override {
     return {"model '" + model_->name() + "' tabulated on a in [" + format_double(a_lo_) + ", " +
             format_double(a_hi_) + "] m; measured interpolation error " +
@@ -253,6 +260,7 @@ class TabulatedCurve final : public CurveModelBase<TabulatedCurve> {
  private:
   ContactModelPtr model_;
   double E_ref_;
+  StateLaw law_;
   bool positive_delta_ = true;
   double a_lo_ = 0.0, a_hi_ = 0.0, max_error_ = 0.0;
   std::unique_ptr<LogSpline> lnP_, lnS_, lnSp_, delta_;
@@ -260,6 +268,28 @@ class TabulatedCurve final : public CurveModelBase<TabulatedCurve> {
 
 double paraboloid_radius(const Profile& p) {
   return p.is_paraboloid() ? 1.0 / p.derivatives(1.0).d2f : 0.0;
+}
+
+// The scene's adhesion as the law the families apply, refusing what a fit does not offer.
+StateLaw state_law(const Scene& scene, bool paraboloid) {
+  const AdhesionSpec& adhesion = scene.adhesion;
+  StateLaw law;
+  law.model = adhesion.model;
+  if (adhesion.model != AdhesionModel::dmt) return law;
+  if (adhesion.sigma0 || adhesion.z0)
+    throw InputError("fit: adhesion 'dmt' with a Dugdale stress (adhesion." +
+                     std::string(adhesion.sigma0 ? "sigma0" : "z0") +
+                     ") is not offered in fits; the classical DMT (no sigma0, no z0) and 'maugis_dugdale' "
+                     "on model half_space with a paraboloid are");
+  law.R_varies = paraboloid;
+  if (!paraboloid) {
+    const double curvature = scene.profile->derivatives(0.0).d2f;
+    if (!(curvature > 0.0) || !std::isfinite(curvature))
+      throw InputError("fit: adhesion 'dmt' needs a tip with a radius of curvature (f''(0) > 0); " +
+                       scene.profile->describe() + " has f''(0) = " + format_double(curvature));
+    law.tip_radius = 1.0 / curvature;
+  }
+  return law;
 }
 
 }  // namespace
@@ -273,6 +303,24 @@ std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const ResolvedM
   std::unique_ptr<CurveModel> model;
   const bool foundation = !resolved.automatic && (spec.kind == ModelKind::winkler || spec.kind == ModelKind::two_term ||
                                                   spec.kind == ModelKind::full_foundation);
+  const bool hertz = !foundation && spec.kind == ModelKind::half_space && scene.profile->is_paraboloid();
+  const StateLaw law = state_law(scene, scene.profile->is_paraboloid());
+  const bool maugis = scene.adhesion.model == AdhesionModel::maugis_dugdale;
+  if (maugis && !hertz)
+    throw InputError("fit: adhesion 'maugis_dugdale' is fitted on model half_space with a paraboloid (its closed "
+                     "form) only; this scene has model '" + std::string(resolved.automatic ? "auto" : to_string(spec.kind)) +
+                     "' with " + scene.profile->describe() + ": fit it with adhesion 'jkr' or 'dmt' (every model), "
+                     "or as a half-space with a paraboloid");
+  if (maugis) {
+    // sigma0 given: fixed (or the start of a free sigma0); z0 given: sigma0 follows w.
+    scene.adhesion.validate();
+    if (scene.adhesion.sigma0) {
+      sp.values.sigma0 = *scene.adhesion.sigma0;
+    } else {
+      sp.sigma0_per_w = scene.adhesion.dugdale_stress(1.0);
+      sp.values.sigma0 = sp.sigma0_per_w * scene.w;
+    }
+  }
   if (foundation && resolved.constants_from_layer) {
     // K and G scale with E at fixed nu and h: the unit layer's constants, and its warnings
     // (they depend on nu only, so they are the scene's).
@@ -285,18 +333,18 @@ std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const ResolvedM
     sp.values.E = layer.E;
     sp.values.K = layer.E * sp.k_per_E;
     sp.values.G = layer.E * sp.g_per_E;
-    model = std::make_unique<FoundationCurve>(scene.profile, false, true, spec.kind);
+    model = std::make_unique<FoundationCurve>(scene.profile, false, true, spec.kind, law);
   } else if (foundation) {  // a foundation medium's own constants
     sp.values.K = spec.K;
     sp.values.G = spec.G;
     const bool full = spec.kind == ModelKind::full_foundation;
     const ModelKind name = full ? ModelKind::full_foundation : spec.G == 0.0 ? ModelKind::winkler : ModelKind::two_term;
-    model = std::make_unique<FoundationCurve>(scene.profile, full, false, name);
-  } else if (spec.kind == ModelKind::half_space && scene.profile->is_paraboloid()) {
+    model = std::make_unique<FoundationCurve>(scene.profile, full, false, name, law);
+  } else if (hertz) {
     sp.values.E = spec.layer.E;
     sp.nu = spec.layer.nu;
     effective_modulus(spec.layer.E, spec.layer.nu);  // validates nu
-    model = std::make_unique<HertzCurve>(spec.layer.nu);
+    model = std::make_unique<HertzCurve>(spec.layer.nu, law, maugis);
   } else {
     // Any other model (exact, edge_corrected, incompressible, uniform, auto, the half-space
     // with another profile, a full foundation of a layer) is tabulated; nothing is judged here,
@@ -307,7 +355,8 @@ std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const ResolvedM
     const double a_min =
         resolved.automatic ? std::sqrt(delta_span * scene.profile->length_scale()) / 20.0 : 0.0;
     const BuiltScene built = build_scene(scene, a_min, false);
-    model = std::make_unique<TabulatedCurve>(built.model, spec.layer.E, delta_span, options.table_points_per_decade);
+    model = std::make_unique<TabulatedCurve>(built.model, spec.layer.E, delta_span, options.table_points_per_decade,
+                                             law);
   }
   if (fixed) *fixed = sp;
   return model;

@@ -28,6 +28,7 @@ struct CurveParameters {
   T E{};    ///< Young's modulus [Pa] (hertz, tabulated; layer foundations via K, G)
   T s{};    ///< sqrt(work of adhesion)
   T R{};    ///< paraboloid radius [m] (when the profile is a paraboloid)
+  T sigma0{};  ///< Dugdale stress [Pa] (Maugis-Dugdale adhesion)
 };
 
 /// delta(a) and P(a) of the adhesive curve for one model family.
@@ -61,6 +62,9 @@ struct SceneParameters {
   double k_per_E = 0.0, g_per_E = 0.0;  ///< layer foundations: K = k E, G = g E
   bool layer_foundation = false;
   double nu = 0.0;                      ///< hertz / tabulated: E* = E / (1 - nu^2)
+  /// Maugis-Dugdale with a spacing z0: sigma0 = sigma0_per_w * w while sigma0 is not free
+  /// (0: sigma0 is values.sigma0).
+  double sigma0_per_w = 0.0;
   std::vector<std::string> warnings;    ///< the thin-layer warnings of a layer foundation
 };
 

@@ -112,11 +112,13 @@ void FitRun::solve() {
   }
 }
 
-bool FitRun::hold_w(double xw) {
-  const int slot = map_.index(FitParameter::w);
+bool FitRun::hold_w(double xw) { return hold(FitParameter::w, xw); }
+
+bool FitRun::hold(FitParameter q, double xq) {
+  const int slot = map_.index(q);
   const std::vector<double> before = x_;
   const int held_before = held_;
-  x_[static_cast<std::size_t>(slot)] = xw;
+  x_[static_cast<std::size_t>(slot)] = xq;
   held_ = slot;
   if (!ev_.evaluate(x_.data(), false) || (x_.size() > 1 && !resolve_in_place())) {
     x_ = before;
@@ -126,9 +128,11 @@ bool FitRun::hold_w(double xw) {
   return true;
 }
 
-double FitRun::cost_with_w_held(double xw) {
+double FitRun::cost_with_w_held(double xw) { return cost_with_held(FitParameter::w, xw); }
+
+double FitRun::cost_with_held(FitParameter q, double xq) {
   std::vector<double> xs = x_;
-  xs[static_cast<std::size_t>(map_.index(FitParameter::w))] = xw;
+  xs[static_cast<std::size_t>(map_.index(q))] = xq;
   if (!ev_.evaluate(xs.data(), false)) return kNaN;
   if (xs.size() == 1) {  // nothing else to refit: the cost at xw (least squares; robust losses refit below)
     if (options_.loss == LossType::none) {
@@ -139,7 +143,7 @@ double FitRun::cost_with_w_held(double xw) {
     return kNaN;
   }
   ceres::Solver::Summary s2;
-  solve_from(xs, &s2, map_.index(FitParameter::w));
+  solve_from(xs, &s2, map_.index(q));
   return s2.IsSolutionUsable() ? s2.final_cost : kNaN;
 }
 

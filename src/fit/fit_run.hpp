@@ -38,9 +38,14 @@ class FitRun {
   /// Holds w (its internal coordinate) at xw from now on and solves again in place, without its
   /// bound; false if that solve is not usable (then nothing changed).
   bool hold_w(double xw);
+  /// The same for any free parameter q at its internal coordinate xq (one parameter is held at
+  /// a time: a later hold replaces an earlier one).
+  bool hold(FitParameter q, double xq);
   /// The cost with w held at xw and the other parameters refitted from the current solution;
   /// the run's state is unchanged. NaN if that solve is not usable.
   double cost_with_w_held(double xw);
+  /// The same for any free parameter q held at its internal coordinate xq.
+  double cost_with_held(FitParameter q, double xq);
   /// The slot of x held fixed (w at its bound), or -1.
   int held_slot() const { return held_; }
 

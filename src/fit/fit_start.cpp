@@ -206,6 +206,7 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
     for (int it = 0; it < 40; ++it) {
       const double mid = 0.5 * (lo + hi);
       p.s = std::sqrt(std::exp(mid));
+      if (map.fixed.sigma0_per_w > 0.0 && !map.is_free(FitParameter::sigma0)) p.sigma0 = map.fixed.sigma0_per_w * p.s * p.s;
       detail::BranchStart bs;
       double P = 0.0, d;
       const bool ok = ev.branch_start(p, detail::StartKind::pull_off, &bs);

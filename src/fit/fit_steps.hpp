@@ -46,6 +46,27 @@ class FitRun;
 void assess_uncertainty(FitRun& run, CurveEvaluator& ev, const ParameterMap& map, std::vector<double>& x,
                         const FitOptions& options, const FitData& data, FitSummary* out);
 
+/// The one-sided 95 % point of the deviance 2 delta cost / s^2 (chi^2(1) at 90 %, 1.6449^2): w's
+/// upper bound and the limits of a free sigma0 are where the profile rises by it.
+constexpr double kUpperBoundDeviance = 2.705543454095404;
+/// A cost (dimensionless residuals, force / force span) per degree of freedom below this is
+/// rounding: residuals of 1e-12 of the force span.
+constexpr double kNoiselessCost = 1e-24;
+/// Three significant digits, for numbers inside sentences.
+std::string short_number(double v);
+
+/// Maugis' lambda of the parameters at x (fit_sigma0.cpp; NaN at w = 0).
+double maugis_lambda_at(const ParameterMap& map, const std::vector<double>& x);
+/// A free sigma0 beyond lambda 1e3 (JKR) or below 1e-3 (DMT) is held where it stopped; returns
+/// that limit's name, or nullptr (sigma0 not free, inside the limits, or the hold failed).
+const char* hold_sigma0_at_limit(FitRun& run, const ParameterMap& map, const std::vector<double>& x);
+/// Reports a sigma0 held at `limit` (lambda there) as not separable from it, with a warning.
+void report_sigma0_at_limit(const char* limit, double lambda, FitSummary* out);
+/// A free sigma0 with an error bar stays identifiable only when holding it at lambda 1e3 and at
+/// 1e-3, the others refitted, raises the deviance beyond kUpperBoundDeviance (noisy data only).
+void check_sigma0_limits(FitRun& run, CurveEvaluator& ev, const ParameterMap& map, const std::vector<double>& x,
+                         std::size_t residuals, FitSummary* out);
+
 /// FitSummary::no_move_reason when the first solve did not move from the start.
 void explain_no_move(const FitRun& run, const FitData& data, const ParameterMap& map, FitSummary* out);
 

@@ -29,14 +29,9 @@ constexpr double kAtBound = 1e-9;
 // ...or when holding it at 0 raises the deviance 2 delta cost / s^2 by less than this: the fitted
 // w is then indistinguishable from 0 (a w of z standard errors raises it by about z^2).
 constexpr double kNoSignalDeviance = 1e-6;
-// The one-sided 95 % upper bound on w: the deviance rises by chi^2(1) at 90 %, 1.6449^2.
-constexpr double kUpperBoundDeviance = 2.705543454095404;
 constexpr double kUpperBoundTolerance = 0.02;  // relative, on the deviance
 constexpr int kUpperBoundSolves = 16;
 constexpr double kUpperBoundBracket = 1e-3;  // in ln w
-// A cost (dimensionless residuals, force / force span) per degree of freedom below this is rounding:
-// residuals of 1e-12 of the force span.
-constexpr double kNoiselessCost = 1e-24;
 // Eigenvalues of the column-normalised J^T J below this fraction of the largest (singular
 // values 1e-6 apart) are null directions; a parameter whose component in one exceeds
 // kNullComponent belongs to the group the data cannot separate.
@@ -47,12 +42,6 @@ constexpr double kCovarianceMinReciprocalCondition = 1e-14;
 
 const char* kUnknown = "identifiability unknown: ";
 
-// Three significant digits, for numbers inside sentences.
-std::string short_number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 // What the Jacobian says at the solution: which free parameters it can separate (false: in a
 // null direction, or a zero column), and J^T J to say, for a covariance that fails, the
@@ -296,6 +285,12 @@ void conclude(FitSummary* out) {
 
 }  // namespace
 
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
 void assess_uncertainty(FitRun& run, CurveEvaluator& ev, const ParameterMap& map, std::vector<double>& x,
                         const FitOptions& options, const FitData& data, FitSummary* out) {
   const std::size_t p_free = options.free.size();
@@ -305,6 +300,14 @@ void assess_uncertainty(FitRun& run, CurveEvaluator& ev, const ParameterMap& map
   // or so near it that the covariance cannot be scaled. Refit with w held at 0 and keep that
   // fit when the deviance says w = 0 is as good.
   const bool at_zero = w_slot < p_free && x[w_slot] <= kAtBound;
+  const char* sigma0_limit = at_zero ? nullptr : hold_sigma0_at_limit(run, map, x);
+  if (sigma0_limit) {
+    run.record(out);
+    assess_once(run, ev, map, x, options, residuals, out);
+    report_sigma0_at_limit(sigma0_limit, maugis_lambda_at(map, x), out);
+    conclude(out);
+    return;
+  }
   const std::string failed = at_zero ? std::string() : assess_once(run, ev, map, x, options, residuals, out);
   bool held = false;
   if (w_slot < p_free && (at_zero || !failed.empty())) {
@@ -344,6 +347,7 @@ void assess_uncertainty(FitRun& run, CurveEvaluator& ev, const ParameterMap& map
     }
   }
   if (at_zero && !held) assess_once(run, ev, map, x, options, residuals, out);
+  check_sigma0_limits(run, ev, map, x, residuals, out);
   conclude(out);
 }
 

@@ -49,6 +49,8 @@ const char* unit(FitParameter p) {
       return "Pa";
     case FitParameter::R:
       return "m";
+    case FitParameter::sigma0:
+      return "Pa";
   }
   return "";
 }
