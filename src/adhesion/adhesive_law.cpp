@@ -14,15 +14,23 @@
 namespace layerjkr {
 namespace {
 
+// The states of `contact` at `radii` (one call, so a model sharing work across radii does),
+// each turned adhesive by `transform`.
+template <class Transform>
+std::vector<AdhesiveState> transformed_states(const ContactModel& contact, const std::vector<double>& radii,
+                                              Transform transform) {
+  std::vector<AdhesiveState> out;
+  out.reserve(radii.size());
+  for (const NonAdhesiveState& h : contact.states(radii)) out.push_back(transform(h));
+  return out;
+}
+
 class JkrLaw final : public AdhesiveLaw {
  public:
   JkrLaw(ContactModelPtr model, double w) : AdhesiveLaw(std::move(model), w) {}
   AdhesiveState at(double a) const override { return jkr_transform(contact()->state(a), w()); }
   std::vector<AdhesiveState> curve(const std::vector<double>& radii) const override {
-    std::vector<AdhesiveState> out;
-    out.reserve(radii.size());
-    for (const NonAdhesiveState& h : contact()->states(radii)) out.push_back(jkr_transform(h, w()));
-    return out;
+    return transformed_states(*contact(), radii, [this](const NonAdhesiveState& h) { return jkr_transform(h, w()); });
   }
   AdhesionModel model() const override { return AdhesionModel::jkr; }
   std::string name() const override { return contact()->name(); }
@@ -38,10 +46,8 @@ class ClassicalDmtLaw final : public AdhesiveLaw {
     return dmt_transform(contact()->state(a), w(), R_);
   }
   std::vector<AdhesiveState> curve(const std::vector<double>& radii) const override {
-    std::vector<AdhesiveState> out;
-    out.reserve(radii.size());
-    for (const NonAdhesiveState& h : contact()->states(radii)) out.push_back(dmt_transform(h, w(), R_));
-    return out;
+    return transformed_states(*contact(), radii,
+                              [this](const NonAdhesiveState& h) { return dmt_transform(h, w(), R_); });
   }
   AdhesionModel model() const override { return AdhesionModel::dmt; }
   bool has_zero_radius_state() const override { return true; }
@@ -112,20 +118,22 @@ std::shared_ptr<const detail::DugdaleSolver> dugdale_solver(const ContactModel& 
                    std::string(to_string(spec.kind)) + "\": the thin-layer and foundation laws do not give the gap outside the contact");
 }
 
-// The tip's radius of curvature 1/f''(0), where the profile has one.
+// The tip's radius of curvature, where the profile has one.
 double tip_radius(const ContactModel& model, const char* what) {
   if (!model.has_profile())
     throw InputError(std::string(what) + " needs an indenter profile; this model was built from data");
-  const Profile& p = model.profile();
-  const double curvature = p.derivatives(0.0).d2f;
-  if (!(curvature > 0.0) || !std::isfinite(curvature))
-    throw InputError(std::string(what) + " needs a tip with a radius of curvature (f''(0) > 0); " + p.describe() +
-                     " has f''(0) = " + format_double(curvature) +
-                     ": give adhesion.sigma0 (or z0) for a Dugdale law on its gap");
-  return 1.0 / curvature;
+  return detail::dmt_tip_radius(model.profile(), what, ": give adhesion.sigma0 (or z0) for a Dugdale law on its gap");
 }
 
 }  // namespace
+
+double detail::dmt_tip_radius(const Profile& p, const std::string& who, const std::string& remedy) {
+  const double curvature = p.derivatives(0.0).d2f;
+  if (!(curvature > 0.0) || !std::isfinite(curvature))
+    throw InputError(who + " needs a tip with a radius of curvature (f''(0) > 0); " + p.describe() +
+                     " has f''(0) = " + format_double(curvature) + remedy);
+  return 1.0 / curvature;
+}
 
 void AdhesionSpec::validate() const {
   if (sigma0) detail::require_positive("AdhesionSpec", "sigma0", *sigma0);
@@ -138,7 +146,7 @@ double AdhesionSpec::dugdale_stress(double w) const {
   validate();
   detail::require_positive("AdhesionSpec::dugdale_stress", "w", w);
   if (sigma0) return *sigma0;
-  return 16.0 * w / (9.0 * std::sqrt(3.0) * (z0 ? *z0 : kAssumedSpacing));
+  return lennard_jones_dugdale_stress(w, z0 ? *z0 : kAssumedSpacing);
 }
 
 AdhesiveState dmt_transform(const NonAdhesiveState& hertz, double w, double R) {

@@ -8,6 +8,7 @@
 #include <boost/math/constants/constants.hpp>
 #include <gsl/gsl_spline.h>
 
+#include "adhesion/dmt_formula.hpp"
 #include "adhesive_curve.hpp"
 #include "core/gsl_support.hpp"
 #include "core/scalar.hpp"
@@ -283,11 +284,7 @@ StateLaw state_law(const Scene& scene, bool paraboloid) {
                      "on model half_space with a paraboloid are");
   law.R_varies = paraboloid;
   if (!paraboloid) {
-    const double curvature = scene.profile->derivatives(0.0).d2f;
-    if (!(curvature > 0.0) || !std::isfinite(curvature))
-      throw InputError("fit: adhesion 'dmt' needs a tip with a radius of curvature (f''(0) > 0); " +
-                       scene.profile->describe() + " has f''(0) = " + format_double(curvature));
-    law.tip_radius = 1.0 / curvature;
+    law.tip_radius = dmt_tip_radius(*scene.profile, "fit: adhesion 'dmt'", "");
   }
   return law;
 }
