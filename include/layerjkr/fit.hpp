@@ -11,12 +11,14 @@
 // where P(a), delta(a) is the adhesive curve of the scene: JKR (jkr.hpp, the default), or
 // what its "adhesion" key asks for (adhesion.hpp) - the classical DMT (delta = delta_H,
 // P = P_H - 2 pi w R, R the tip's radius, a varying R for a paraboloid) on every family, or
-// Maugis-Dugdale on the hertz family (maugis_dugdale.hpp), whose Dugdale stress sigma0 is the
-// scene's, follows w where the scene gives z0, or is free (FitParameter::sigma0, fitted in
-// log like E). A free sigma0 is identifiable only when the data exclude both its limits:
-// holding it at lambda = 1e3 (JKR) and at 1e-3 (DMT) with the others refitted must raise the
-// deviance beyond the one-sided 95 % point. Maugis-Dugdale on another family, and DMT with
-// sigma0 or z0, throw InputError naming the scene's adhesion and model. The stable part is
+// Maugis-Dugdale - Maugis' closed form on the hertz family (maugis_dugdale.hpp), the Dugdale
+// solver on the medium on the dugdale family - whose Dugdale stress sigma0 is the scene's,
+// follows w where the scene gives z0, or is free (FitParameter::sigma0, fitted in log like E),
+// or the Dugdale DMT (DMT with sigma0 or z0; dugdale family). A free sigma0 is identifiable only
+// when the data exclude both its limits: holding it at lambda = 1e3 (JKR) and at 1e-3 (DMT)
+// with the others refitted must raise the deviance beyond the one-sided 95 % point. A Dugdale
+// law on a model that does not solve its medium exactly (a thin-layer law, a foundation, auto)
+// throws InputError naming the scene's adhesion and model. The stable part is
 // a >= a_0 (zero load) on approach: a soft cantilever snaps in at zero load, so the curve
 // is continuous at P0; and a >= a_po (pull-off) on retract: after pull-off the tip is
 // free. Samples with measured contact radii add residuals (a_model - a_i) / a_scale.
@@ -34,6 +36,10 @@
 //   tabulated (exact, edge_corrected, auto, half_space with any other profile): E, w,
 //     delta0, P0. The scene's model is evaluated once on a log grid of radii and splined
 //     (FitOptions::table_points_per_decade); its stiffness scales exactly with E.
+//   dugdale (a Dugdale law on exact - a layer or a stack - or on half_space with a profile
+//     other than a paraboloid): E, w, delta0, P0, and sigma0 with maugis_dugdale. The curve is
+//     solved per parameter vector on 31 radii and interpolated (E by exact scaling, w and
+//     sigma0 by forward differences): seconds per fit, not milliseconds (docs/fitting.md).
 //
 // Internally parameters are dimensionless: log(K/K0), log(E/E0), log(R/R0), log(sigma0/sigma0_0),
 // G/(K0 L^2), sqrt(w/w0) (so w = 0 is a regular bound), delta0/L, P0/F, with L and F

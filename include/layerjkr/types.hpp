@@ -85,8 +85,10 @@ enum class AdhesionModel { jkr, dmt, maugis_dugdale };
 enum class ContactPointMethod { fit, threshold, rov, gof };
 
 /// How a fit evaluates its model (fit.hpp): "foundation" (closed forms in K, G or E),
-/// "hertz" (half-space with a paraboloid), "tabulated" (a spline of any other model).
-enum class FitFamily { foundation, hertz, tabulated };
+/// "hertz" (half-space with a paraboloid), "tabulated" (a spline of any other model),
+/// "dugdale" (a Dugdale law - Maugis-Dugdale, DMT with sigma0 - solved on the medium per
+/// parameter vector).
+enum class FitFamily { foundation, hertz, tabulated, dugdale };
 
 /// A segment of an instrument curve (instrument.hpp): "extend", "retract", "pause",
 /// "modulation" (JPK's oscillation segments).

@@ -825,6 +825,12 @@ class FitResult:
         return self._fields["model"]
 
     @property
+    def family(self) -> str:
+        """How the model was evaluated: "foundation", "hertz", "tabulated" or "dugdale"
+        (a Dugdale law solved on the medium per parameter vector; docs/fitting.md)."""
+        return self._fields["family"]
+
+    @property
     def iterations(self) -> int:
         """Solver iterations."""
         return self._fields["iterations"]

@@ -1,4 +1,5 @@
-"""Fits with the scene's adhesion model: free=["sigma0"] on a Maugis-Dugdale half-space.
+"""Fits with the scene's adhesion model: free=["sigma0"] on a Maugis-Dugdale half-space, and
+Maugis-Dugdale on a film (the "dugdale" family).
 
 The curve is written here from Maugis' equations (Johnson & Greenwood 1997 notation), solved by
 bisection in plain Python: an oracle that shares nothing with the library's solver.
@@ -78,3 +79,22 @@ def test_free_sigma0_without_a_dugdale_law_is_refused():
     with pytest.raises(layerjkr.InputError, match="sigma0.*'jkr'"):
         layerjkr.fit(delta, P, _scene({"model": "jkr"}), free=["E", "w", "sigma0"],
                      segment=np.ones(delta.size, dtype=int), branch="retract")
+
+
+def test_maugis_dugdale_on_a_film_fits_back_the_library_curve():
+    # The film's curve from layerjkr.curve (the Dugdale solver at each radius), fitted by the
+    # dugdale family (a grid of radii per parameter vector, scaled in E): E and w to 1e-5.
+    film = {"indenter": {"shape": "paraboloid", "R": R}, "medium": {"type": "layer", "E": 3e9, "nu": NU, "h": 1e-8},
+            "model": "exact", "w": W, "adhesion": {"model": "maugis_dugdale", "sigma0": 1.7e8}}
+    a = np.linspace(17e-9, 1.9e-9, 40)  # down to just above the pull-off radius (1.866 nm)
+    c = layerjkr.curve(film, a)
+    span = c.delta[0] - c.delta[-1]
+    delta = np.concatenate([c.delta, c.delta[-1] - span * np.arange(1, 21) / 40])
+    P = np.concatenate([c.P, np.zeros(20)])
+    start = dict(film, medium=dict(film["medium"], E=6e9))
+    with pytest.warns(layerjkr.ModelWarning, match="31 radii .* interpolation error"):
+        r = layerjkr.fit(delta, P, start, free=["E", "w"], segment=np.ones(delta.size, dtype=int), branch="retract")
+    assert r.converged
+    assert r.family == "dugdale" and r.model == "maugis_dugdale on exact"
+    assert abs(r.values["E"] / 3e9 - 1) < 1e-5
+    assert abs(r.values["w"] / W - 1) < 1e-5

@@ -101,22 +101,6 @@ class DugdaleLaw final : public AdhesiveLaw {
 };
 
 // The medium's Dugdale solver: the half-space or the exact layer / stack of `spec`.
-std::shared_ptr<const detail::DugdaleSolver> dugdale_solver(const ContactModel& model, const ModelSpec& spec,
-                                                            const char* what) {
-  if (!model.has_profile())
-    throw InputError(std::string(what) + " needs an indenter profile; this model was built from data");
-  ProfilePtr profile = model.profile_ptr();
-  if (spec.kind == ModelKind::half_space)
-    return std::make_shared<detail::DugdaleSolver>(std::move(profile),
-                                                   effective_modulus(spec.layer.E, spec.layer.nu));
-  if (spec.kind == ModelKind::exact) {
-    auto kernel = spec.stack ? std::make_shared<ExactLayerKernel>(*spec.stack, spec.exact)
-                             : std::make_shared<ExactLayerKernel>(spec.layer, spec.exact);
-    return std::make_shared<detail::DugdaleSolver>(std::move(profile), std::move(kernel));
-  }
-  throw InputError(std::string(what) + " is solved on the half-space and on the exact layer or stack (model \"exact\"), not on model \"" +
-                   std::string(to_string(spec.kind)) + "\": the thin-layer and foundation laws do not give the gap outside the contact");
-}
 
 // The tip's radius of curvature, where the profile has one.
 double tip_radius(const ContactModel& model, const char* what) {
@@ -191,8 +175,25 @@ AdhesiveLawPtr make_adhesive_law(ContactModelPtr model, const ModelSpec& spec, d
       model->has_profile() && model->profile().is_paraboloid())
     return std::make_shared<ClosedFormMaugisLaw>(model, w, tip_radius(*model, what.c_str()),
                                                  effective_modulus(spec.layer.E, spec.layer.nu), sigma0);
-  auto solver = dugdale_solver(*model, spec, what.c_str());
+  auto solver = detail::make_dugdale_solver(*model, spec, what.c_str());
   return std::make_shared<DugdaleLaw>(std::move(model), w, sigma0, adhesion.model, std::move(solver));
+}
+
+std::shared_ptr<const detail::DugdaleSolver> detail::make_dugdale_solver(const ContactModel& model, const ModelSpec& spec,
+                                                            const char* what) {
+  if (!model.has_profile())
+    throw InputError(std::string(what) + " needs an indenter profile; this model was built from data");
+  ProfilePtr profile = model.profile_ptr();
+  if (spec.kind == ModelKind::half_space)
+    return std::make_shared<detail::DugdaleSolver>(std::move(profile),
+                                                   effective_modulus(spec.layer.E, spec.layer.nu));
+  if (spec.kind == ModelKind::exact) {
+    auto kernel = spec.stack ? std::make_shared<ExactLayerKernel>(*spec.stack, spec.exact)
+                             : std::make_shared<ExactLayerKernel>(spec.layer, spec.exact);
+    return std::make_shared<detail::DugdaleSolver>(std::move(profile), std::move(kernel));
+  }
+  throw InputError(std::string(what) + " is solved on the half-space and on the exact layer or stack (model \"exact\"), not on model \"" +
+                   std::string(to_string(spec.kind)) + "\": the thin-layer and foundation laws do not give the gap outside the contact");
 }
 
 }  // namespace layerjkr

@@ -25,6 +25,8 @@
 
 #include "layerjkr/exact_layer.hpp"
 #include "layerjkr/jkr.hpp"
+#include "layerjkr/model.hpp"
+#include "layerjkr/model_spec.hpp"
 #include "layerjkr/profile.hpp"
 
 namespace layerjkr::detail {
@@ -97,5 +99,11 @@ class DugdaleSolver {
   double h_ = 1.0;  // length unit [m]: the top layer's h, 1 for the half-space
   ExactLayerOptions options_;
 };
+
+/// The solver of `model`'s medium as `spec` describes it: the half-space (E*), or the exact layer
+/// or stack (its kernel). Throws InputError beginning with `what` for any other model kind (the
+/// thin-layer and foundation laws give no gap outside the contact) or a model without a profile.
+std::shared_ptr<const DugdaleSolver> make_dugdale_solver(const ContactModel& model, const ModelSpec& spec,
+                                                         const char* what);
 
 }  // namespace layerjkr::detail

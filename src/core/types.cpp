@@ -49,7 +49,7 @@ LAYERJKR_NAMES(ContactPointMethod, {ContactPointMethod::fit, "fit"}, {ContactPoi
 LAYERJKR_NAMES(AdhesionModel, {AdhesionModel::jkr, "jkr"}, {AdhesionModel::dmt, "dmt"},
                {AdhesionModel::maugis_dugdale, "maugis_dugdale"})
 LAYERJKR_NAMES(FitFamily, {FitFamily::foundation, "foundation"}, {FitFamily::hertz, "hertz"},
-               {FitFamily::tabulated, "tabulated"})
+               {FitFamily::tabulated, "tabulated"}, {FitFamily::dugdale, "dugdale"})
 LAYERJKR_NAMES(SegmentStyle, {SegmentStyle::extend, "extend"}, {SegmentStyle::retract, "retract"},
                {SegmentStyle::pause, "pause"}, {SegmentStyle::modulation, "modulation"})
 LAYERJKR_NAMES(InstrumentFormat, {InstrumentFormat::jpk_force, "jpk-force"},

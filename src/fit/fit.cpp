@@ -29,8 +29,8 @@ bool has(const FitOptions& options, FitParameter q) {
 void require_supported(const CurveModel& model, const FitOptions& options, const Scene& scene) {
   for (FitParameter q : options.free)
     if (q == FitParameter::sigma0 && !model.supports(q))
-      throw InputError(std::string("fit: free parameter sigma0 (the Dugdale stress) needs adhesion 'maugis_dugdale' on "
-                                   "model half_space with a paraboloid; the scene's adhesion is '") +
+      throw InputError(std::string("fit: free parameter sigma0 (the Dugdale stress) needs adhesion 'maugis_dugdale'; "
+                                   "the scene's adhesion is '") +
                        to_string(scene.adhesion.model) + "' on model '" + model.model_name() + "'");
   for (FitParameter q : options.free)
     if (!model.supports(q)) {
@@ -136,7 +136,16 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   const double k = control_stiffness(options, curve);
   data.cantilever = k > 0.0;
   CurveEvaluator ev(*model, map, data, k);
-  detail::find_start(data, map, ev, x, curve.source);
+  {
+    // A model solved per parameter vector has the same medium under JKR scanned instead.
+    const CurveModel* start_model = model->start_model();
+    if (start_model) {
+      CurveEvaluator start_ev(*start_model, map, data, k);
+      detail::find_start(data, map, start_ev, x, curve.source);
+    } else {
+      detail::find_start(data, map, ev, x, curve.source);
+    }
+  }
   for (FitParameter q : options.free) {
     ParameterEstimate e;
     e.parameter = q;
@@ -164,6 +173,12 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   out.excluded_count = static_cast<std::size_t>(std::count(excluded.begin(), excluded.end(), true));
   detail::assess_uncertainty(run, ev, map, x, options, data, &out);
   detail::explain_no_move(run, data, map, &out);
+  {
+    detail::CurveParameters<double> fitted;
+    double d0 = 0.0, P0 = 0.0;
+    map.physical(x.data(), &fitted, &d0, &P0);
+    for (const auto& note : model->notes_at(fitted)) out.warnings.push_back(note);
+  }
   const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;
   for (std::size_t i = 0; i < data.P.size(); ++i)
     if (data.retract[i] && !(data.P[i] - P0 >= out.pull_off_force)) out.pull_off_force = data.P[i] - P0;  // NaN at first

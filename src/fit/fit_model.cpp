@@ -10,6 +10,7 @@
 
 #include "adhesion/dmt_formula.hpp"
 #include "adhesive_curve.hpp"
+#include "dugdale_curve.hpp"
 #include "core/gsl_support.hpp"
 #include "core/scalar.hpp"
 #include "jkr/jkr_transform.hpp"
@@ -36,23 +37,6 @@ ProfileAt<T> profile_at(const Profile& p, bool paraboloid, const T& a, const T& 
   return {lift(d.f, d.df, a), lift(d.df, d.d2f, a), lift(d.d2f, d.d3f, a),
           lift(p.moment(av), av * d.f, a)};
 }
-
-template <class Derived>
-class CurveModelBase : public CurveModel {
- public:
-  void evaluate(const Jet1& a, const CurveParameters<Jet1>& p, Jet1* d, Jet1* P) const override {
-    static_cast<const Derived*>(this)->curve(a, p, d, P);
-  }
-  void evaluate(const Jet2& a, const CurveParameters<Jet2>& p, Jet2* d, Jet2* P) const override {
-    static_cast<const Derived*>(this)->curve(a, p, d, P);
-  }
-  void evaluate(const Jet4& a, const CurveParameters<Jet4>& p, Jet4* d, Jet4* P) const override {
-    static_cast<const Derived*>(this)->curve(a, p, d, P);
-  }
-  void evaluate(const Jet8& a, const CurveParameters<Jet8>& p, Jet8* d, Jet8* P) const override {
-    static_cast<const Derived*>(this)->curve(a, p, d, P);
-  }
-};
 
 // Two-term / Winkler (asymptotic) or full Pasternak / Filonenko-Borodich.
 class FoundationCurve final : public CurveModelBase<FoundationCurve> {
@@ -267,6 +251,27 @@ class TabulatedCurve final : public CurveModelBase<TabulatedCurve> {
   std::unique_ptr<LogSpline> lnP_, lnS_, lnSp_, delta_;
 };
 
+constexpr double kDugdaleGridSpans = 2.0;
+
+// The Dugdale family of the scene, with the same medium under JKR (tabulated) for the start.
+std::unique_ptr<CurveModel> dugdale_curve(const Scene& scene, const ModelSpec& spec, const FitOptions& options,
+                                          double delta_span, const CurveParameters<double>& values) {
+  const BuiltScene built = build_scene(scene, 0.0, false);
+  auto start = std::make_unique<TabulatedCurve>(built.model, spec.layer.E, delta_span,
+                                                options.table_points_per_decade, StateLaw{});
+  // The grid ends where delta_H reaches twice the data's span: the adhesive curve's delta lies
+  // below delta_H, by less than the span on any curve whose pull-off the data show.
+  double lo = 0.0, a_max = start->max_radius();
+  for (int i = 0; i < 60 && a_max - lo > 1e-3 * a_max; ++i) {
+    const double mid = lo > 0.0 ? std::sqrt(lo * a_max) : 0.5 * a_max;
+    (built.model->state(mid).delta_H < kDugdaleGridSpans * delta_span ? lo : a_max) = mid;
+  }
+  const DugdaleKind kind =
+      scene.adhesion.model == AdhesionModel::maugis_dugdale ? DugdaleKind::maugis_dugdale : DugdaleKind::dmt;
+  return make_dugdale_curve(make_dugdale_solver(*built.model, spec, "fit: a Dugdale law"), kind, spec.layer.E, a_max,
+                            values.s * values.s, values.sigma0, built.model->name(), std::move(start));
+}
+
 double paraboloid_radius(const Profile& p) {
   return p.is_paraboloid() ? 1.0 / p.derivatives(1.0).d2f : 0.0;
 }
@@ -277,11 +282,7 @@ StateLaw state_law(const Scene& scene, bool paraboloid) {
   StateLaw law;
   law.model = adhesion.model;
   if (adhesion.model != AdhesionModel::dmt) return law;
-  if (adhesion.sigma0 || adhesion.z0)
-    throw InputError("fit: adhesion 'dmt' with a Dugdale stress (adhesion." +
-                     std::string(adhesion.sigma0 ? "sigma0" : "z0") +
-                     ") is not offered in fits; the classical DMT (no sigma0, no z0) and 'maugis_dugdale' "
-                     "on model half_space with a paraboloid are");
+  if (adhesion.sigma0 || adhesion.z0) return law;  // the Dugdale DMT: its own family
   law.R_varies = paraboloid;
   if (!paraboloid) {
     law.tip_radius = dmt_tip_radius(*scene.profile, "fit: adhesion 'dmt'", "");
@@ -303,12 +304,17 @@ std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const ResolvedM
   const bool hertz = !foundation && spec.kind == ModelKind::half_space && scene.profile->is_paraboloid();
   const StateLaw law = state_law(scene, scene.profile->is_paraboloid());
   const bool maugis = scene.adhesion.model == AdhesionModel::maugis_dugdale;
-  if (maugis && !hertz)
-    throw InputError("fit: adhesion 'maugis_dugdale' is fitted on model half_space with a paraboloid (its closed "
-                     "form) only; this scene has model '" + std::string(resolved.automatic ? "auto" : to_string(spec.kind)) +
-                     "' with " + scene.profile->describe() + ": fit it with adhesion 'jkr' or 'dmt' (every model), "
-                     "or as a half-space with a paraboloid");
-  if (maugis) {
+  // A Dugdale law other than Maugis' closed form is solved on the medium (dugdale_curve.hpp).
+  const bool dugdale = (maugis && !hertz) || (scene.adhesion.model == AdhesionModel::dmt &&
+                                             (scene.adhesion.sigma0 || scene.adhesion.z0));
+  if (dugdale && (foundation || resolved.automatic ||
+                  (spec.kind != ModelKind::half_space && spec.kind != ModelKind::exact)))
+    throw InputError("fit: adhesion '" + std::string(to_string(scene.adhesion.model)) +
+                     "' with a Dugdale stress is solved on model half_space or exact (a layer or a stack); this "
+                     "scene has model '" + std::string(resolved.automatic ? "auto" : to_string(spec.kind)) +
+                     "', whose law gives no gap outside the contact: fit it with adhesion 'jkr' or the classical "
+                     "'dmt' (no sigma0, no z0), or choose model 'exact'");
+  if (maugis || dugdale) {
     // sigma0 given: fixed (or the start of a free sigma0); z0 given: sigma0 follows w.
     scene.adhesion.validate();
     if (scene.adhesion.sigma0) {
@@ -337,6 +343,13 @@ std::unique_ptr<CurveModel> make_curve_model(const Scene& scene, const ResolvedM
     const bool full = spec.kind == ModelKind::full_foundation;
     const ModelKind name = full ? ModelKind::full_foundation : spec.G == 0.0 ? ModelKind::winkler : ModelKind::two_term;
     model = std::make_unique<FoundationCurve>(scene.profile, full, false, name, law);
+  } else if (dugdale) {
+    sp.values.E = spec.layer.E;
+    sp.nu = spec.layer.nu;
+    if (std::count(options.free.begin(), options.free.end(), FitParameter::sigma0) && !scene.profile->is_paraboloid())  // Maugis' lambda places its limits
+      sp.values.R = dmt_tip_radius(*scene.profile, "fit: free parameter sigma0",
+                                   " (its JKR and DMT limits are placed by Maugis' lambda of the tip's radius)");
+    model = dugdale_curve(scene, spec, options, delta_span, sp.values);
   } else if (hertz) {
     sp.values.E = spec.layer.E;
     sp.nu = spec.layer.nu;

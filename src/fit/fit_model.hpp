@@ -54,6 +54,33 @@ class CurveModel {
   virtual std::string model_name() const = 0;
   /// Extra lines for FitSummary::warnings (e.g. the table's interpolation error).
   virtual std::vector<std::string> notes() const { return {}; }
+  /// Extra lines for the warnings at the fitted parameters p (e.g. an interpolation error
+  /// that exceeds its target there).
+  virtual std::vector<std::string> notes_at(const CurveParameters<double>& p) const {
+    (void)p;
+    return {};
+  }
+  /// A cheaper model of the same medium and parameters for the data-driven start (null: this
+  /// one). Non-owning; lives as long as this model.
+  virtual const CurveModel* start_model() const { return nullptr; }
+};
+
+/// Implements the four Jet overloads with one template, Derived::curve(a, p, delta, P).
+template <class Derived>
+class CurveModelBase : public CurveModel {
+ public:
+  void evaluate(const Jet1& a, const CurveParameters<Jet1>& p, Jet1* d, Jet1* P) const override {
+    static_cast<const Derived*>(this)->curve(a, p, d, P);
+  }
+  void evaluate(const Jet2& a, const CurveParameters<Jet2>& p, Jet2* d, Jet2* P) const override {
+    static_cast<const Derived*>(this)->curve(a, p, d, P);
+  }
+  void evaluate(const Jet4& a, const CurveParameters<Jet4>& p, Jet4* d, Jet4* P) const override {
+    static_cast<const Derived*>(this)->curve(a, p, d, P);
+  }
+  void evaluate(const Jet8& a, const CurveParameters<Jet8>& p, Jet8* d, Jet8* P) const override {
+    static_cast<const Derived*>(this)->curve(a, p, d, P);
+  }
 };
 
 /// The scene's fixed values as CurveParameters<double> (s = sqrt(w)).

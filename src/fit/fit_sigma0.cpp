@@ -30,6 +30,10 @@ ParameterEstimate* estimate_of(FitSummary* out, FitParameter q) {
 
 }  // namespace
 
+// Maugis' lambda of the half-space with the fitted E* and the tip's radius R; on a layer or a stack
+// (the Dugdale family) E* is the top layer's and R the tip's 1/f''(0): the contact's own lambda
+// differs by the layer's stiffening, but both are proportional to sigma0, which is all the
+// limits below need (they sit 1e3 beyond the contact's range either way).
 double maugis_lambda_at(const ParameterMap& map, const std::vector<double>& x) {
   CurveParameters<double> p;
   double d0 = 0.0, P0 = 0.0;
@@ -55,6 +59,10 @@ void check_sigma0_limits(FitRun& run, CurveEvaluator& ev, const ParameterMap& ma
   for (const auto& [limit, name] : {std::pair{kJkrLimitLambda, "JKR"}, std::pair{kDmtLimitLambda, "DMT"}}) {
     const double held = run.cost_with_held(FitParameter::sigma0, x_sigma0 + std::log(limit / lambda));
     const double deviance = std::isfinite(held) ? (held - C) * dof / C : kNaN;
+    if (!std::isfinite(deviance))  // e.g. a layer's Dugdale zone at the DMT limit outgrows the solver's range
+      out->warnings.push_back(std::string("sigma0's separability from the ") + name +
+                              " limit was not tested: the fit with sigma0 held at lambda = " + short_number(limit) +
+                              " could not be evaluated; its error bar is the local curvature only");
     if (std::isfinite(deviance) && deviance < kUpperBoundDeviance) {
       out->unidentifiable.push_back(std::string("sigma0 from the ") + name + " limit (holding it at lambda = " +
                                     short_number(limit) + " and refitting the others raises the deviance by " +

@@ -50,7 +50,7 @@ TEST_CASE("every registered enum spells each enumerator once and parses it back"
   check_round_trip<Baseline>(2);
   check_round_trip<ContactPointMethod>(4);
   check_round_trip<AdhesionModel>(3);
-  check_round_trip<FitFamily>(3);
+  check_round_trip<FitFamily>(4);
   check_round_trip<SegmentStyle>(4);
   check_round_trip<InstrumentFormat>(5);
   check_round_trip<Smoothing>(2);

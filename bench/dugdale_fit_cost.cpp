@@ -1,0 +1,93 @@
+// What a Maugis-Dugdale fit on a layer costs (the "dugdale" fit family), against the JKR fit of
+// the same curve on the same film (the tabulated family) and Maugis' closed form on a half-space.
+//
+// How the data is made: the issue's AFM case - a paraboloid R = 20 nm on a 10 nm film (E = 3 GPa,
+// nu = 0.3, bonded), w = 0.05 J/m^2, sigma0 = 170 MPa (lambda ~ 0.5) - written by the library's
+// Maugis-Dugdale law (or the Dugdale DMT) at 60 radii from the pull-off to 15 nm beyond, 30
+// samples off contact, 0.5 % of the pull-off force as Gaussian noise; each fit starts with E 2x
+// off (and sigma0 2x off when free). Median of 3 runs (1 for the slowest row, said).
+//
+// Run: build/bin/dugdale_fit_cost   (~2 min; prints a markdown table)
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "layerjkr/adhesion.hpp"
+#include "layerjkr/built_scene.hpp"
+#include "layerjkr/contact.hpp"
+#include "layerjkr/fit.hpp"
+#include "layerjkr/scene.hpp"
+#include "median_time.hpp"
+
+using namespace layerjkr;
+using layerjkr::bench::median_seconds;
+
+namespace {
+
+std::string film(double E) {
+  return R"({"type": "layer", "E": )" + std::to_string(E) + R"(, "nu": 0.3, "h": 1e-8})";
+}
+const std::string kHalfSpace = R"({"type": "half_space", "E": 3e9, "nu": 0.3})";
+
+Scene scene(const std::string& adhesion, const std::string& medium) {
+  const std::string model = medium == kHalfSpace ? "" : R"(, "model": "exact")";
+  return parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 2e-8}, "medium": )" + medium + model +
+                         R"(, "w": 0.05, "adhesion": )" + adhesion + "}",
+                     "bench scene");
+}
+
+CurveData curve_of(const Scene& truth) {
+  const BuiltScene built = build_scene(truth, 0.0, false);
+  const AdhesiveLawPtr law = make_adhesive_law(built.model, resolve_model(truth).spec, truth.w, truth.adhesion);
+  const std::optional<CriticalPoint> po = AdhesiveSolution(law).pull_off();
+  const double a0 = po ? po->a : 0.0, noise = 0.005 * 5.3e-9;
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> g(0.0, 1.0);
+  CurveData c;
+  for (int i = 0; i < 60; ++i) {
+    const AdhesiveState s = law->at(a0 + 15e-9 * (59 - i) / 59.0);
+    c.delta.push_back(s.delta);
+    c.P.push_back(s.P + noise * g(rng));
+    c.segment.push_back(1);
+  }
+  const double d_release = c.delta.back(), span = c.delta.front() - d_release;
+  for (int i = 1; i <= 30; ++i) {
+    c.delta.push_back(d_release - span * i / 60.0);
+    c.P.push_back(noise * g(rng));
+    c.segment.push_back(1);
+  }
+  return c;
+}
+
+void row(const char* what, const CurveData& c, Scene start, std::vector<FitParameter> free, int runs) {
+  start.medium.E *= 2.0;
+  if (start.adhesion.sigma0 && free.size() > 2) *start.adhesion.sigma0 *= 2.0;
+  FitOptions o;
+  o.branch = Branch::retract;
+  o.free = std::move(free);
+  FitSummary s;
+  const double t = median_seconds([&] { s = fit(c, start, o); }, runs);
+  std::printf("| %s | %s | %d | %.3g s%s | E %.4g, w %.4g |\n", what, s.model.c_str(), s.iterations, t,
+              runs == 1 ? " (1 run)" : "", s[FitParameter::E].value, s[FitParameter::w].value);
+}
+
+}  // namespace
+
+int main() {
+  const std::string md = R"({"model": "maugis_dugdale", "sigma0": 1.7e8})";
+  const std::string dmt = R"({"model": "dmt", "sigma0": 1.7e8})";
+  const Scene md_film = (scene(md, film(3e9)));
+  const CurveData c = curve_of(md_film);
+  const CurveData c_dmt = curve_of((scene(dmt, film(3e9))));
+  const CurveData c_half = curve_of(scene(md, kHalfSpace));
+  std::printf("| fit (truth E = 3e9 Pa, w = 0.05 J/m^2) | model | iterations | time | result |\n|---|---|---|---|---|\n");
+  row("JKR on the film, E w", c, (scene(R"({"model": "jkr"})", film(3e9))), {FitParameter::E, FitParameter::w}, 3);
+  row("Maugis-Dugdale on the film, E w", c, md_film, {FitParameter::E, FitParameter::w}, 3);
+  row("Maugis-Dugdale on the film, E w sigma0", c, md_film,
+      {FitParameter::E, FitParameter::w, FitParameter::sigma0}, 1);
+  row("Dugdale DMT on the film, E w", c_dmt, (scene(dmt, film(3e9))), {FitParameter::E, FitParameter::w}, 3);
+  row("Maugis-Dugdale on the half-space (closed form), E w", c_half, scene(md, kHalfSpace),
+      {FitParameter::E, FitParameter::w}, 3);
+  return 0;
+}
