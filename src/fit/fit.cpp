@@ -130,7 +130,6 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
                            "foundation in closed form");
   out.warnings.insert(out.warnings.end(), fixed.warnings.begin(), fixed.warnings.end());
   if (std::optional<std::string> note = scene.profile->approximation()) out.warnings.push_back(*note);
-  for (const auto& note : model->notes()) out.warnings.push_back(note);
 
   std::vector<double> x(options.free.size(), 0.0);
   const double k = control_stiffness(options, curve);
@@ -158,7 +157,19 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
                                     "(the indentation exceeds the model's range of radii)");
 
   detail::FitRun run(ev, map, options, data, x);
+  // A model built per parameter vector meets its accuracy target at the start and again at the
+  // solution, solving once more if it had to refine there.
+  const auto refine = [&] {
+    detail::CurveParameters<double> p;
+    double d0 = 0.0, P0 = 0.0;
+    map.physical(x.data(), &p, &d0, &P0);
+    if (!model->refine_at(p)) return false;
+    ev.invalidate();
+    return true;
+  };
+  refine();
   run.solve();
+  if (refine()) run.solve();
   run.try_extra_starts();
   const std::vector<double> weights = data.sqrt_weight;
   std::vector<bool> excluded = run.exclude_non_jkr();
@@ -177,6 +188,7 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
     detail::CurveParameters<double> fitted;
     double d0 = 0.0, P0 = 0.0;
     map.physical(x.data(), &fitted, &d0, &P0);
+    for (const auto& note : model->notes()) out.warnings.push_back(note);  // after the fit: a grid may refine
     for (const auto& note : model->notes_at(fitted)) out.warnings.push_back(note);
   }
   const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;

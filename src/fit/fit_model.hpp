@@ -54,6 +54,12 @@ class CurveModel {
   virtual std::string model_name() const = 0;
   /// Extra lines for FitSummary::warnings (e.g. the table's interpolation error).
   virtual std::vector<std::string> notes() const { return {}; }
+  /// Makes the model meet its accuracy target at the parameters p where it is built per parameter
+  /// vector (a finer grid); true if it changed, and the fit must then evaluate again.
+  virtual bool refine_at(const CurveParameters<double>& p) {
+    (void)p;
+    return false;
+  }
   /// Extra lines for the warnings at the fitted parameters p (e.g. an interpolation error
   /// that exceeds its target there).
   virtual std::vector<std::string> notes_at(const CurveParameters<double>& p) const {
