@@ -2,8 +2,9 @@
 //
 // The curve follows the same physics the fit assumes (fit.hpp): on approach the contact
 // snaps in at zero load and follows the stable branch; on retract it follows the branch
-// down to pull-off and is free after it. Radii come from the library's own inverse
-// lookups (JkrSolution::force_at_delta), not from the fit's Newton solver.
+// down to pull-off and is free after it. The adhesion is the scene's (JKR, DMT or
+// Maugis-Dugdale: adhesion.hpp). Radii come from the library's own inverse lookups
+// (AdhesiveSolution::force_at_delta), not from the fit's Newton solver.
 #pragma once
 
 #include <cstdint>

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "layerjkr/adhesion.hpp"
 #include "layerjkr/built_scene.hpp"
 #include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
@@ -26,7 +27,8 @@ CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
   // Where contact starts without adhesion sets the radius scale for "auto".
   const double a_scale = std::sqrt(o.max_indentation * scene.profile->length_scale());
   const BuiltScene built = build_scene(scene, 0.1 * a_scale);
-  const JkrSolution sol(built.model, scene.w);
+  // The scene's adhesion model (JKR unless its "adhesion" key says otherwise), as the fit's.
+  const AdhesiveSolution sol(make_adhesive_law(built.model, built.resolved.spec, scene.w, scene.adhesion));
   const double a_floor = 1e-9 * a_scale;
   const double a_zero = scene.w > 0.0 ? sol.zero_load_radius().value_or(a_floor) : a_floor;
   const double d_contact = sol.at(a_zero).delta;

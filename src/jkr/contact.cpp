@@ -164,6 +164,11 @@ std::optional<double> AdhesiveSolution::first_root(bool force, double target, do
     lo = a_lo;
     g_lo = g(lo);
     if (g_lo >= 0.0) return g_lo == 0.0 ? std::optional<double>(lo) : std::nullopt;
+  } else if (law_->has_zero_radius_state()) {
+    // The curve starts at a = 0 itself (DMT: delta = 0 there, where the retract lets go).
+    lo = 0.0;
+    g_lo = g(lo);
+    if (g_lo >= 0.0) return g_lo == 0.0 ? std::optional<double>(lo) : std::nullopt;
   } else {
     lo = seed_radius();
     g_lo = g(lo);
@@ -179,7 +184,7 @@ std::optional<double> AdhesiveSolution::first_root(bool force, double target, do
   }
   for (int steps = 0; !have_hi; ++steps) {
     if (steps > options_.max_bracket_steps || lo >= upper) return std::nullopt;
-    const double next = std::min(2.0 * lo, upper);
+    const double next = std::min(lo > 0.0 ? 2.0 * lo : seed_radius(), upper);
     const double g_next = g(next);
     if (g_next >= 0.0) {
       hi = next, g_hi = g_next, have_hi = true;

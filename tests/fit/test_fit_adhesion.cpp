@@ -26,6 +26,7 @@
 #include "layerjkr/fit.hpp"
 #include "layerjkr/maugis_dugdale.hpp"
 #include "layerjkr/model.hpp"
+#include "layerjkr/simulate.hpp"
 #include "support/cli_support.hpp"
 #include "support/test_support.hpp"
 
@@ -368,6 +369,28 @@ TEST_CASE("bad adhesion combinations in a fit are refused with one clear message
   CHECK_THAT(message(R"({"indenter": {"shape": "cone", "semi_angle_deg": 70}, "medium": {"type": "half_space",
       "E": 1e9, "nu": 0.3}, "adhesion": {"model": "dmt"}})", {FitParameter::E, FitParameter::w}),
              Catch::Contains("radius of curvature"));
+}
+
+TEST_CASE("simulate_curve follows the scene's adhesion model", "[fit][adhesion]") {
+  // It used the JKR law whatever the scene said. The deepest retract force is each model's
+  // pull-off: DMT's -2 pi w R (at a = 0, so exactly a sample), Maugis-Dugdale's closed form
+  // (flat there: the nearest of samples 19 pm apart is within 1e-3), never JKR's -1.5 pi w R.
+  SimulationOptions so;
+  so.branch = Branch::retract;
+  so.points_per_branch = 400;
+  so.max_indentation = 5e-9;
+  auto deepest = [&](const std::string& adhesion) {
+    Scene s = scene_from(afm_scene(adhesion));
+    s.w = kW;
+    const CurveData c = simulate_curve(s, so);
+    return *std::min_element(c.P.begin(), c.P.end());
+  };
+  CHECK(rel_err(deepest(R"({"model": "dmt"})"), -2.0 * kPi * kW * kR) < 1e-9);
+  const double sigma0 = sigma0_for(1.0);
+  const double md = maugis_dugdale_pull_off(kR, kEstar, kW, sigma0).P;
+  CHECK(rel_err(deepest(R"({"model": "maugis_dugdale", "sigma0": )" + std::to_string(sigma0) + "}"), md) < 2e-3);
+  CHECK(rel_err(deepest(R"({"model": "jkr"})"), -1.5 * kPi * kW * kR) < 2e-3);
+  CHECK(rel_err(md, -1.5 * kPi * kW * kR) > 0.05);
 }
 
 TEST_CASE("Maugis-Dugdale with a spacing z0: sigma0 follows w in the fit", "[fit][adhesion]") {
