@@ -104,7 +104,7 @@ class DugdaleCurve final : public CurveModelBase<DugdaleCurve> {
     try {
       for (std::size_t i = 0; i + 1 < radii_.size(); i += 4) {
         const double a = 0.5 * (radii_[i] + radii_[i + 1]);
-        const AdhesiveState s = solve(a, w, w == 0.0 ? 1.0 : sigma0);
+        const AdhesiveState s = solve(a, g->w, g->sigma0);  // the grid's own (normalised) parameters
         error = std::max({error, std::abs((*g->P)(std::sqrt(a)) - s.P) / P_span,
                           std::abs((*g->delta)(std::sqrt(a)) - s.delta) / delta_span});
       }

@@ -159,11 +159,14 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   detail::FitRun run(ev, map, options, data, x);
   // A model built per parameter vector meets its accuracy target at the start and again at the
   // solution, solving once more if it had to refine there.
-  const auto refine = [&] {
+  const auto physical_at_x = [&] {
     detail::CurveParameters<double> p;
     double d0 = 0.0, P0 = 0.0;
     map.physical(x.data(), &p, &d0, &P0);
-    if (!model->refine_at(p)) return false;
+    return p;
+  };
+  const auto refine = [&] {
+    if (!model->refine_at(physical_at_x())) return false;
     ev.invalidate();
     return true;
   };
@@ -184,13 +187,8 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   out.excluded_count = static_cast<std::size_t>(std::count(excluded.begin(), excluded.end(), true));
   detail::assess_uncertainty(run, ev, map, x, options, data, &out);
   detail::explain_no_move(run, data, map, &out);
-  {
-    detail::CurveParameters<double> fitted;
-    double d0 = 0.0, P0 = 0.0;
-    map.physical(x.data(), &fitted, &d0, &P0);
-    for (const auto& note : model->notes()) out.warnings.push_back(note);  // after the fit: a grid may refine
-    for (const auto& note : model->notes_at(fitted)) out.warnings.push_back(note);
-  }
+  for (const auto& note : model->notes()) out.warnings.push_back(note);  // after the fit: a grid may refine
+  for (const auto& note : model->notes_at(physical_at_x())) out.warnings.push_back(note);
   const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;
   for (std::size_t i = 0; i < data.P.size(); ++i)
     if (data.retract[i] && !(data.P[i] - P0 >= out.pull_off_force)) out.pull_off_force = data.P[i] - P0;  // NaN at first

@@ -160,13 +160,10 @@ std::optional<double> AdhesiveSolution::first_root(bool force, double target, do
   const double upper = upper_radius();
   double lo, g_lo, hi = 0.0, g_hi = 0.0;
   bool have_hi = false;
-  if (a_lo > 0.0) {
+  // A law with a state at a = 0 (DMT) starts its curve there: delta(0) is where the retract
+  // lets go, so a = 0 itself is a candidate root.
+  if (a_lo > 0.0 || law_->has_zero_radius_state()) {
     lo = a_lo;
-    g_lo = g(lo);
-    if (g_lo >= 0.0) return g_lo == 0.0 ? std::optional<double>(lo) : std::nullopt;
-  } else if (law_->has_zero_radius_state()) {
-    // The curve starts at a = 0 itself (DMT: delta = 0 there, where the retract lets go).
-    lo = 0.0;
     g_lo = g(lo);
     if (g_lo >= 0.0) return g_lo == 0.0 ? std::optional<double>(lo) : std::nullopt;
   } else {
