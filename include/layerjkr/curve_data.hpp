@@ -33,7 +33,7 @@ struct CurveData {
   std::vector<double> delta;   ///< approach [m], arbitrary offset
   std::vector<double> P;       ///< force [N], positive = repulsive
   std::vector<double> a;       ///< contact radius [m] (empty = not measured)
-  std::vector<double> weight;  ///< relative weights > 0 (empty = all 1)
+  std::vector<double> weight;  ///< relative weights > 0 (empty = all 1); a fit divides them by the largest, so only their ratios matter
   std::vector<int> segment;    ///< 0 approach, 1 retract (empty = split at the largest delta)
   std::string source = "curve";  ///< names the curve in error messages
   /// Stiffness [N/m] of the cantilever that measured it, when known (instrument files); 0 if not.

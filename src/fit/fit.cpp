@@ -110,6 +110,7 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
 
   double span = 0.0, force_span = 0.0;
   FitData data = detail::select_fit_data(curve, options, &span, &force_span);
+  detail::require_usable_loss_scale(options, force_span, curve.source);
   if (contact_given) {
     data.contact_given = true;
     data.baseline = 0.0;  // the data were shifted to the found baseline

@@ -98,11 +98,15 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
   FitData data;
   for (auto* v : {&data.delta, &data.P, &data.a, &data.sqrt_weight}) v->reserve(idx.size());
   data.retract.reserve(idx.size());
+  // Weights are relative: divided by the largest, a uniform scale of them (1e-200 or 1e200)
+  // changes nothing, and no product of weights overflows.
+  double largest_weight = 0.0;
+  for (std::size_t i : idx) largest_weight = std::max(largest_weight, curve.weight.empty() ? 1.0 : curve.weight[i]);
   for (std::size_t i : idx) {
     data.delta.push_back(curve.delta[i]);
     data.P.push_back(curve.P[i]);
     data.a.push_back(curve.a.empty() ? kNaN : curve.a[i]);
-    data.sqrt_weight.push_back(curve.weight.empty() ? 1.0 : std::sqrt(curve.weight[i]));
+    data.sqrt_weight.push_back(curve.weight.empty() ? 1.0 : std::sqrt(curve.weight[i] / largest_weight));
     data.retract.push_back(retract[i]);
   }
   if (curve.a.empty()) data.a.clear();
@@ -169,6 +173,18 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
                        "towards the sample, P is positive when repulsive)");
   }
   return data;
+}
+
+void require_usable_loss_scale(const FitOptions& options, double force_span, const std::string& source) {
+  if (options.loss == LossType::none) return;
+  const double lo = kLossScaleRange[0] * force_span, hi = kLossScaleRange[1] * force_span;
+  if (options.loss_scale >= lo && options.loss_scale <= hi) return;
+  throw InputError(source + ": the " + to_string(options.loss) + " loss scale " + short_number(options.loss_scale) +
+                   " N is outside its usable range [" + short_number(lo) + ", " + short_number(hi) + "] N (" +
+                   short_number(kLossScaleRange[0]) + " to " + short_number(kLossScaleRange[1]) +
+                   " times the data's force span " + short_number(force_span) + " N): " +
+                   (options.loss_scale < lo ? "every residual would be an outlier" : "the loss would be least squares everywhere") +
+                   "; give a scale near the noise (or --loss none)");
 }
 
 }  // namespace layerjkr::detail

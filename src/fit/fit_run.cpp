@@ -49,9 +49,35 @@ class BlockCost final : public ceres::CostFunction {
 
 }  // namespace
 
+bool finite_solve(const ceres::Solver::Summary& s) {
+  if (!std::isfinite(s.initial_cost) || !std::isfinite(s.final_cost)) return false;
+  for (const ceres::IterationSummary& it : s.iterations)
+    if (!std::isfinite(it.cost) || !std::isfinite(it.gradient_max_norm)) return false;
+  return true;
+}
+
+namespace {
+
+double constant_force_cost(const FitData& data, double F) {
+  double sw2 = 0.0, mean = 0.0;
+  for (std::size_t i = 0; i < data.P.size(); ++i) {
+    sw2 += data.sqrt_weight[i] * data.sqrt_weight[i];
+    mean += data.sqrt_weight[i] * data.sqrt_weight[i] * data.P[i];
+  }
+  mean = sw2 > 0.0 ? mean / sw2 : 0.0;
+  double cost = 0.0;
+  for (std::size_t i = 0; i < data.P.size(); ++i) {
+    const double r = data.sqrt_weight[i] * (data.P[i] - mean) / F;
+    cost += 0.5 * r * r;
+  }
+  return cost;
+}
+
+}  // namespace
+
 FitRun::FitRun(CurveEvaluator& ev, const ParameterMap& map, const FitOptions& options, FitData& data,
                std::vector<double>& x)
-    : ev_(ev), map_(map), options_(options), data_(data), x_(x) {}
+    : ev_(ev), cost_scale_(constant_force_cost(data, map.F)), map_(map), options_(options), data_(data), x_(x) {}
 
 // One Ceres trust-region solve from xs; one residual block, or one per sample when a
 // robust loss needs it.
@@ -92,7 +118,8 @@ std::unique_ptr<ceres::Problem> FitRun::solve_from(std::vector<double>& xs, cere
   so.max_num_iterations = options_.max_iterations;
   so.function_tolerance = options_.function_tolerance;
   so.parameter_tolerance = options_.parameter_tolerance;
-  so.gradient_tolerance = options_.gradient_tolerance;
+  // Relative to the problem's own scale: no rescaling of the data can meet it by itself.
+  so.gradient_tolerance = options_.gradient_tolerance * std::max(cost_scale_, std::numeric_limits<double>::min());
   so.num_threads = 1;
   so.initial_trust_region_radius = kInitialTrustRegionRadius;
   ceres::Solve(so, problem.get(), summary);
@@ -103,6 +130,15 @@ std::unique_ptr<ceres::Problem> FitRun::solve_from(std::vector<double>& xs, cere
 void FitRun::solve() {
   const bool first = !problem_;
   problem_ = solve_from(x_, &summary_, held_);
+  if (!finite_solve(summary_)) {
+    const std::string loss = options_.loss == LossType::none
+                                 ? std::string()
+                                 : " with the " + std::string(to_string(options_.loss)) + " loss of scale " +
+                                       format_double(options_.loss_scale) + " N";
+    throw NumericalError("fit: the cost or its gradient is not finite " +
+                         std::string(std::isfinite(summary_.initial_cost) ? "during the solve" : "at the start") + loss +
+                         " (Ceres: " + summary_.message + "); no result is reported");
+  }
   iterations_ += static_cast<int>(summary_.iterations.size()) - 1;
   if (first) {
     moved_ = summary_.iterations.size() > 1 &&
@@ -144,7 +180,7 @@ double FitRun::cost_with_held(FitParameter q, double xq) {
   }
   ceres::Solver::Summary s2;
   solve_from(xs, &s2, map_.index(q));
-  return s2.IsSolutionUsable() ? s2.final_cost : kNaN;
+  return s2.IsSolutionUsable() && finite_solve(s2) ? s2.final_cost : kNaN;
 }
 
 void FitRun::try_extra_starts() {
@@ -163,7 +199,7 @@ void FitRun::try_extra_starts() {
     if (!ev_.evaluate(xs.data(), false)) continue;
     ceres::Solver::Summary s2;
     solve_from(xs, &s2, held_);
-    if (s2.IsSolutionUsable() && s2.final_cost < summary_.final_cost) {
+    if (s2.IsSolutionUsable() && finite_solve(s2) && s2.final_cost < summary_.final_cost) {
       summary_ = s2;
       x_ = xs;
       moved = true;
@@ -183,7 +219,7 @@ bool FitRun::resolve_in_place() {
   ceres::Solver::Summary s2;
   const std::vector<double> before = x_;
   auto p2 = solve_from(x_, &s2, held_);
-  if (!s2.IsSolutionUsable()) {
+  if (!s2.IsSolutionUsable() || !finite_solve(s2)) {
     x_ = before;
     return false;
   }

@@ -15,6 +15,10 @@
 
 namespace layerjkr::detail {
 
+/// True if every cost and gradient a solve saw was finite: Ceres can stop a solve whose cost
+/// became NaN with "convergence" (|cost_change|/cost: nan), which is a failure, never a result.
+bool finite_solve(const ceres::Solver::Summary& s);
+
 class FitRun {
  public:
   /// Borrows everything (ownership stays with the caller, which outlives the run); `x` is
@@ -22,7 +26,9 @@ class FitRun {
   FitRun(CurveEvaluator& ev, const ParameterMap& map, const FitOptions& options, FitData& data,
          std::vector<double>& x);
 
-  /// The first trust-region solve from x.
+  /// The first trust-region solve from x. Throws NumericalError, saying where, if the cost or
+  /// its gradient is not finite at the start or at the solution (a solve that reports
+  /// convergence on NaN is a failure, never a result).
   void solve();
   /// Solves again from options.extra_starts perturbed starts; keeps the lowest cost.
   void try_extra_starts();
@@ -63,6 +69,9 @@ class FitRun {
   bool resolve_in_place();
 
   CurveEvaluator& ev_;
+  /// The problem's own scale: the cost of the best constant force (the weighted mean), from
+  /// the data; Ceres' gradient tolerance is relative to it.
+  double cost_scale_ = 0.0;
   const ParameterMap& map_;
   const FitOptions& options_;
   FitData& data_;

@@ -27,6 +27,16 @@ constexpr double kSignificantForceFraction = 1e-6;
 FitData select_fit_data(const CurveData& curve, const FitOptions& options, double* span,
                         double* force_span);
 
+/// Robust losses are usable for scales from kLossScaleRange[0] to kLossScaleRange[1] times the
+/// force span: far below it every residual is an outlier (the fit follows no sample), far above
+/// it the loss is least squares everywhere, and beyond either the loss itself overflows (Ceres'
+/// Cauchy loss takes the scale squared).
+constexpr double kLossScaleRange[2] = {1e-6, 1e6};
+
+/// Throws InputError naming `source`, the scale, its usable range in newtons and why, for a
+/// robust loss whose scale lies outside kLossScaleRange x `force_span`.
+void require_usable_loss_scale(const FitOptions& options, double force_span, const std::string& source);
+
 /// The contact-region rule for retract data without a baseline (tension-only unloading, a
 /// necking tail): see fit_data.cpp. On success sets data.noise and data.unloading_only.
 bool unloading_contact_region(FitData& data, double force_span);

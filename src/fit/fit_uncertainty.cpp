@@ -164,12 +164,15 @@ std::string compute_error_bars(ceres::Problem* problem, double final_cost, const
   cov.GetCovarianceBlock(x.data(), x.data(), C.data());
   const double dof = static_cast<double>(residuals - p_free + (w_held ? 1 : 0));
   const double s2 = 2.0 * final_cost / dof;  // scaled by the residual variance
-  // Symmetric by construction: C from ceres may differ from its transpose in the last bit.
+  // Symmetric by construction: C from ceres may differ from its transpose in the last bit. Each
+  // square root apart (their product can overflow), clamped to [-1, 1] where rounding leaves it
+  // a bit beyond, NaN - unknown - where the variances are not finite and positive.
   for (std::size_t i = 0; i < p_free; ++i)
     for (std::size_t j = 0; j <= i; ++j)
-      if (!(w_held && (i == held_slot || j == held_slot)))
-        out->correlation[i][j] = out->correlation[j][i] =
-            C[i * p_free + j] / std::sqrt(C[i * p_free + i] * C[j * p_free + j]);
+      if (!(w_held && (i == held_slot || j == held_slot))) {
+        const double r = C[i * p_free + j] / std::sqrt(C[i * p_free + i]) / std::sqrt(C[j * p_free + j]);
+        out->correlation[i][j] = out->correlation[j][i] = std::isfinite(r) ? std::clamp(r, -1.0, 1.0) : kNaN;
+      }
   for (std::size_t j = 0; j < p_free; ++j) {
     if (!cond.separable[j] || j == held_slot) continue;
     out->parameters[j].standard_error = std::abs(map.derivative(options.free[j], x.data())) * std::sqrt(C[j * p_free + j] * s2);
