@@ -23,4 +23,5 @@
 #include "layerjkr/provenance.hpp"
 #include "layerjkr/scene.hpp"
 #include "layerjkr/simulate.hpp"
+#include "layerjkr/text.hpp"
 #include "layerjkr/types.hpp"

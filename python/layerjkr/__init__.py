@@ -1274,7 +1274,9 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
                             curve=None if curve is None else _integer("curve", curve))
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]
-    names = [os.fspath(p) for p in paths]
+    # As bytes, the file system's own names: a name that is not UTF-8 (os.listdir gives it with
+    # surrogates) reaches the file; each result's source gives it back as os.fsdecode would.
+    names = [os.fsencode(p) for p in paths]
     s = _as_scene(scene)
     directory = _report_dir(report)
     # Each file hashed once, before it is read (a FIFO or a directory is recorded, not opened).
@@ -1285,7 +1287,8 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
     if directory:
         _write_report(items, options, directory, "%d input file(s) (fit_files)" % len(names))
     base = _provenance(s, options, csv, [])
-    return _batch(items, options.branch, lambda k, it: _with_inputs(base, [hashed.get(it.source) or _core.record_file(it.source)]))
+    return _batch(items, options.branch,
+                  lambda k, it: _with_inputs(base, [hashed.get(os.fsencode(it.source)) or _core.record_file(os.fsencode(it.source))]))
 
 
 def _report_dir(report: Optional[Union[str, "os.PathLike[str]"]]) -> Optional[str]:

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "layerjkr/instrument.hpp"
+#include "layerjkr/text.hpp"
 
 namespace py = pybind11;
 
@@ -91,8 +92,8 @@ class Reader {
 
 py::dict header_dict(const InstrumentFile& h) {
   py::dict d;
-  d["path"] = h.path, d["format"] = std::string(to_string(h.format));
-  d["instrument"] = h.instrument, d["software"] = h.software;
+  d["path"] = file_name(h.path), d["format"] = std::string(to_string(h.format));
+  d["instrument"] = text(h.instrument), d["software"] = text(h.software);
   d["grid_shape"] = py::make_tuple(h.grid_shape_x, h.grid_shape_y);
   d["grid_size"] = py::make_tuple(h.grid_size_x, h.grid_size_y);
   d["grid_center"] = py::make_tuple(h.grid_center_x, h.grid_center_y);
@@ -100,6 +101,20 @@ py::dict header_dict(const InstrumentFile& h) {
 }
 
 }  // namespace
+
+py::str file_name(const std::string& name) {
+  PyObject* o = PyUnicode_DecodeFSDefaultAndSize(name.data(), static_cast<Py_ssize_t>(name.size()));
+  if (o == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(o);
+}
+
+py::str text(const std::string& s) { return py::str(layerjkr::printable(s)); }
+
+py::list texts(const std::vector<std::string>& v) {
+  py::list out;
+  for (const std::string& s : v) out.append(text(s));
+  return out;
+}
 
 void bind_instrument(py::module_& m) {
   m.def("read_instrument", &read_instrument, py::arg("path"), py::arg("begin") = 0, py::arg("end") = py::none());

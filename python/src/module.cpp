@@ -265,14 +265,14 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
-    } catch (const DomainError& x) {
-      PyErr_SetString(exceptions().domain.ptr(), x.what());
+    } catch (const DomainError& x) {  // messages made printable: they may echo bytes from a file
+      PyErr_SetString(exceptions().domain.ptr(), printable(x.what()).c_str());
     } catch (const InputError& x) {
-      PyErr_SetString(exceptions().input.ptr(), x.what());
+      PyErr_SetString(exceptions().input.ptr(), printable(x.what()).c_str());
     } catch (const NumericalError& x) {
-      PyErr_SetString(exceptions().numerical.ptr(), x.what());
+      PyErr_SetString(exceptions().numerical.ptr(), printable(x.what()).c_str());
     } catch (const Error& x) {
-      PyErr_SetString(exceptions().error.ptr(), x.what());
+      PyErr_SetString(exceptions().error.ptr(), printable(x.what()).c_str());
     }
   });
 
@@ -322,7 +322,7 @@ PYBIND11_MODULE(_core, m) {
         return py::make_tuple(c.lambda, c.sigma0, c.sigma0_assumed, c.pull_off_error, c.basis);
       })
       .def_readonly("choice", &SummaryAnswer::choice)
-      .def_readonly("warnings", &SummaryAnswer::warnings)
+      .def_property_readonly("warnings", [](const SummaryAnswer& s) { return python::texts(s.warnings); })
       .def_readonly("seconds", &SummaryAnswer::seconds);
 
   m.def("curve", &curve, py::arg("scene"), py::arg("a"), py::arg("warning_threshold"));
@@ -351,7 +351,7 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("at_bound", &ParameterEstimate::at_bound)
       .def_readonly("upper_bound", &ParameterEstimate::upper_bound)
       .def_readonly("identifiable", &ParameterEstimate::identifiable)
-      .def_readonly("reason", &ParameterEstimate::reason);
+      .def_property_readonly("reason", [](const ParameterEstimate& p) { return python::text(p.reason); });
 
   py::class_<FitSummary>(m, "FitSummary", "A fit's summary (FitSummary).")
       .def_readonly("converged", &FitSummary::converged)
@@ -376,10 +376,10 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("points_in_contact", &FitSummary::points_in_contact)
       .def_readonly("identifiable", &FitSummary::identifiable)
       .def_readonly("identifiability_known", &FitSummary::identifiability_known)
-      .def_readonly("identifiability_reason", &FitSummary::identifiability_reason)
+      .def_property_readonly("identifiability_reason", [](const FitSummary& s) { return python::text(s.identifiability_reason); })
       .def_readonly("unidentifiable", &FitSummary::unidentifiable)
-      .def_readonly("no_move_reason", &FitSummary::no_move_reason)
-      .def_readonly("warnings", &FitSummary::warnings)
+      .def_property_readonly("no_move_reason", [](const FitSummary& s) { return python::text(s.no_move_reason); })
+      .def_property_readonly("warnings", [](const FitSummary& s) { return python::texts(s.warnings); })
       .def_property_readonly("delta", [](const FitSummary& s) { return to_array(s.delta); })
       .def_property_readonly("P", [](const FitSummary& s) { return to_array(s.P); })
       .def_property_readonly("P_fit", [](const FitSummary& s) { return to_array(s.P_fit); })
@@ -401,12 +401,12 @@ PYBIND11_MODULE(_core, m) {
         d["samples_in_range"] = c.samples_in_range;
         return d;
       })
-      .def("brief_report", &FitSummary::brief_report);
+      .def("brief_report", [](const FitSummary& s) { return python::text(s.brief_report()); });
 
   py::class_<BatchItem>(m, "BatchItem", "One curve of a batch (BatchItem).")
-      .def_readonly("source", &BatchItem::source)
+      .def_property_readonly("source", [](const BatchItem& it) { return python::file_name(it.source); })
       .def_readonly("ok", &BatchItem::ok)
-      .def_readonly("error", &BatchItem::error)
+      .def_property_readonly("error", [](const BatchItem& it) { return python::text(it.error); })
       .def_readonly("summary", &BatchItem::summary)
       .def_readonly("curve", &BatchItem::curve)
       .def_readonly("x", &BatchItem::x)
@@ -427,7 +427,8 @@ PYBIND11_MODULE(_core, m) {
           py::gil_scoped_release release;
           r = record_file(path);
         }
-        return py::make_tuple(r.path, r.size, r.sha256, r.error);
+        // The path as records hold it (escape_bytes: valid UTF-8, reversible), the reason printable.
+        return py::make_tuple(escape_bytes(r.path), r.size, r.sha256, printable(r.error));
       },
       py::arg("path"));
   m.def("record_bytes", [](const std::string& name, const py::buffer& data) {
@@ -440,7 +441,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("provenance", [](const Scene& scene, const FitOptions& options, std::optional<CsvOptions> csv,
                          const std::vector<std::tuple<std::string, std::uint64_t, std::string, std::string>>& inputs) {
         std::vector<InputRecord> records;
-        for (const auto& [path, size, sha, error] : inputs) records.push_back({path, size, sha, error});
+        for (const auto& [path, size, sha, error] : inputs) records.push_back({unescape_bytes(path), size, sha, error});
         return provenance_json(scene, options, csv ? &*csv : nullptr, records);
       },
       py::arg("scene"), py::arg("options"), py::arg("csv"), py::arg("inputs"));

@@ -2,6 +2,7 @@
 TypeError naming the parameter, empty radii an InputError, numpy values in scene dicts, and
 the scene reader's limits (deep nesting killed the interpreter)."""
 import json
+import os
 
 import numpy as np
 import pytest
@@ -75,3 +76,31 @@ def test_deep_nesting_and_repeated_keys_are_input_errors():
     with pytest.raises(layerjkr.InputError, match="model is given twice"):
         layerjkr._core.parse_scene('{"indenter": {"shape": "sphere", "R": 1e-3}, "medium": {"type": "winkler", '
                                    '"K": 1e9}, "model": "winkler", "model": "winkler"}', "dup")
+
+
+def test_fit_files_takes_any_file_name_and_gives_it_back_as_os_fsdecode_does(source, tmp_path):
+    # A Latin-1 name (legal on Linux, common on old shares), a line break and an escape sequence.
+    raw = [b"M\xfcller.csv", b"b\nc.csv", b"esc\x1b]0;owned\x07.csv"]
+    for name in raw:
+        (tmp_path / os.fsdecode(name)).write_bytes((source / CURVE).read_bytes())
+    (tmp_path / os.fsdecode(b"bad\xff\x1b[2J.csv")).write_text("delta,P\n1,2\n")
+    paths = sorted(tmp_path.iterdir())
+    items = layerjkr.fit_files(paths, str(source / SCENE), free="E,w,delta0,P0", branch="all")
+    assert [it.source for it in items] == [str(p) for p in paths]  # surrogates where the bytes are not UTF-8
+    assert [os.fsencode(it.source) for it in items] == [os.fsencode(p) for p in paths]
+    bad = next(it for it in items if not it.ok)
+    assert "\x1b" not in bad.error and "\\x1b[2J" in bad.error  # printable, and says what it was
+    assert "bad\\xff" in bad.error
+    good = [it for it in items if it.ok]
+    assert len(good) == 3
+    for it in good:  # each result's record names its file, reversibly and as valid JSON
+        path = it.result.provenance["inputs"][0]["path"]
+        json.dumps(path).encode("utf-8")
+        assert "\x1b" not in path
+
+
+def test_exception_messages_print_control_characters_escaped():
+    with pytest.raises(layerjkr.InputError) as e:
+        layerjkr.scene({"indenter": {"shape": "\x1b]0;owned\x07", "R": 1e-5},
+                        "medium": {"type": "half_space", "E": 1e6, "nu": 0.5}})
+    assert "\x1b" not in str(e.value) and "\\x1b]0;owned\\x07" in str(e.value)

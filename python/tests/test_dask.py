@@ -55,7 +55,7 @@ def fit_map(cli, inputs, scene, free, out, *extra):
     t0 = time.perf_counter()
     r = subprocess.run([cli, "fit-map", *inputs, "--scene", scene, "--free", free, "--out", str(out), *extra],
                        capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
+    assert r.returncode in (0, 3), r.stderr  # 3: some curves failed (their rows say why)
     return time.perf_counter() - t0
 
 

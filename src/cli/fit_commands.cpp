@@ -60,7 +60,7 @@ int run_export(const std::string& path, const std::string& out, const std::strin
     csv.write(text);
   }
   csv.commit();
-  std::cerr << "export: " << end - range.begin << " curve(s) of " << path << " written to " << out << "\n";
+  std::cerr << "export: " << end - range.begin << " curve(s) of " << printable(path) << " written to " << printable(out) << "\n";
   return 0;
 }
 
@@ -77,6 +77,8 @@ int fit_and_report(const Prepared& p, const std::string& data, const std::vector
   std::optional<OutputFile> report_file, plot_file;
   if (!report.empty()) report_file.emplace(report);
   if (!plot.empty()) plot_file.emplace(plot);
+  if (report_file && plot_file && report_file->is_standard_output() && plot_file->is_standard_output())
+    throw InputError("--out " + report + " and --plot " + plot + " are both standard output; send one of them to a file");
   const std::vector<InputRecord> inputs{record_file(data)};
   const CurveData curve = read_fit_data(data, p);
   const FitSummary s = fit(curve, p.scene, p.options);
@@ -88,7 +90,9 @@ int fit_and_report(const Prepared& p, const std::string& data, const std::vector
     report_file->write(j.dump(2) + "\n");
     report_file->commit();
   }
-  std::cout << s.brief_report();
+  // The summary is for a person: on stderr when standard output carries the report or the plot.
+  const bool stdout_taken = (report_file && report_file->is_standard_output()) || (plot_file && plot_file->is_standard_output());
+  (stdout_taken ? std::cerr : std::cout) << printable(s.brief_report());
   return 0;
 }
 

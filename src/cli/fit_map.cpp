@@ -5,13 +5,13 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <iterator>
 #include <map>
-#include <mutex>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -23,6 +23,7 @@
 #include "fit_commands.hpp"
 #include "layerjkr/layerjkr.hpp"
 #include "limits.hpp"
+#include "map_resume.hpp"
 #include "plots.hpp"
 #include "reports.hpp"
 #include "results_table.hpp"
@@ -30,8 +31,17 @@
 namespace layerjkr::cli {
 namespace {
 
+using json = nlohmann::ordered_json;
+
 std::string num(double v) { return std::isfinite(v) ? format_double(v) : ""; }
 std::string index(int v) { return v >= 0 ? std::to_string(v) : std::string(); }
+
+// A message as one printable line of a cell.
+std::string message_cell(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  return csv_cell(printable(s));
+}
 
 std::string header(const std::vector<FitParameter>& free) {
   std::string h = "file,curve,x,y,grid_x,grid_y,status,error,model,converged,iterations,rms_residual,identifiable,"
@@ -40,15 +50,16 @@ std::string header(const std::vector<FitParameter>& free) {
   return h + "\n";
 }
 
+// The file cell is the name as given, escaped reversibly (text.hpp): a name with a line break
+// stays one quoted cell, bytes that are not UTF-8 become \xNN.
 std::string row(const BatchItem& it, std::size_t free) {
   std::ostringstream csv;
-  csv << csv_cell(it.source) << "," << index(it.curve) << "," << num(it.x) << "," << num(it.y) << ","
-      << index(it.grid_x) << "," << index(it.grid_y) << "," << (it.ok ? "ok" : "error") << "," << csv_cell(it.error);
+  csv << csv_cell(escape_bytes(it.source)) << "," << index(it.curve) << "," << num(it.x) << "," << num(it.y) << ","
+      << index(it.grid_x) << "," << index(it.grid_y) << "," << (it.ok ? "ok" : "error") << "," << message_cell(it.error);
   if (it.ok) {
     const FitSummary& s = it.summary;
     csv << "," << s.model << "," << (s.converged ? 1 : 0) << "," << s.iterations << ","
-        << format_double(s.rms_residual) << "," << (s.identifiable ? 1 : 0) << ","
-        << csv_cell(s.identifiability())
+        << format_double(s.rms_residual) << "," << (s.identifiable ? 1 : 0) << "," << message_cell(s.identifiability())
         << "," << num(s.contact_point.value) << "," << num(s.contact_point.standard_error) << ","
         << s.contact_point.samples_in_range;
     for (const auto& e : s.parameters) csv << "," << num(e.value) << "," << num(e.standard_error);
@@ -58,32 +69,6 @@ std::string row(const BatchItem& it, std::size_t free) {
   }
   csv << "\n";
   return csv.str();
-}
-
-using Key = std::pair<std::string, std::string>;  // the file and curve cells of a row
-
-// The rows of an earlier table (--resume), by key. `skip` (worker threads, concurrently) moves a
-// row from `waiting` to `claimed`; on_item (one at a time) takes it from there.
-struct Earlier {
-  std::vector<std::string> rows;
-  std::vector<char> written;
-  std::map<Key, std::deque<std::size_t>> waiting, claimed;
-  std::mutex lock;
-};
-
-// Reads `out` for --resume (results_table.hpp); a missing table is a fresh start.
-void read_earlier(const std::string& out, const std::string& head, Earlier& e) {
-  std::error_code ec;
-  if (!std::filesystem::exists(out, ec)) return;
-  std::ifstream f(out, std::ios::binary);
-  std::stringstream text;
-  text << f.rdbuf();
-  if (!f) throw InputError("--resume: cannot read " + out);
-  for (ResultsRow& r : parse_results_table(text.str(), head, out)) {
-    e.waiting[{r.file, r.curve}].push_back(e.rows.size());
-    e.rows.push_back(std::move(r.line));
-  }
-  e.written.assign(e.rows.size(), 0);
 }
 
 // SIGINT / SIGTERM: the batch polls the flag between curves. The handler resets itself, so a
@@ -113,22 +98,41 @@ class StopOnSignals {
   struct sigaction old_int_ {}, old_term_ {};
 };
 
-using json = nlohmann::ordered_json;
+// The record at `path` as JSON, or nullopt if it is missing or not a fit-map record: an object
+// with the version that wrote it and its table (every record layerjkr 0.1 and later wrote).
+std::optional<json> read_record(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return std::nullopt;
+  try {
+    json j = json::parse(f);
+    if (j.is_object() && j.contains("layerjkr_version") && j.contains("table")) return j;
+  } catch (const nlohmann::json::exception&) {
+  }
+  return std::nullopt;
+}
+
+// The record beside a table is derived from --out: it may replace only a record layerjkr wrote.
+void check_record_replaceable(const std::string& sidecar, bool force) {
+  std::error_code ec;
+  const auto st = std::filesystem::symlink_status(sidecar, ec);
+  if (force || !std::filesystem::exists(st) || std::filesystem::is_directory(std::filesystem::status(sidecar, ec)))
+    return;  // a directory is refused when the record is opened, with its own message
+  if (!read_record(sidecar))
+    throw InputError("--out's record " + sidecar +
+                     " exists and is not a fit-map record; it is not replaced (choose another --out, move the file, "
+                     "or give --force to replace it)");
+}
 
 // --resume keeps rows made earlier: only if they were made from the same scene and options, and
 // every input both runs name still has the bytes it had (the sidecar says what they were made from).
 // Returns the earlier record.
 json check_resumable(const std::string& sidecar, const json& now) {
-  std::ifstream f(sidecar, std::ios::binary);
-  if (!f)
+  if (!std::filesystem::exists(sidecar))
     throw InputError("--resume: " + sidecar + ", the record of how the earlier table was made, is missing; "
                      "without it its rows cannot be checked against this run (rerun without --resume)");
-  json earlier;
-  try {
-    earlier = json::parse(f);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError("--resume: " + sidecar + " is not a fit-map record (" + e.what() + ")");
-  }
+  const std::optional<json> read = read_record(sidecar);
+  if (!read) throw InputError("--resume: " + sidecar + " is not a fit-map record");
+  const json& earlier = *read;
   const auto differs = [&](const char* key, const char* sub = nullptr) {
     if (!earlier.contains(key)) return true;
     return sub ? !earlier[key].contains(sub) || earlier[key][sub] != now[key][sub] : earlier[key] != now[key];
@@ -151,8 +155,31 @@ json check_resumable(const std::string& sidecar, const json& now) {
   }
   if (earlier.value("layerjkr_version", std::string()) != version())
     std::cerr << "layerjkr: warning: --resume: the earlier rows were made by layerjkr "
-              << earlier.value("layerjkr_version", std::string("(unknown)")) << ", the new ones by " << version() << "\n";
+              << printable(earlier.value("layerjkr_version", std::string("(unknown)"))) << ", the new ones by "
+              << version() << "\n";
   return earlier;
+}
+
+// A progress bar on stderr, only for a person watching: logs and pipes get the summary line.
+std::function<void(std::size_t, std::size_t)> progress_bar(bool* drawn) {
+  if (!isatty(STDERR_FILENO)) return {};
+  const auto t0 = std::chrono::steady_clock::now();
+  auto last = std::make_shared<std::chrono::steady_clock::time_point>(t0 - std::chrono::seconds(1));
+  return [t0, last, drawn](std::size_t done, std::size_t total) {
+    const auto now = std::chrono::steady_clock::now();
+    if (done != total && now - *last < std::chrono::milliseconds(200)) return;
+    *last = now;
+    *drawn = true;
+    const double seconds = std::chrono::duration<double>(now - t0).count();
+    const double rate = seconds > 0.0 ? static_cast<double>(done) / seconds : 0.0;
+    const int width = 30, filled = static_cast<int>(width * done / total);
+    char line[160];
+    std::snprintf(line, sizeof line, "\rfit-map [%s%s] %zu/%zu  %.0f curves/s  %.0f s left  ",
+                  std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                  std::string(static_cast<std::size_t>(width - filled), ' ').c_str(), done, total, rate,
+                  rate > 0.0 ? static_cast<double>(total - done) / rate : 0.0);
+    std::cerr << line << std::flush;
+  };
 }
 
 }  // namespace
@@ -169,71 +196,68 @@ namespace {
 // fit-map from prepared options and expanded inputs: the command and its --from-report share it.
 // `all_inputs`: every file the outputs must not be; `extra`: added to the sidecar.
 int map_and_record(const Prepared& p, const std::vector<std::string>& files, const std::vector<std::string>& all_inputs,
-                   int jobs, const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
-                   const std::string& report_dir, const std::vector<std::string>& command_line, const json& extra) {
-  check_count("--jobs", jobs, 1, kMaxJobs);
-  if (resume && !plot_dir.empty())
+                   const std::string& curves, const MapOutputs& o, const std::vector<std::string>& command_line,
+                   const json& extra) {
+  check_count("--jobs", o.jobs, 1, kMaxJobs);
+  if (o.resume && !o.plot_dir.empty())
     throw InputError("--plot-dir needs every fit, and --resume does not redo the earlier ones: run them apart");
-  if (resume && !report_dir.empty())
+  if (o.resume && !o.report_dir.empty())
     throw InputError("--report needs every fit, and --resume does not redo the earlier ones: run them apart");
-  check_not_input(out, "--out", all_inputs);
-  const std::string sidecar = sidecar_path(out);
-  check_not_input(sidecar, "--out's record", all_inputs);
-  const std::string head = header(p.options.free);
-  Earlier earlier;
-  if (resume) read_earlier(out, head, earlier);
-  // Every output is created before the first fit: a bad path fails now, not after the work.
-  // The report's directory first: the table and its record may go into it.
-  if (!report_dir.empty()) prepare_report_dir(report_dir, "--report", {out, sidecar});
-  OutputFile table(out);
-  OutputFile record(sidecar);
-  if (!plot_dir.empty()) prepare_plot_dir(plot_dir);
+  check_not_input(o.out, "--out", all_inputs);
+  // Every output is opened, and every derived one checked, before the first fit: a bad path fails
+  // now, not after the work. The report's directory first: the table and its record may go into it.
+  if (!o.report_dir.empty()) prepare_report_dir(o.report_dir, "--report", {o.out, sidecar_path(o.out)});
+  OutputFile table(o.out);
+  if (o.resume && table.is_stream())
+    throw InputError("--resume reads the earlier table from --out, and " + o.out + " is a stream, not a file");
+  // A table that is a stream (standard output, a FIFO, a device) has no record beside it.
+  const std::string sidecar = table.is_stream() ? std::string() : sidecar_path(o.out);
+  std::optional<OutputFile> record;
+  if (!sidecar.empty()) {
+    check_not_input(sidecar, "--out's record", all_inputs);
+    check_record_replaceable(sidecar, o.force);
+    record.emplace(sidecar);
+  }
+  if (!o.plot_dir.empty()) prepare_plot_dir(o.plot_dir, map_plot_names(p.options.free), o.force);
   // What the rows are made from, hashed before any is read (docs/provenance.md has the cost).
   std::vector<InputRecord> hashed;
   hashed.reserve(files.size());
   for (const std::string& f : files) hashed.push_back(record_file(f));
   json made_from = provenance_record(p.scene, p.options, p.csv, hashed, command_line);
   // Each input also as it was named (the table's file column), so a rerun can name it the same way.
-  for (std::size_t k = 0; k < files.size(); ++k) made_from["inputs"][k]["named"] = files[k];
-  made_from["table"] = out;
+  for (std::size_t k = 0; k < files.size(); ++k) made_from["inputs"][k]["named"] = escape_bytes(files[k]);
+  made_from["table"] = escape_bytes(o.out);
   made_from["curves"] = curves.empty() ? json(nullptr) : json(curves);
   for (const auto& item : extra.items()) made_from[item.key()] = item.value();
-  if (!earlier.rows.empty()) {
-    const json earlier_record = check_resumable(sidecar, made_from);
+  EarlierRows earlier;
+  earlier.set_inputs(files, hashed);
+  const json earlier_record =
+      o.resume ? earlier.read(o.out, header(p.options.free), [&] { return check_resumable(sidecar, made_from); })
+               : json();
+  if (!earlier_record.is_null()) {
     // The earlier inputs this run does not name keep their rows, so their records stay too.
     std::set<std::string> named;
-    for (const InputRecord& r : hashed) named.insert(r.path);
+    for (const auto& in : made_from["inputs"]) named.insert(in.value("path", std::string()));
     for (const auto& in : earlier_record.value("inputs", json::array()))
       if (!named.count(in.value("path", std::string()))) made_from["inputs"].push_back(in);
   }
-  record.write(made_from.dump(2) + "\n");
+  if (record) record->write(made_from.dump(2) + "\n");
   std::optional<OutputFile> page;
-  if (!report_dir.empty()) page.emplace(map_report_page(report_dir));
-  table.write(head);
+  if (!o.report_dir.empty()) page.emplace(map_report_page(o.report_dir));
+  table.write(header(p.options.free));
 
   std::size_t rows = 0, failed = 0, skipped = 0;
   BatchOptions b;
-  b.jobs = jobs;
+  b.jobs = o.jobs;
   if (!curves.empty()) b.curves = CurveRange::parse(curves, "--curves");
   b.cancelled = [] { return stop_signal.load() != 0; };
   if (page) b.display_points = kDefaultDisplayPoints;
-  if (resume)
-    b.skip = [&](const BatchItem& it) {
-      const std::lock_guard<std::mutex> guard(earlier.lock);
-      const Key key{it.source, index(it.curve)};
-      const auto found = earlier.waiting.find(key);
-      if (found == earlier.waiting.end() || found->second.empty()) return false;
-      earlier.claimed[key].push_back(found->second.front());
-      found->second.pop_front();
-      return true;
-    };
+  if (!earlier.empty()) b.skip = [&](const BatchItem& it) { return earlier.claim(it.source, it.curve); };
   b.on_item = [&](std::size_t, const BatchItem& it) {
     if (it.skipped) {
-      const std::lock_guard<std::mutex> guard(earlier.lock);
-      auto& mine = earlier.claimed[{it.source, index(it.curve)}];
-      table.write(earlier.rows[mine.front()]);
-      earlier.written[mine.front()] = 1;
-      mine.pop_front();
+      bool was_failed = false;
+      table.write(earlier.take(it.source, it.curve, &was_failed));
+      failed += was_failed ? 1 : 0;
       ++skipped;
     } else {
       table.write(row(it, p.options.free.size()));
@@ -241,80 +265,64 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
     }
     ++rows;
   };
-  const auto t0 = std::chrono::steady_clock::now();
-  auto last = t0 - std::chrono::seconds(1);
   bool drawn = false;
-  // A bar only for a person watching: logs and pipes get the one-line summary at the end.
-  if (isatty(STDERR_FILENO))
-    b.progress = [&](std::size_t done, std::size_t total) {
-      const auto now = std::chrono::steady_clock::now();
-      if (done != total && now - last < std::chrono::milliseconds(200)) return;
-      last = now;
-      drawn = true;
-      const double seconds = std::chrono::duration<double>(now - t0).count();
-      const double rate = seconds > 0.0 ? static_cast<double>(done) / seconds : 0.0;
-      const int width = 30, filled = static_cast<int>(width * done / total);
-      char line[160];
-      std::snprintf(line, sizeof line, "\rfit-map [%s%s] %zu/%zu  %.0f curves/s  %.0f s left  ",
-                    std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                    std::string(static_cast<std::size_t>(width - filled), ' ').c_str(), done, total, rate,
-                    rate > 0.0 ? static_cast<double>(total - done) / rate : 0.0);
-      std::cerr << line << std::flush;
-    };
+  b.progress = progress_bar(&drawn);
   std::vector<BatchItem> items;
   {
     const StopOnSignals stop;
     items = fit_files(files, p.scene, p.options, p.csv, b);
   }
   // Rows of the earlier table that this run's inputs did not name are kept, after the others.
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < earlier.rows.size(); ++i)
-    if (!earlier.written[i]) {
-      table.write(earlier.rows[i]);
-      ++kept;
-    }
+  std::size_t kept_failed = 0;
+  const std::vector<std::string> kept = earlier.leftover(&kept_failed);
+  for (const std::string& line : kept) table.write(line);
   table.commit();
-  record.commit();
+  if (record) record->commit();
   if (drawn) std::cerr << "\n";
-  const std::string kept_note = kept ? "; " + std::to_string(kept) + " earlier row(s) for other inputs kept at the end" : "";
+  const std::string what = table.is_standard_output() ? std::string("standard output") : printable(o.out);
+  const std::string kept_note =
+      kept.empty() ? "" : "; " + std::to_string(kept.size()) + " earlier row(s) for other inputs kept at the end";
   if (const int sig = stop_signal.load()) {
     std::cerr << "fit-map: stopped by " << (sig == SIGINT ? "SIGINT" : "SIGTERM") << ": " << rows << " of "
-              << items.size() << " rows written to " << out << kept_note << "; --resume finishes the table"
+              << items.size() << " rows written to " << what << kept_note << "; --resume finishes the table"
               << (page ? " (no report written)" : "") << "\n";
     return 128 + sig;
   }
-  if (!plot_dir.empty()) plot_map_fields(items, p.options.free, plot_dir);
+  if (!o.plot_dir.empty()) plot_map_fields(items, p.options.free, o.plot_dir, o.force);
   if (page) {
     MapReportOptions r;
     r.free = p.options.free;
     r.subtitle = "scene " + (p.scene.origin.file.empty() ? std::string("(recorded)") : p.scene.origin.file) + "; " +
-                 std::to_string(files.size()) + " input file(s); results " + out + "; its record " + sidecar;
+                 std::to_string(files.size()) + " input file(s); results " + o.out +
+                 (sidecar.empty() ? std::string() : "; its record " + sidecar);
     page->write(map_report_html(items, r));
     page->commit();
-    std::cerr << "fit-map: report written to " << page->target() << "\n";
+    std::cerr << "fit-map: report written to " << printable(page->target()) << "\n";
   }
-  std::cerr << "fit-map: " << rows - failed - skipped << " of " << rows - skipped << " curves fitted";
+  const std::size_t all_rows = rows + kept.size(), all_failed = failed + kept_failed;
+  std::cerr << "fit-map: " << all_rows - all_failed << " of " << all_rows << " curves fitted";
   if (skipped) std::cerr << " (" << skipped << " rows kept from the earlier run)";
-  if (failed) std::cerr << "; " << failed << " failed (see the error column of " << out << ")";
-  std::cerr << kept_note << "\n";
-  return 0;
+  if (all_failed) std::cerr << "; " << all_failed << " failed (see the error column of " << what << ")";
+  std::cerr << kept_note;
+  if (sidecar.empty()) std::cerr << "; no record written (the table is a stream: give --out FILE for one)";
+  std::cerr << "\n";
+  if (all_failed == 0 && all_rows > 0) return 0;
+  return all_failed < all_rows ? kExitSomeFailed : kExitNoneFitted;
 }
 
 }  // namespace
 
-int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, int jobs,
-                const std::string& out, const std::string& plot_dir, bool resume, const std::string& curves,
-                const std::string& report_dir, const std::vector<std::string>& command_line) {
+int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, const std::string& curves,
+                const MapOutputs& outputs, const std::vector<std::string>& command_line) {
   const Prepared p = prepare(args);
   const std::vector<std::string> files = expand_inputs(inputs);
   std::vector<std::string> all_inputs = files;
   all_inputs.push_back(args.scene);
-  return map_and_record(p, files, all_inputs, jobs, out, plot_dir, resume, curves, report_dir, command_line,
-                        json::object());
+  return map_and_record(p, files, all_inputs, curves, outputs, command_line, json::object());
 }
 
-int run_fit_map_from_report(const std::string& from, int jobs, const std::string& out, const std::string& plot_dir,
-                            const std::string& report_dir, const std::vector<std::string>& command_line) {
+int run_fit_map_from_report(const std::string& from, const MapOutputs& outputs,
+                            const std::vector<std::string>& command_line) {
   std::ifstream f(from, std::ios::binary);
   if (!f) throw InputError("--from-report: cannot open " + from);
   const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
@@ -328,8 +336,8 @@ int run_fit_map_from_report(const std::string& from, int jobs, const std::string
     throw InputError(from + ": is not a fit-map record (the OUT.json fit-map writes beside its table)");
   const ProvenanceRecord r = parse_provenance(text, from);
   if (r.version != version())
-    std::cerr << "layerjkr: warning: " << from << " was written by layerjkr " << r.version << ", this is "
-              << version() << ": the numbers may differ\n";
+    std::cerr << "layerjkr: warning: " << printable(from) << " was written by layerjkr " << printable(r.version)
+              << ", this is " << version() << ": the numbers may differ\n";
   if (!r.scene) throw InputError(from + ": cannot be rerun: its scene was " + r.scene_note);
   std::vector<std::string> files;
   for (std::size_t k = 0; k < r.inputs.size(); ++k) {
@@ -338,7 +346,7 @@ int run_fit_map_from_report(const std::string& from, int jobs, const std::string
     if (in.error.empty()) verify_input(in);
     // As the first run named it where that still names the same file (from the same directory):
     // the table's file column is then the same too.
-    const std::string named = j["inputs"][k].value("named", std::string());
+    const std::string named = unescape_bytes(j["inputs"][k].value("named", std::string()));
     std::error_code ec;
     const bool same = !named.empty() && std::filesystem::absolute(named, ec).lexically_normal().string() == in.path;
     files.push_back(same && !ec ? named : in.path);
@@ -347,9 +355,11 @@ int run_fit_map_from_report(const std::string& from, int jobs, const std::string
   std::vector<std::string> all_inputs = files;
   all_inputs.push_back(from);
   json extra;
-  extra["rerun_of"] = {{"record", record_file(from).path}, {"sha256", sha256_hex(text.data(), text.size())}};
+  extra["rerun_of"] = {{"record", escape_bytes(record_file(from).path)}, {"sha256", sha256_hex(text.data(), text.size())}};
   const Prepared p{*r.scene, r.options, r.csv.value_or(CsvOptions{})};
-  return map_and_record(p, files, all_inputs, jobs, out, plot_dir, false, curves, report_dir, command_line, extra);
+  MapOutputs o = outputs;
+  o.resume = false;
+  return map_and_record(p, files, all_inputs, curves, o, command_line, extra);
 }
 
 }  // namespace layerjkr::cli

@@ -6,8 +6,10 @@
 //   layerjkr fit-map DIR_OR_GLOB... --scene S.json --free ... --jobs N --out RESULTS.csv [--report DIR] [--resume]
 //   layerjkr fit-map --from-report RESULTS.json --out AGAIN.csv [--jobs N] [--report DIR]
 //   layerjkr export FILE.jpk-force|.jpk-force-map|.jpk-qi-data|.ibw|.spm|.000 --out OUT.csv [--curves A:B]
-// Exit codes: 0 success, 2 invalid scene or arguments, 1 internal failure, 130 / 143 fit-map
-// stopped by SIGINT / SIGTERM. Every error is one line on stderr.
+// Exit codes (kExitCodes below, printed by --help): 0 success, 1 internal or numerical failure, 2
+// invalid scene, data or arguments (nothing written), 3 / 4 fit-map wrote its table but some / all of
+// its curves failed, 130 / 143 fit-map stopped by SIGINT / SIGTERM. Every error is one line on stderr,
+// printable (text.hpp): a value echoed from a file cannot drive the terminal.
 #include <algorithm>
 #include <cmath>
 #include <csignal>
@@ -32,21 +34,27 @@ namespace {
 
 using layerjkr::format_double;
 
-// One line on stderr, whatever the message holds (CLI11's messages can span lines).
+constexpr const char* kExitCodes =
+    "Exit codes: 0 success; 1 internal or numerical failure; 2 invalid scene, data or arguments (one line on "
+    "stderr, nothing written); fit-map: 3 some curves failed (the table has their rows and errors), 4 no curve was "
+    "fitted; 130 / 143 fit-map stopped by SIGINT / SIGTERM (the table so far is kept; --resume finishes it).";
+
+// One printable line on stderr, whatever the message holds (CLI11's messages can span lines; a
+// value echoed from a file can hold escape sequences).
 int fail(int code, const std::string& message) {
   std::string line = "layerjkr: " + message;
   for (char& c : line)
     if (c == '\n' || c == '\r') c = ' ';
-  std::cerr << line << "\n";
+  std::cerr << layerjkr::printable(line) << "\n";
   return code;
 }
 
 void print_warnings(const std::vector<std::string>& warnings) {
-  for (const auto& w : warnings) std::cerr << "layerjkr: warning: " << w << "\n";
+  for (const auto& w : warnings) std::cerr << "layerjkr: warning: " << layerjkr::printable(w) << "\n";
 }
 
 void print_choice(const std::optional<layerjkr::AutoChoice>& choice) {
-  if (choice) std::cerr << "layerjkr: " << choice->brief_report() << "\n";
+  if (choice) std::cerr << "layerjkr: " << layerjkr::printable(choice->brief_report()) << "\n";
 }
 
 int run_curve(const std::string& path, const std::string& at, double a_max, int points) {
@@ -82,6 +90,8 @@ static int run_main(int argc, char** argv) {
   // Ceres logs internal diagnostics through glog; the CLI reports through its own messages.
   FLAGS_minloglevel = google::GLOG_FATAL;
   CLI::App app{"layerjkr: adhesive (JKR) contact of thin elastic layers"};
+  app.set_version_flag("--version", std::string("layerjkr ") + layerjkr::version());
+  app.footer(kExitCodes);
   app.require_subcommand(1);
   std::string scene_path, at;
   double a_max = 0.0;
@@ -103,10 +113,10 @@ static int run_main(int argc, char** argv) {
   summary->add_option("scene", scene_path, "Scene JSON file")->required();
 
   layerjkr::cli::FitArguments fit_args;
-  std::string data_path, report_path, plot_path, map_out, map_plot_dir;
+  std::string data_path, report_path, plot_path;
   std::vector<std::string> map_inputs;
-  bool map_resume = false;
-  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  layerjkr::cli::MapOutputs map;
+  map.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   CLI::App* fit = app.add_subcommand(
       "fit", "Fit a measured curve (CSV or instrument file) with a scene's model: estimates, errors, identifiability");
   fit->add_option("data", data_path, "Curve CSV (delta,P[,a][,weight][,segment] | tip_position,force | z,deflection | "
@@ -114,8 +124,9 @@ static int run_main(int argc, char** argv) {
       ->required();
   layerjkr::cli::add_fit_options(*fit, fit_args);
   fit->add_option("--out", report_path, "Write the JSON report here (with its provenance: version, scene, options, "
-                                        "the input's SHA-256, the command line)");
-  fit->add_option("--plot", plot_path, "Write a PNG of data, fit and residuals (gnuplot)");
+                                        "the input's SHA-256, the command line); - for standard output (the summary "
+                                        "then goes to stderr)");
+  fit->add_option("--plot", plot_path, "Write a PNG of data, fit and residuals (gnuplot); - for standard output");
   std::string from_report;
   fit->add_option("--from-report", from_report,
                   "Rerun the fit a JSON report records (its scene, options and input, whose SHA-256 must match) "
@@ -131,15 +142,19 @@ static int run_main(int argc, char** argv) {
                       "Directories (all *.csv and instrument files), glob patterns or files; maps give a row per curve")
       ->required();
   layerjkr::cli::add_fit_options(*fit_map, fit_args);
-  fit_map->add_option("--jobs", jobs, "Worker threads (default: all cores)");
-  fit_map->add_option("--out", map_out,
-                      "Results CSV; beside it, its record OUT.json (OUT.csv with .json for .csv, else OUT + .json): "
-                      "version, scene, options, every input's SHA-256, the command line")
+  fit_map->add_option("--jobs", map.jobs, "Worker threads (default: all cores)");
+  fit_map->add_option("--out", map.out,
+                      "Results CSV (- for standard output); beside a file, its record OUT.json (OUT.csv with .json "
+                      "for .csv, else OUT + .json): version, scene, options, every input's SHA-256, the command line")
       ->required();
-  fit_map->add_option("--plot-dir", map_plot_dir,
-                      "Draw each fitted field (parameters, rms, status) as a heat-map PNG over the map grid (gnuplot)");
-  std::string map_curves, export_curves, map_report_dir;
-  fit_map->add_option("--report", map_report_dir,
+  fit_map->add_option("--plot-dir", map.plot_dir,
+                      "Draw each fitted field (parameters, rms, status) as a heat-map PNG over the map grid (gnuplot); "
+                      "pictures there that layerjkr did not draw are not replaced");
+  fit_map->add_flag("--force", map.force,
+                    "Replace derived files that layerjkr did not write: a file at the record's name that is not a "
+                    "fit-map record, pictures in --plot-dir");
+  std::string map_curves, export_curves;
+  fit_map->add_option("--report", map.report_dir,
                       "Write an interactive report (one self-contained HTML page: maps, histograms, each curve and its "
                       "fit) as DIR/index.html; DIR must be new, empty or an earlier report (the --out table may go in it)");
   fit_map->add_option("--curves", map_curves,
@@ -150,7 +165,7 @@ static int run_main(int argc, char** argv) {
                       "Rerun the map a record (OUT.json) describes: its scene, options, inputs (SHA-256 checked) and "
                       "--curves, instead of INPUTS, --scene and the fit flags; give --out, and --jobs, --plot-dir");
   for (const char* name : {"inputs", "--scene", "--free"}) fit_map->get_option(name)->required(false);
-  fit_map->add_flag("--resume", map_resume,
+  fit_map->add_flag("--resume", map.resume,
                     "Keep the rows of an existing --out table (same header) and fit only the curves it lacks; refused when its "
                     "record names another scene or options, or an input whose SHA-256 changed");
 
@@ -160,7 +175,7 @@ static int run_main(int argc, char** argv) {
   export_cmd->add_option("file", export_path, "Instrument file (" + layerjkr::known_instrument_formats() + ")")
       ->required();
   export_cmd->add_option("--curves", export_curves, "Only the curves at positions A to B - 1 (A:B, A: or :B)");
-  export_cmd->add_option("--out", export_out, "CSV file to write")->required();
+  export_cmd->add_option("--out", export_out, "CSV file to write (- for standard output)")->required();
 
   layerjkr::cli::DiscreteArguments discrete_args;
   CLI::App* discrete = app.add_subcommand(
@@ -194,10 +209,13 @@ static int run_main(int argc, char** argv) {
                                      "give only " + list + " with it, not " + o->get_name());
     };
     if (*fit) check_from_report(fit, from_report, fit_required, {"--out", "--plot"});
-    if (*fit_map) check_from_report(fit_map, map_from_report, {"inputs", "--scene", "--free"}, {"--out", "--jobs", "--plot-dir", "--report"});
+    if (*fit_map) check_from_report(fit_map, map_from_report, {"inputs", "--scene", "--free"},
+                        {"--out", "--jobs", "--plot-dir", "--report", "--force"});
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     return fail(2, std::string(e.what()) + " (see --help)");
@@ -210,11 +228,8 @@ static int run_main(int argc, char** argv) {
       return layerjkr::cli::run_fit_from_report(from_report, report_path, plot_path, command_line);
     if (*fit) return layerjkr::cli::run_fit(fit_args, data_path, report_path, plot_path, command_line);
     if (*fit_map && !map_from_report.empty())
-      return layerjkr::cli::run_fit_map_from_report(map_from_report, jobs, map_out, map_plot_dir, map_report_dir,
-                                                    command_line);
-    if (*fit_map)
-      return layerjkr::cli::run_fit_map(fit_args, map_inputs, jobs, map_out, map_plot_dir, map_resume, map_curves,
-                                        map_report_dir, command_line);
+      return layerjkr::cli::run_fit_map_from_report(map_from_report, map, command_line);
+    if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, map_curves, map, command_line);
     if (*export_cmd) return layerjkr::cli::run_export(export_path, export_out, export_curves);
     if (*discrete) return layerjkr::cli::run_discrete(discrete_args);
     return run_summary(scene_path);

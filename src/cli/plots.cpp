@@ -20,10 +20,10 @@ std::string num(double v) { return std::isfinite(v) ? format_double(v) : ""; }
 }  // namespace
 
 // Data, fitted curve and residuals with gnuplot (pngcairo), through a temporary file.
-// The data file is an OutputFile never committed: gnuplot reads it by its private name, and it
-// goes whether gnuplot succeeds or not.
+// The data go to a private scratch file that gnuplot reads by name, removed whether gnuplot
+// succeeds or not.
 void plot_fit(const FitSummary& s, OutputFile& png) {
-  OutputFile data(png.target() + ".dat");
+  ScratchFile data("plot-data");
   {
     std::ostringstream f;
     f.precision(17);
@@ -32,7 +32,7 @@ void plot_fit(const FitSummary& s, OutputFile& png) {
         << (!s.excluded.empty() && s.excluded[i] ? 1 : 0) << "\n";
     data.write(f.str());
   }
-  const std::string dat = gnuplot_quoted(data.temporary());
+  const std::string dat = gnuplot_quoted(data.path());
   std::ostringstream g;
   g << "set terminal pngcairo size 900,750 font ',10' noenhanced\n"
     << "set output " << gnuplot_quoted(png.temporary()) << "\n"
@@ -49,15 +49,31 @@ void plot_fit(const FitSummary& s, OutputFile& png) {
   png.commit();
 }
 
-void prepare_plot_dir(const std::string& dir) {
+std::vector<std::string> map_plot_names(const std::vector<FitParameter>& free) {
+  std::vector<std::string> names;
+  for (FitParameter q : free) names.push_back(std::string(to_string(q)) + ".png");
+  for (const char* n : {"pull_off", "rms_residual", "status"}) names.push_back(std::string(n) + ".png");
+  return names;
+}
+
+void prepare_plot_dir(const std::string& dir, const std::vector<std::string>& names, bool force) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw InputError("--plot-dir " + dir + ": cannot create the directory (" + ec.message() + ")");
-  const OutputFile probe((fs::path(dir) / "status.png").string());
+  for (const std::string& name : names) {
+    const std::string path = (fs::path(dir) / name).string();
+    const fs::file_status st = fs::symlink_status(path, ec);
+    if (force || !fs::exists(st)) continue;
+    if (!fs::is_regular_file(st) || !is_marked_png(path))
+      throw InputError("--plot-dir " + dir + ": " + name +
+                       " exists and is not a picture layerjkr drew; it is not replaced (move it, choose another "
+                       "directory, or give --force to replace it)");
+  }
+  const OutputFile probe((fs::path(dir) / names.back()).string());
 }
 
 void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitParameter>& free,
-                     const std::string& dir) {
+                     const std::string& dir, bool force) {
   int nx = 0, ny = 0;
   for (const auto& it : items) {
     nx = std::max(nx, it.grid_x + 1);
@@ -65,7 +81,7 @@ void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitP
   }
   if (nx == 0 || ny == 0)
     throw InputError("--plot-dir: no input carries map positions (instrument force maps and QI files do)");
-  prepare_plot_dir(dir);
+  prepare_plot_dir(dir, map_plot_names(free), force);
   struct Field {
     std::string name, label;
     std::function<double(const BatchItem&)> value;
@@ -90,7 +106,7 @@ void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitP
   fields.push_back({"status", "status (1 fitted, 0 failed)", [](const BatchItem& it) { return it.ok ? 1.0 : 0.0; }});
   for (const Field& f : fields) {
     OutputFile png((fs::path(dir) / (f.name + ".png")).string());
-    OutputFile data(png.target() + ".dat");
+    ScratchFile data("plot-data");
     {
       std::ostringstream d;
       d.precision(17);
@@ -113,7 +129,7 @@ void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitP
       << "set xrange [-0.5:" << nx - 0.5 << "]\nset yrange [-0.5:" << ny - 0.5 << "]\n"
       << "set size ratio -1\nset palette rgb 33,13,10\nset colorbox\n"
       << (f.name == "status" ? "set cbrange [0:1]\n" : "")
-      << "plot " << gnuplot_quoted(data.temporary()) << " using 1:2:3 with image notitle\n";
+      << "plot " << gnuplot_quoted(data.path()) << " using 1:2:3 with image notitle\n";
     run_gnuplot(g.str(), png.temporary(), "--plot-dir");
     png.commit();
   }

@@ -13,11 +13,17 @@ namespace layerjkr::cli {
 void plot_fit(const FitSummary& s, OutputFile& png);
 
 /// One PNG per free parameter, the measured pull-off, the rms residual and the status over
-/// the map grid, in directory `dir` (prepare_plot_dir made it). A pixel with no curve or a failed fit is blank.
+/// the map grid, in directory `dir` (prepare_plot_dir made it), named map_plot_names(free). A
+/// pixel with no curve or a failed fit is blank.
 void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitParameter>& free,
-                     const std::string& dir);
+                     const std::string& dir, bool force);
 
-/// Creates `dir` and checks that it takes files, before the work whose plots go there.
-void prepare_plot_dir(const std::string& dir);
+/// The files plot_map_fields writes: one PNG per free parameter, pull_off, rms_residual, status.
+std::vector<std::string> map_plot_names(const std::vector<FitParameter>& free);
+
+/// Creates `dir` and checks, before the work whose plots go there, that it takes files and that
+/// none of `names` in it is a file layerjkr did not draw (is_marked_png; `force` replaces them
+/// anyway): throws InputError naming the first such file.
+void prepare_plot_dir(const std::string& dir, const std::vector<std::string>& names, bool force);
 
 }  // namespace layerjkr::cli

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "layerjkr/error.hpp"
+#include "layerjkr/text.hpp"
 
 namespace layerjkr::cli {
 namespace {
@@ -72,7 +73,9 @@ json report_json(const FitSummary& s, Branch branch) {
 json provenance_record(const Scene& scene, const FitOptions& options, const CsvOptions& csv,
                        const std::vector<InputRecord>& inputs, const std::vector<std::string>& command_line) {
   json p = json::parse(provenance_json(scene, options, &csv, inputs));
-  p["command_line"] = command_line;
+  std::vector<std::string> args;
+  for (const std::string& a : command_line) args.push_back(escape_bytes(a));  // JSON holds UTF-8 only
+  p["command_line"] = args;
   return p;
 }
 

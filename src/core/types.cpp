@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "layerjkr/error.hpp"
+#include "layerjkr/text.hpp"
 
 namespace layerjkr {
 namespace {
@@ -89,10 +90,7 @@ template <class E, class>
 E parse_enum(std::string_view name, const std::string& what) {
   if (const std::optional<E> e = from_string<E>(name)) return *e;
   // Shortened and made printable: the text may come from a binary file.
-  std::string shown;
-  for (char c : name.substr(0, 40)) shown += (c >= 32 && c < 127) ? c : '?';
-  if (name.size() > 40) shown += "...";
-  throw InputError(what + " = \"" + shown + "\" is unknown (known: " + known_names<E>() + ")");
+  throw InputError(what + " = \"" + printable(name, 40) + "\" is unknown (known: " + known_names<E>() + ")");
 }
 
 #define LAYERJKR_INSTANTIATE(E)                                  \

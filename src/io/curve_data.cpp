@@ -14,6 +14,7 @@
 #include "layerjkr/instrument.hpp"
 #include "io/read_file.hpp"
 #include "layerjkr/error.hpp"
+#include "layerjkr/text.hpp"
 
 namespace layerjkr {
 namespace {
@@ -43,11 +44,7 @@ const std::map<std::string, ColumnName>& known_columns() {
   return names;
 }
 
-std::string shorten(std::string_view s) {
-  std::string out;
-  for (char c : s.substr(0, 40)) out += (c >= 32 && c < 127) ? c : '?';
-  return s.size() > 40 ? out + "..." : out;
-}
+std::string shorten(std::string_view s) { return printable(s, 40); }
 
 }  // namespace
 

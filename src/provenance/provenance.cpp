@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "layerjkr/error.hpp"
+#include "layerjkr/text.hpp"
 #include "layerjkr/provenance.hpp"
 #include "layerjkr/types.hpp"
 #include "provenance/scene_description.hpp"
@@ -248,7 +249,7 @@ json scene_record(const Scene& s) {
              "only, not reproducible";
   }
   r["json"] = parsed;
-  r["file"] = s.origin.file.empty() ? json(nullptr) : json(s.origin.file);
+  r["file"] = s.origin.file.empty() ? json(nullptr) : json(escape_bytes(s.origin.file));
   r["sha256"] = s.origin.file_sha256.empty() ? json(nullptr) : json(s.origin.file_sha256);
   if (!note.empty()) r["note"] = note;
   r["description"] = description;
@@ -257,7 +258,7 @@ json scene_record(const Scene& s) {
 
 json input_record(const InputRecord& in) {
   json r = json::object();
-  r["path"] = in.path;
+  r["path"] = escape_bytes(in.path);
   r["size"] = in.size;
   r["sha256"] = in.sha256.empty() ? json(nullptr) : json(in.sha256);
   if (!in.error.empty()) r["error"] = in.error;
@@ -328,7 +329,7 @@ ProvenanceRecord parse_provenance(const std::string& json_text, const std::strin
   if (scene_text.is_object()) {
     r.scene = parse_scene(scene_text.dump(), source + ": scene.json");
     // The rerun records the same scene file and hash as the original (its JSON is the file's).
-    if (scene.contains("file") && scene.at("file").is_string()) r.scene->origin.file = scene.at("file").get<std::string>();
+    if (scene.contains("file") && scene.at("file").is_string()) r.scene->origin.file = unescape_bytes(scene.at("file").get<std::string>());
     if (scene.contains("sha256") && scene.at("sha256").is_string())
       r.scene->origin.file_sha256 = scene.at("sha256").get<std::string>();
   } else if (!scene_text.is_null()) {
@@ -344,7 +345,7 @@ ProvenanceRecord parse_provenance(const std::string& json_text, const std::strin
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const std::string where = source + ": inputs[" + std::to_string(i) + "]";
     InputRecord in;
-    in.path = string_member(inputs[i], "path", where);
+    in.path = unescape_bytes(string_member(inputs[i], "path", where));
     from_value(member(inputs[i], "size", where), in.size, where + ": size");
     const json& hash = member(inputs[i], "sha256", where);
     if (hash.is_string()) in.sha256 = hash.get<std::string>();

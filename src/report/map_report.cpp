@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "layerjkr/error.hpp"
+#include "layerjkr/text.hpp"
 #include "layerjkr/map_report.hpp"
 #include "report/assets.hpp"
 
@@ -24,6 +25,11 @@ namespace {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
+
+// A map grid is drawn as a grid while it has at most this many pixels per curve on it (or
+// kMinGridCells in all); beyond, its curves are shown by index.
+constexpr double kMaxEmptyCellsPerCurve = 16.0;
+constexpr double kMinGridCells = 4096.0;
 
 // How every page starts: prepare_report_dir recognises a previous report by it.
 constexpr std::string_view kPageStart = "<!DOCTYPE html>\n<!-- layerjkr force-map report";
@@ -148,16 +154,23 @@ json views_of(const std::vector<BatchItem>& items) {
   std::map<std::string, std::vector<std::size_t>> by_file;
   for (std::size_t i = 0; i < items.size(); ++i) {
     if (items[i].grid_x < 0 || items[i].grid_y < 0) continue;
-    const std::string f = file_of(items[i]);
+    const std::string f = escape_bytes(file_of(items[i]));
     if (!by_file.count(f)) order.push_back(f);
     by_file[f].push_back(i);
   }
+  std::size_t sparse = 0;
   for (const std::string& f : order) {
     const auto& members = by_file[f];
     int nx = 0, ny = 0;
     for (std::size_t i : members) {
       nx = std::max(nx, items[i].grid_x + 1);
       ny = std::max(ny, items[i].grid_y + 1);
+    }
+    // The grid a header announces is bounded by the curves present: a grid mostly empty (a
+    // header's 1e6 x 1e6 over 4 curves) is not allocated; its curves go to the index view.
+    if (static_cast<double>(nx) * ny > std::max(kMaxEmptyCellsPerCurve * static_cast<double>(members.size()), kMinGridCells)) {
+      sparse += members.size();
+      continue;
     }
     std::vector<long long> cells(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), -1);
     for (std::size_t i : members) {
@@ -176,7 +189,12 @@ json views_of(const std::vector<BatchItem>& items) {
     const auto nx = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(rest.size())) - 1e-9));
     const std::size_t ny = (rest.size() + nx - 1) / nx;
     rest.resize(nx * ny, -1);
-    views.push_back({{"name", views.empty() ? "all curves, by index" : "curves without a map pixel, by index"},
+    views.push_back({{"name", sparse > 0   ? "curves by index (" + std::to_string(sparse) +
+                                                 " on map grids too sparse to draw: a grid of more than " +
+                                                 std::to_string(static_cast<int>(kMaxEmptyCellsPerCurve)) +
+                                                 " pixels a curve)"
+                              : views.empty() ? "all curves, by index"
+                                              : "curves without a map pixel, by index"},
                      {"kind", "index"},
                      {"nx", nx},
                      {"ny", ny},
@@ -250,21 +268,21 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
   for (const BatchItem& it : items) {
     const FitSummary& s = it.summary;
     const bool ok = it.ok;
-    columns["file"].push_back(it.source);
+    columns["file"].push_back(escape_bytes(it.source));  // as the results table writes it
     columns["curve"].push_back(index_or_null(it.curve));
     columns["x"].push_back(number(it.x));
     columns["y"].push_back(number(it.y));
     columns["grid_x"].push_back(index_or_null(it.grid_x));
     columns["grid_y"].push_back(index_or_null(it.grid_y));
     columns["status"].push_back(ok ? "ok" : "error");
-    columns["error"].push_back(ok ? std::string() : it.skipped ? "skipped: fitted by an earlier run" : it.error);
+    columns["error"].push_back(ok ? std::string() : it.skipped ? "skipped: fitted by an earlier run" : printable(it.error));
     columns["model"].push_back(ok ? json(s.model) : json(nullptr));
     columns["converged"].push_back(ok ? json(s.converged ? 1 : 0) : json(nullptr));
     columns["iterations"].push_back(ok ? json(s.iterations) : json(nullptr));
     columns["rms_residual"].push_back(ok ? number(s.rms_residual) : json(nullptr));
     columns["identifiable"].push_back(ok ? json(s.identifiable ? 1 : 0) : json(nullptr));
     // As fit-map's table writes them: the verdict with its reason, the found point.
-    columns["identifiability"].push_back(ok ? json(s.identifiability()) : json(nullptr));
+    columns["identifiability"].push_back(ok ? json(printable(s.identifiability())) : json(nullptr));
     columns["contact_point"].push_back(ok ? number(s.contact_point.value) : json(nullptr));
     columns["contact_point_err"].push_back(ok ? number(s.contact_point.standard_error) : json(nullptr));
     columns["range_samples"].push_back(ok ? json(s.contact_point.samples_in_range) : json(nullptr));
@@ -276,7 +294,9 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
       columns[name_of(p) + "_stderr"].push_back(has ? number(e->standard_error) : json(nullptr));
     }
     columns["quality"].push_back(quality(it));
-    columns["warnings"].push_back(ok ? json(s.warnings) : json::array());
+    json warnings = json::array();
+    for (const std::string& w : ok ? s.warnings : std::vector<std::string>{}) warnings.push_back(printable(w));
+    columns["warnings"].push_back(warnings);
     columns["unidentifiable"].push_back(ok ? json(s.unidentifiable) : json::array());
     columns["termination"].push_back(ok ? json(s.termination) : json(nullptr));
     columns["points"].push_back(ok ? json(s.points) : json(nullptr));
@@ -305,7 +325,7 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
   json free = json::array();
   for (FitParameter p : options.free) free.push_back(name_of(p));
   curves += ']';
-  const json rest = {{"title", options.title},   {"subtitle", options.subtitle},
+  const json rest = {{"title", printable(options.title)}, {"subtitle", printable(options.subtitle)},
                      {"count", items.size()},    {"free", free},
                      {"fields", fields},         {"columns", columns},
                      {"views", views_of(items)}, {"display_points", options.display_points}};
@@ -320,8 +340,8 @@ std::string map_report_html(const std::vector<BatchItem>& items, const MapReport
   check_script_text(detail::kPlotlyJs, "plotting library");
   check_script_text(detail::kPageJs, "page script");
   check_script_text(detail::kPlotlyLicense, "licence");
-  const std::map<std::string_view, std::string> parts = {{"TITLE", html_text(options.title)},
-                                                         {"SUBTITLE", html_text(options.subtitle)},
+  const std::map<std::string_view, std::string> parts = {{"TITLE", html_text(printable(options.title))},
+                                                         {"SUBTITLE", html_text(printable(options.subtitle))},
                                                          {"CSS", std::string(detail::kPageCss)},
                                                          {"PLOTLY", std::string(detail::kPlotlyJs)},
                                                          {"PLOTLY_LICENSE", std::string(detail::kPlotlyLicense)},

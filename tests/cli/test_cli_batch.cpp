@@ -79,7 +79,7 @@ TEST_CASE("fit-map: every input-like entry of a directory gets a row, none block
   const std::string out = unique("odd.csv");
   const Run r = run("timeout 60 " + kCli + " fit-map " + dir.string() + kFree + " --out " + out, true);
   INFO(r.err);
-  REQUIRE(r.code == 0);
+  REQUIRE(r.code == 3);  // the odd entries failed, the curve fitted
   const auto rows = lines(slurp(out));
   REQUIRE(rows.size() == 7);
   auto row_of = [&](const std::string& name) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -132,7 +133,7 @@ TEST_CASE("fit-map fits a directory in parallel and reports a bad curve without 
   const Run r = run("fit-map " + dir.string() + " --scene " + kScene +
                     " --branch all --free E,w,delta0,P0 --jobs 2 --out " + out);
   INFO(r.err);
-  REQUIRE(r.code == 0);
+  REQUIRE(r.code == 3);  // some curves failed: the table has every row
   CHECK(r.err.find("6 of 7 curves fitted") != std::string::npos);
   CHECK(r.err.find("fit-map [") == std::string::npos);  // stderr is a file: no progress bar
   const auto rows = lines(slurp(out));
@@ -245,7 +246,7 @@ TEST_CASE("fit and fit-map take a contact-point method and an indentation range 
   CHECK(j["contact_point"]["samples_in_range"] == kept);
   CHECK(j["points"] == kept);
 
-  const std::string table = unique("contact.csv");
+  const std::string table = unique("contact_map.csv");  // its record contact_map.json: not the fit's report
   const Run m = run("fit-map " + dir.string() + " --scene " + scene +
                     " --free E --contact-point gof --indentation-range -1e-7:4e-7 --out " + table);
   INFO(m.err);
@@ -260,4 +261,39 @@ TEST_CASE("fit and fit-map take a contact-point method and an indentation range 
   fs::remove_all(dir);
   std::remove(report.c_str());
   std::remove(table.c_str());
+}
+
+TEST_CASE("fit: a weight column's scale changes nothing, and a loss scale beyond use exits 2", "[cli][fit]") {
+  // The bundled curve with a uniform weight column of 1e-20 or 1e200: the same report as without.
+  std::ifstream in(kCurve);
+  std::string header, plain, tiny, huge;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    if (header.empty()) {
+      header = line;
+      plain += line + "\n";
+      tiny += line + ",weight\n";
+      huge += line + ",weight\n";
+      continue;
+    }
+    plain += line + "\n";
+    tiny += line + ",1e-20\n";
+    huge += line + ",1e200\n";
+  }
+  const std::string free = " --scene " + kScene + " --branch all --free E,w,delta0,P0";
+  const Run a = run("fit " + write_file("plain.csv", plain) + free);
+  REQUIRE(a.code == 0);
+  for (const std::string& text : {tiny, huge}) {
+    const Run b = run("fit " + write_file("weighted.csv", text) + free);
+    INFO(b.out);
+    CHECK(b.code == 0);
+    CHECK(b.out == a.out);  // every digit; "identifiable: yes" with the same error bars
+  }
+  for (const char* loss : {"cauchy:1e300", "cauchy:1e-300", "huber:1e300"}) {
+    const Run r = run(kFit + "--free E,w,delta0,P0 --loss " + loss);
+    INFO(loss << "\n" << r.err << r.out);
+    CHECK(r.code == 2);
+    CHECK(r.err.find("outside its usable range") != std::string::npos);
+    CHECK(r.out.empty());
+  }
 }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -81,6 +82,38 @@ inline std::vector<Member> jpk_members(int n = 8, const std::string& header = ""
           {"segments/0/segment-header.properties", seg + segment},
           {"segments/0/channels/vDeflection.dat", shorts(force)},
           {"segments/0/channels/strainGaugeHeight.dat", shorts(height)}};
+}
+
+/// A JPK force map (.jpk-force-map) at `path`: the top header announces an `ilength` x `jlength`
+/// grid of 1 um pixels centred at 0, and curve k (of `curves`) sits at pixel (k % ilength,
+/// k / ilength), each one jpk_members' curve of `n` samples under index/k/.
+inline void write_jpk_map(const std::string& path, int curves, long long ilength, long long jlength, int n = 8) {
+  const auto grid = [&](const char* key, const std::string& v) {
+    return std::string("force-scan-map.position-pattern.grid.") + key + "=" + v + "\n";
+  };
+  const double pixel = 1e-6;
+  std::vector<Member> members{{"header.properties",
+                               grid("ilength", std::to_string(ilength)) + grid("jlength", std::to_string(jlength)) +
+                                   grid("ulength", std::to_string(pixel * static_cast<double>(ilength))) +
+                                   grid("vlength", std::to_string(pixel * static_cast<double>(jlength))) +
+                                   grid("xcenter", "0.0") + grid("ycenter", "0.0")}};
+  for (int k = 0; k < curves; ++k) {
+    const double x = (static_cast<double>(k % ilength) + 0.5 - 0.5 * static_cast<double>(ilength)) * pixel;
+    const double y = (static_cast<double>(k / ilength) + 0.5 - 0.5 * static_cast<double>(jlength)) * pixel;
+    const std::string prefix = "index/" + std::to_string(k) + "/";
+    for (Member m : jpk_members(n)) {
+      if (m.name == "header.properties") {
+        std::ostringstream h;
+        h.precision(17);
+        h << "force-scan-series.header.position.x=" << x << "\nforce-scan-series.header.position.y=" << y
+          << "\nforce-scan-series.header.position-index=" << k << "\n";
+        m.bytes = h.str();
+      }
+      m.name = prefix + m.name;
+      members.push_back(std::move(m));
+    }
+  }
+  write_zip(path, members);
 }
 
 inline std::string read_bytes(const std::string& path) {
