@@ -17,8 +17,10 @@
 //   AdhesiveSolution solution(law);           // contact.hpp: pull-off, lookups, curves
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <optional>
+#include <string>
 #include <string>
 #include <vector>
 
@@ -76,6 +78,12 @@ class AdhesiveLaw {
   double w() const { return w_; }
   /// e.g. "exact", "dmt on half_space", "maugis_dugdale (sigma0 = 2e+07 Pa) on exact".
   virtual std::string name() const = 0;
+  /// The most radii one curve answer (solve_curve) takes with this law, and what one radius
+  /// costs, said in its refusal. A law solved per state on a layer or a stack costs 5-13 ms a
+  /// radius, so that a small input (100 000 radii) would buy a quarter of an hour; the others
+  /// have no limit of their own (0 means none).
+  virtual std::size_t max_curve_radii() const { return 0; }
+  virtual std::string radius_cost() const { return std::string(); }
 
  protected:
   AdhesiveLaw(ContactModelPtr contact, double w);
@@ -85,6 +93,9 @@ class AdhesiveLaw {
   double w_;
 };
 using AdhesiveLawPtr = std::shared_ptr<const AdhesiveLaw>;
+
+/// max_curve_radii() of a Dugdale law solved on a layer or stack: ~26 s at 13 ms a radius.
+inline constexpr std::size_t kMaxDugdaleLayerRadii = 2000;
 
 /// The JKR law of a contact model: jkr_transform of its states. w [J/m^2] >= 0.
 AdhesiveLawPtr make_jkr_law(ContactModelPtr model, double w);

@@ -163,8 +163,12 @@ FlatPunchData sample_flat_punch(const ContactModel& model, const std::vector<dou
 /// beyond the model's largest radius throws DomainError).
 ConvexData sample_convex(const ContactModel& model, const SyntheticSampling& sampling);
 
+/// The most replicates x radii one bootstrap_discrete evaluates (InputError beyond, before any
+/// replicate): 200 replicates of 100 000 radii, measured at 14 s (docs/development.md, Limits).
+inline constexpr double kMaxBootstrapEvaluations = 2e7;
+
 struct BootstrapOptions {
-  int replicates = 200;  ///< 20 .. 100000
+  int replicates = 200;  ///< 20 .. 100000; replicates x radii <= kMaxBootstrapEvaluations
   unsigned seed = 1;
   void validate() const;
 };

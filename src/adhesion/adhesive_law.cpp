@@ -93,6 +93,8 @@ class DugdaleLaw final : public AdhesiveLaw {
   std::string name() const override {
     return std::string(to_string(kind_)) + " (sigma0 = " + format_double(sigma0_) + " Pa) on " + contact()->name();
   }
+  std::size_t max_curve_radii() const override { return solver_->on_half_space() ? 0 : kMaxDugdaleLayerRadii; }
+  std::string radius_cost() const override { return solver_->on_half_space() ? "" : "5-13 ms"; }
 
  private:
   double sigma0_;

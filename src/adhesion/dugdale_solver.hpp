@@ -80,6 +80,8 @@ class DugdaleSolver {
                                               const std::vector<double>& radii) const;
 
   double effective_modulus() const { return E_star_; }
+  /// True for the half-space (microseconds a state), false for a layer or a stack (milliseconds).
+  bool on_half_space() const { return kernel_ == nullptr; }
 
  private:
   struct Inner;

@@ -131,6 +131,11 @@ CurveAnswer solve_curve(const Scene& scene, const std::vector<double>& radii, co
       throw InputError("contact radius a = " + format_double(a) + " is invalid; valid range: finite and > 0 [m]");
   BuiltScene built = build_scene_for_radii(scene, radii);
   const AdhesiveSolution solution = adhesive_solution(scene, built);
+  // Bounded before any state is solved: what a radius costs times how many were asked for.
+  if (const std::size_t most = solution.law().max_curve_radii(); most > 0 && radii.size() > most)
+    throw InputError("curve: " + std::to_string(radii.size()) + " radii of " + solution.law().name() + " (" +
+                     solution.law().radius_cost() + " a radius) exceed its limit of " + std::to_string(most) +
+                     " radii a call (docs/development.md, Limits): ask fewer radii, or split them over several calls");
   const ModelErrorEstimator estimator = error_estimator(scene, built);
   CurveAnswer c;
   c.error_estimate = estimator.along(radii);

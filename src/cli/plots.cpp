@@ -75,10 +75,15 @@ void prepare_plot_dir(const std::string& dir, const std::vector<std::string>& na
 void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitParameter>& free,
                      const std::string& dir, bool force) {
   int nx = 0, ny = 0;
+  std::size_t placed = 0;
   for (const auto& it : items) {
     nx = std::max(nx, it.grid_x + 1);
     ny = std::max(ny, it.grid_y + 1);
+    placed += it.grid_x >= 0 && it.grid_y >= 0 ? 1 : 0;
   }
+  // The grid a header announces is bounded by the curves present: a grid mostly empty (a header's
+  // 1e6 x 1e6 over 4 curves) is drawn as its pixels alone, never allocated.
+  const bool sparse = static_cast<double>(nx) * ny > std::max(16.0 * static_cast<double>(placed), 4096.0);
   if (nx == 0 || ny == 0)
     throw InputError("--plot-dir: no input carries map positions (instrument force maps and QI files do)");
   prepare_plot_dir(dir, map_plot_names(free), force);
@@ -107,7 +112,16 @@ void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitP
   for (const Field& f : fields) {
     OutputFile png((fs::path(dir) / (f.name + ".png")).string());
     ScratchFile data("plot-data");
-    {
+    if (sparse) {
+      std::ostringstream d;
+      d.precision(17);
+      for (const auto& it : items)
+        if (it.grid_x >= 0 && it.grid_y >= 0) {
+          const double v = f.name == "status" || it.ok ? f.value(it) : std::nan("");
+          d << it.grid_x << " " << it.grid_y << " " << (std::isfinite(v) ? num(v) : std::string("NaN")) << "\n";
+        }
+      data.write(d.str());
+    } else {
       std::ostringstream d;
       d.precision(17);
       // gnuplot's image needs every pixel of the grid: NaN where there is no value.
@@ -129,7 +143,8 @@ void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitP
       << "set xrange [-0.5:" << nx - 0.5 << "]\nset yrange [-0.5:" << ny - 0.5 << "]\n"
       << "set size ratio -1\nset palette rgb 33,13,10\nset colorbox\n"
       << (f.name == "status" ? "set cbrange [0:1]\n" : "")
-      << "plot " << gnuplot_quoted(data.path()) << " using 1:2:3 with image notitle\n";
+      << "plot " << gnuplot_quoted(data.path())
+      << (sparse ? " using 1:2:3 with points pt 5 ps 1.5 palette notitle\n" : " using 1:2:3 with image notitle\n");
     run_gnuplot(g.str(), png.temporary(), "--plot-dir");
     png.commit();
   }

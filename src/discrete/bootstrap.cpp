@@ -116,6 +116,10 @@ DiscreteUncertainty bootstrap_discrete(const FlatPunchData& flat, const ConvexDa
                                        const DiscreteOptions& options, const BootstrapOptions& bootstrap) {
   options.validate();
   bootstrap.validate();
+  if (static_cast<double>(bootstrap.replicates) * static_cast<double>(radii.size()) > kMaxBootstrapEvaluations)
+    throw InputError("bootstrap: " + std::to_string(bootstrap.replicates) + " replicates x " +
+                     std::to_string(radii.size()) + " radii exceed the limit of " + format_double(kMaxBootstrapEvaluations) +
+                     " evaluations (200 x 100 000 take 14 s; docs/development.md, Limits): ask fewer replicates or radii");
   const bool two = approach == DiscreteApproach::two_models;
   // The data as given must make a model; replicates that do not are counted.
   const ContactModelPtr base = two ? make_discrete_model(flat, convex, options) : make_single_model(convex, options);

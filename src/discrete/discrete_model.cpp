@@ -97,7 +97,17 @@ class DiscreteModel final : public DataModel {
     check_radius(a);
     const double S = S_->value(a);
     const double dS = S * S_->log_slope(a) / a;
-    // delta_H: where the convex curve's slope equals S(a).
+    // delta_H: where the convex curve's slope equals S(a). At the ends of the radii the convex
+    // data reach S(a) equals an end's slope, to rounding (the range is made from those slopes).
+    const double s_lo = slope_of(*P_, d_lo_), s_hi = slope_of(*P_, d_hi_);
+    constexpr double kEndTolerance = 1e-12;
+    if (std::abs(S - s_lo) <= kEndTolerance * std::abs(S)) return {a, P_->value(d_lo_), d_lo_, S, dS};
+    if (std::abs(S - s_hi) <= kEndTolerance * std::abs(S)) return {a, P_->value(d_hi_), d_hi_, S, dS};
+    if (!((s_lo - S) * (s_hi - S) <= 0.0))
+      throw DomainError("discrete model", "contact radius a", a,
+                        "radii whose flat-punch stiffness S(a) (here " + format_double(S) +
+                            " N/m) lies between the convex curve's slopes at its ends, " + format_double(s_lo) +
+                            " and " + format_double(s_hi) + " N/m (the two data sets share no indentation there)");
     const double delta = solve_in([&](double d) { return slope_of(*P_, d) - S; }, d_lo_, d_hi_);
     return {a, P_->value(delta), delta, S, dS};
   }

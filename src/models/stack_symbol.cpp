@@ -27,6 +27,9 @@ ElasticLayer LayeredMedium::top() const {
 
 void LayeredMedium::validate(const char* function) const {
   if (layers.empty()) throw DomainError(function, "layers", 0.0, "at least one layer (the count given)");
+  if (layers.size() > kMaxStackLayers)
+    throw DomainError(function, "layers", static_cast<double>(layers.size()),
+                      "at most " + std::to_string(kMaxStackLayers) + " layers (the count given; docs/development.md, Limits)");
   for (std::size_t i = 0; i < layers.size(); ++i) {
     const std::string at = "layers[" + std::to_string(i) + "].";
     const StackLayer& l = layers[i];

@@ -228,6 +228,10 @@ void read_stack(const Reader& in, const json& med, MediumSpec& m) {
   const json& layers = med.at("layers");
   if (!layers.is_array() || layers.empty())
     in.fail("medium.layers", "must be a non-empty array of layers {E, nu, h} (top first), got " + show(layers));
+  if (layers.size() > kMaxStackLayers)  // before any is read: the count alone is the cost
+    in.fail("medium.layers", "has " + std::to_string(layers.size()) + " layers; at most " +
+                                 std::to_string(kMaxStackLayers) +
+                                 " (a stack's set-up grows with its layers, 25 ms each; docs/development.md, Limits)");
   for (std::size_t i = 0; i < layers.size(); ++i) {
     const std::string path = "medium.layers[" + std::to_string(i) + "]";
     if (!layers[i].is_object()) in.fail(path, "must be a JSON object {E, nu, h}, got " + show(layers[i]));

@@ -206,7 +206,7 @@ TEST_CASE("fit-map --plot-dir: a picture layerjkr did not draw is not replaced u
     return;
   }
   const std::string map = unique("grid.jpk-force-map");
-  test::write_jpk_map(map, 4, 2, 2);
+  test::write_jpk_map(map, 4, 2, 2, 2);
   const fs::path plots = fresh_dir("plots");
   std::ofstream(plots / "E.png") << "my own picture\n";
   const std::string args = "fit-map " + map + kFree + " --out " + unique("grid.csv") + " --plot-dir " + plots.string();

@@ -84,22 +84,23 @@ inline std::vector<Member> jpk_members(int n = 8, const std::string& header = ""
           {"segments/0/channels/strainGaugeHeight.dat", shorts(height)}};
 }
 
-/// A JPK force map (.jpk-force-map) at `path`: the top header announces an `ilength` x `jlength`
-/// grid of 1 um pixels centred at 0, and curve k (of `curves`) sits at pixel (k % ilength,
-/// k / ilength), each one jpk_members' curve of `n` samples under index/k/.
-inline void write_jpk_map(const std::string& path, int curves, long long ilength, long long jlength, int n = 8) {
+/// A JPK force map (.jpk-force-map) at `path`: curve k (of `curves`) sits at (k % side, k / side)
+/// um on a `side` x `side` um square centred at 0 (pitch 1 um), each one jpk_members' curve of
+/// `n` samples under index/k/; the top header announces an `ilength` x `jlength` grid over that
+/// square (`side` x `side` for the honest map; 1e6 x 1e6 puts 4 curves on a mostly empty grid).
+inline void write_jpk_map(const std::string& path, int curves, int side, long long ilength, long long jlength,
+                          int n = 8) {
   const auto grid = [&](const char* key, const std::string& v) {
     return std::string("force-scan-map.position-pattern.grid.") + key + "=" + v + "\n";
   };
   const double pixel = 1e-6;
   std::vector<Member> members{{"header.properties",
                                grid("ilength", std::to_string(ilength)) + grid("jlength", std::to_string(jlength)) +
-                                   grid("ulength", std::to_string(pixel * static_cast<double>(ilength))) +
-                                   grid("vlength", std::to_string(pixel * static_cast<double>(jlength))) +
+                                   grid("ulength", std::to_string(pixel * side)) + grid("vlength", std::to_string(pixel * side)) +
                                    grid("xcenter", "0.0") + grid("ycenter", "0.0")}};
   for (int k = 0; k < curves; ++k) {
-    const double x = (static_cast<double>(k % ilength) + 0.5 - 0.5 * static_cast<double>(ilength)) * pixel;
-    const double y = (static_cast<double>(k / ilength) + 0.5 - 0.5 * static_cast<double>(jlength)) * pixel;
+    const double x = (static_cast<double>(k % side) + 0.5 - 0.5 * side) * pixel;
+    const double y = (static_cast<double>(k / side) + 0.5 - 0.5 * side) * pixel;
     const std::string prefix = "index/" + std::to_string(k) + "/";
     for (Member m : jpk_members(n)) {
       if (m.name == "header.properties") {
