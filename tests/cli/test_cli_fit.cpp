@@ -295,5 +295,11 @@ TEST_CASE("fit: a weight column's scale changes nothing, and a loss scale beyond
     CHECK(r.code == 2);
     CHECK(r.err.find("outside its usable range") != std::string::npos);
     CHECK(r.out.empty());
+    // fit-map: the curve's row says why, never "ok"; no curve fitted is exit code 4.
+    const std::string table = unique("loss_map.csv");
+    const Run m = run("fit-map " + kCurve + free + " --loss " + loss + " --out " + table);
+    CHECK(m.code == 4);
+    CHECK(slurp(table).find(",error,") != std::string::npos);
+    CHECK(slurp(table).find(",ok,") == std::string::npos);
   }
 }

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/jpk_builder.hpp"
 #include "layerjkr/text.hpp"
 #include "support/cli_support.hpp"
 
@@ -117,8 +118,11 @@ TEST_CASE("messages print control characters escaped: a scene, a CSV header, a f
                                                               "\"E\": 1e6, \"nu\": 0.5}}");
   const std::string header = write_file("evil_header.csv", "delta,P" + clear + "\n0,0\n1,1\n2,2\n");
   const std::string name = unique("evil" + osc + ".csv");
+  const std::string archive = unique("evil.jpk-force");
+  test::write_zip(archive, test::jpk_members(8, "", "force-segment-header.duration=1.0" + clear + "\n"));
   struct Case { std::string args, shown; };
   const std::vector<Case> cases{
+      {"export " + archive + " --out " + unique("never.csv"), "1.0\\x1b[2J"},
       {"summary " + scene, "\\x1b]0;owned\\x07"},
       {"fit " + header + " --scene " + sample_scene() + " --free E", "\\x1b[2J"},
       {"fit '" + name + "' --scene " + sample_scene() + " --free E", "evil\\x1b]0;owned\\x07.csv"},
