@@ -1301,18 +1301,26 @@ def _report_dir(report: Optional[Union[str, "os.PathLike[str]"]]) -> Optional[st
 
 
 def _write_report(items: Sequence[Any], options: Any, directory: str, subtitle: str) -> None:
-    """Writes the report's page atomically: a private temporary file renamed over index.html."""
+    """Writes the report's page atomically: a private temporary file renamed over index.html,
+    which keeps the mode and owner of a page it replaces (as the CLI's outputs do)."""
     html = _core.map_report_html(items, options, "layerjkr force-map report", subtitle)
+    target = os.path.join(directory, "index.html")
     fd, tmp = tempfile.mkstemp(prefix=".index.html.", dir=directory)
     try:
         with os.fdopen(fd, "wb") as f:
             f.write(html)
             f.flush()
             os.fsync(f.fileno())
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, os.path.join(directory, "index.html"))
+        try:
+            old = os.stat(target)
+            if (old.st_uid, old.st_gid) != (os.getuid(), os.getgid()):
+                os.chown(tmp, old.st_uid, old.st_gid)
+            os.chmod(tmp, old.st_mode & 0o7777)
+        except FileNotFoundError:
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, target)
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(tmp)

@@ -42,7 +42,7 @@ json EarlierRows::read(const std::string& out, const std::string& header, const 
   if (!f) throw InputError("--resume: cannot read " + out);
   std::vector<ResultsRow> rows = parse_results_table(text.str(), header, out);
   if (rows.empty()) return json();
-  const json earlier_record = record();
+  json earlier_record = record();  // returned: not const, so it moves
   // Which file each name the earlier run gave stood for (its record's inputs: the name as given,
   // the absolute path and the SHA-256, all escaped as written).
   std::map<std::string, std::string> by_name, sha_by_path;

@@ -51,6 +51,7 @@ void plot_fit(const FitSummary& s, OutputFile& png) {
 
 std::vector<std::string> map_plot_names(const std::vector<FitParameter>& free) {
   std::vector<std::string> names;
+  names.reserve(free.size() + 3);
   for (FitParameter q : free) names.push_back(std::string(to_string(q)) + ".png");
   for (const char* n : {"pull_off", "rms_residual", "status"}) names.push_back(std::string(n) + ".png");
   return names;

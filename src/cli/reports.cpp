@@ -74,6 +74,7 @@ json provenance_record(const Scene& scene, const FitOptions& options, const CsvO
                        const std::vector<InputRecord>& inputs, const std::vector<std::string>& command_line) {
   json p = json::parse(provenance_json(scene, options, &csv, inputs));
   std::vector<std::string> args;
+  args.reserve(command_line.size());
   for (const std::string& a : command_line) args.push_back(escape_bytes(a));  // JSON holds UTF-8 only
   p["command_line"] = args;
   return p;

@@ -16,12 +16,6 @@ namespace {
 const std::string kCurve = std::string(LAYERJKR_SOURCE_DIR) + "/data/curves/hydrogel_film_two_term.csv";
 const std::string kScene = std::string(LAYERJKR_SOURCE_DIR) + "/data/scenes/hydrogel_film_two_term.json";
 
-std::size_t count_lines(const std::string& s) {
-  std::size_t n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
-}
-
 // Runs `args` under a 30 s timeout and checks the rejection contract.
 void check_rejected(const std::string& what, const std::string& args, const std::string& expected,
                     const std::string& out) {

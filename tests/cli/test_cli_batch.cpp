@@ -24,7 +24,6 @@ const std::string kCurve = sample_curve();
 const std::string kScene = sample_scene();
 const std::string kFree = sample_fit_flags();
 
-std::size_t count_lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
 
 fs::path curve_dir(const std::string& name, int n) {
   const fs::path dir = unique(name);

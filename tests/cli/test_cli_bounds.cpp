@@ -16,7 +16,6 @@ namespace {
 const std::string kSource = LAYERJKR_SOURCE_DIR;
 const std::string kFree = sample_fit_flags();
 bool have_gnuplot() { return std::system("gnuplot --version >/dev/null 2>&1") == 0; }
-std::size_t count_lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
 }  // namespace
 
 TEST_CASE("bounds: a map header announcing 1e6 x 1e6 pixels over 4 curves is drawn from its curves", "[cli][bounds]") {

@@ -20,12 +20,6 @@ const std::string kCli = cli_path();
 const std::string kCurve = sample_curve();
 const std::string kFree = sample_fit_flags();
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = unique(name);
-  fs::create_directories(dir);
-  return dir;
-}
-
 std::size_t data_rows(const std::string& table) {  // rows, a quoted cell with a line break counted once
   std::size_t rows = 0;
   bool quoted = false;

@@ -19,7 +19,6 @@ const std::string kScene = sample_scene();
 const std::string kFree = sample_fit_flags();
 bool have_gnuplot() { return std::system("gnuplot --version >/dev/null 2>&1") == 0; }
 
-std::size_t count_lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
 
 std::vector<std::string> entries(const fs::path& dir) {
   std::vector<std::string> names;

@@ -23,12 +23,6 @@ const std::string kCurve = sample_curve();
 const std::string kFree = sample_fit_flags();
 bool have_gnuplot() { return std::system("gnuplot --version >/dev/null 2>&1") == 0; }
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = unique(name);
-  fs::create_directories(dir);
-  return dir;
-}
-
 fs::path curve_dir(const std::string& name, int n) {
   const fs::path dir = fresh_dir(name);
   for (int i = 0; i < n; ++i) fs::create_symlink(kCurve, dir / ("c" + std::to_string(1000 + i) + ".csv"));
@@ -36,7 +30,6 @@ fs::path curve_dir(const std::string& name, int n) {
 }
 
 bool is_report(const std::string& text) { return text.find("\"converged\": true") != std::string::npos; }
-std::size_t count_lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
 }  // namespace
 
 TEST_CASE("outputs: - and /dev/stdout are standard output, the summary then on stderr, no file named -",

@@ -21,7 +21,6 @@ const std::string kScene = sample_scene();
 const std::string kFree = sample_fit_flags();
 const std::string kMap = std::string(LAYERJKR_SOURCE_DIR) + "/../shared/data/instrument/fmt-jpk-fd_map2x2_extracted.jpk-force-map";
 
-std::size_t count_lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
 
 std::string file_sha256(const std::string& path) {
   const std::string bytes = slurp(path);

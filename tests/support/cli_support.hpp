@@ -124,6 +124,17 @@ inline Run run(const std::string& args, bool raw = false) {
   return r;
 }
 
+// A new directory `name` in this test process's scratch directory.
+inline std::filesystem::path fresh_dir(const std::string& name) {
+  const std::filesystem::path dir = unique(name);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+inline std::size_t count_lines(const std::string& s) {
+  return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
+}
+
 inline std::string write_file(const std::string& name, const std::string& text) {
   const std::string path = unique(name);
   std::ofstream(path) << text;
