@@ -38,6 +38,9 @@ struct CurveData {
   std::string source = "curve";  ///< names the curve in error messages
   /// Stiffness [N/m] of the cantilever that measured it, when known (instrument files); 0 if not.
   double spring_constant = 0.0;
+  /// What the reader decided that a fit should report (FitSummary::notices), e.g. which of two
+  /// different copies of a header key it used.
+  std::vector<std::string> notes;
 
   std::size_t size() const { return delta.size(); }
 

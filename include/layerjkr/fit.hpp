@@ -191,7 +191,13 @@ struct FitSummary {
   /// to function_tolerance): why, e.g. no adhesive signal for w, or the start is already a
   /// minimum.
   std::string no_move_reason;
+  /// What the user must act on or weigh: a model outside its accuracy, data the fit cannot
+  /// trust, a diagnosis that limits the answer.
   std::vector<std::string> warnings;
+  /// What the user should know but need not act on (recorded in the report, the table and the
+  /// map report, never a warning): a numerical error far below what matters, a documented
+  /// approximation, a reader's choice between two copies of a header key.
+  std::vector<std::string> notices;
   /// The data used and the fitted model at the same samples (for plots and residuals).
   std::vector<double> delta, P, P_fit;
   /// Per sample (aligned with delta, P): excluded by the rule of FitOptions::exclusion_sigmas
@@ -210,7 +216,7 @@ struct FitSummary {
 
   /// The estimate for p; throws Error if p was not free.
   const ParameterEstimate& operator[](FitParameter p) const;
-  /// A few lines: status, estimates +- errors, rms, identifiability, warnings.
+  /// A few lines: status, estimates +- errors, rms, identifiability, warnings, notices.
   std::string brief_report() const;
   /// The verdict in one cell: "yes", or "no: " / "unknown: " followed by identifiability_reason
   /// (the fit-map table's and the map report's identifiability column).

@@ -58,6 +58,9 @@ struct InstrumentCurve {
   double spring_constant = 0.0;  ///< [N/m]
   double sensitivity = 0.0;      ///< [m/V] (InvOLS)
   std::vector<InstrumentSegment> segments;
+  /// What the reader decided that the user should know, e.g. which of two different copies of a
+  /// header key it used; a fit reports them as notices (FitSummary::notices).
+  std::vector<std::string> notes;
 
   /// Tip position of segment s [m]: measured height + force / k (on approach it falls).
   std::vector<double> tip_position(std::size_t s) const;
@@ -158,8 +161,8 @@ InstrumentFile read_instrument_file(const std::string& path, const ReadLimits& l
 InstrumentFile read_instrument_file(const std::string& path);
 
 /// One curve as the fit consumes it: delta = -tip_position, P = force, segment 0 for the
-/// extend segments (and pauses before the first retract), 1 for the rest. `source` names it
-/// in error messages. spring_constant > 0 [N/m] replaces the file's: the deflection is kept,
+/// extend segments (and pauses before the first retract), 1 for the rest, the reader's notes.
+/// `source` names it in error messages. spring_constant > 0 [N/m] replaces the file's: the deflection is kept,
 /// so force scales by k / k_file and the tip position is height + deflection.
 CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source, double spring_constant = 0.0);
 

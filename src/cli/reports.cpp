@@ -59,6 +59,7 @@ json report_json(const FitSummary& s, Branch branch) {
   j["unidentifiable"] = s.unidentifiable;
   j["no_move_reason"] = s.no_move_reason;
   j["warnings"] = s.warnings;
+  j["notices"] = s.notices;
   const ContactPointReport& c = s.contact_point;
   j["contact_point"] = {{"method", to_string(c.method)},
                         {"value", finite_or_null(c.value)},

@@ -130,6 +130,7 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
     out.warnings.push_back("solver 'ode' verifies the closed forms; the fit evaluates the same "
                            "foundation in closed form");
   out.warnings.insert(out.warnings.end(), fixed.warnings.begin(), fixed.warnings.end());
+  out.notices.insert(out.notices.end(), curve.notes.begin(), curve.notes.end());
   if (std::optional<std::string> note = scene.profile->approximation()) out.warnings.push_back(*note);
 
   std::vector<double> x(options.free.size(), 0.0);

@@ -69,6 +69,7 @@ std::string FitSummary::brief_report() const {
   if (!identifiable) o << " - " << identifiability_reason;
   o << "\n";
   for (const auto& w : warnings) o << "  warning: " << w << "\n";
+  for (const auto& n : notices) o << "  note: " << n << "\n";
   return o.str();
 }
 

@@ -7,8 +7,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <cctype>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "io/csv_rows.hpp"
@@ -60,8 +62,12 @@ class Bytes {
   bool little_ = true;
 };
 
-// Latin-1 note "Key:Value\r..." (first ':' splits; values trimmed). Asylum writes some keys
-// twice (SaveForce, SaveImage), so a repeat is an error only when the reader asks for that key.
+// Latin-1 note "Key:Value\r..." (first ':' splits; values trimmed). Asylum writes keys more than
+// once: SaveForce and SaveImage in every force file, and in the curves its ARDF export writes
+// (AR 13.16) the map's header block first and each curve's own block after its Indexes, with
+// SpringConstant, MostPosZVoltage, ... repeated. A repeat with the same value is one value. Where
+// the copies differ (XLVDT, YLVDT, DisplaySpringConstant there) the last - the curve's own block -
+// is used, as afmformats, SciFiReaders and magic-afm read it, and a note says so.
 class Note {
  public:
   Note(const std::string& note, const Bytes& b) : b_(b) {
@@ -72,19 +78,25 @@ class Note {
       std::string value = line.substr(colon + 1);
       const std::size_t first = value.find_first_not_of(" \t\n");
       value = first == std::string::npos ? "" : value.substr(first, value.find_last_not_of(" \t\n") - first + 1);
-      const auto [it, fresh] = values_.emplace(line.substr(0, colon), value);
-      if (!fresh) repeated_.emplace(it->first, value);
+      values_[line.substr(0, colon)].push_back(value);
     }
   }
 
   const std::string* find(const std::string& key) const {
     const auto it = values_.find(key);
     if (it == values_.end()) return nullptr;
-    const auto again = repeated_.find(key);
-    if (again != repeated_.end())
-      b_.fail("the wave note gives " + key + " twice ('" + it->second + "' and '" + again->second + "')");
-    return &it->second;
+    const std::vector<std::string>& copies = it->second;
+    if (std::any_of(copies.begin(), copies.end(), [&](const std::string& v) { return v != copies.front(); }) &&
+        noted_.insert(key).second) {
+      std::string list;
+      for (const std::string& v : copies) list += (list.empty() ? "'" : ", '") + v + "'";
+      notes_.push_back("the wave note gives " + key + " " + std::to_string(copies.size()) + " times with different values (" +
+                       list + "); the last, the curve's own block in Asylum's exports, is used");
+    }
+    return &copies.back();
   }
+  /// The notes find() made, in the order it made them.
+  const std::vector<std::string>& notes() const { return notes_; }
   std::string text(const std::string& key) const {
     const std::string* v = find(key);
     return v ? *v : "";
@@ -109,7 +121,11 @@ class Note {
     for (std::string item; std::getline(in, item, ',');) {
       const std::string_view cell = trim(item);
       double v = NAN;
-      if (cell != "NaN" && !parse_finite(cell, v))
+      // NaN in any case: Asylum's own lines write NaN, its ARDF export "Nan" (AR 13.16).
+      const bool nan = cell.size() == 3 && std::tolower(static_cast<unsigned char>(cell[0])) == 'n' &&
+                       std::tolower(static_cast<unsigned char>(cell[1])) == 'a' &&
+                       std::tolower(static_cast<unsigned char>(cell[2])) == 'n';
+      if (!nan && !parse_finite(cell, v))
         b_.fail("the note's " + key + " = '" + *text + "' holds '" + item + "', not a number");
       out.push_back(v);
     }
@@ -118,7 +134,9 @@ class Note {
 
  private:
   const Bytes& b_;
-  std::map<std::string, std::string> values_, repeated_;
+  std::map<std::string, std::vector<std::string>> values_;
+  mutable std::set<std::string> noted_;
+  mutable std::vector<std::string> notes_;
 };
 
 }  // namespace
@@ -199,6 +217,7 @@ InstrumentFile read_ibw_bytes(std::string bytes, const std::string& path) {
     s.duration = static_cast<double>(last - first + 1) * row_step;
     curve.segments.push_back(std::move(s));
   }
+  curve.notes = note.notes();
   file.curves.push_back(std::move(curve));
   return file;
 }

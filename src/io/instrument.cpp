@@ -221,6 +221,7 @@ CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source,
   CurveData d;
   d.source = source;
   d.spring_constant = k;
+  d.notes = curve.notes;
   bool retracting = false;
   for (const InstrumentSegment& seg : curve.segments) {
     retracting = retracting || seg.style == SegmentStyle::retract;

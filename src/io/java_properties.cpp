@@ -225,10 +225,13 @@ Properties parse_properties(std::string text, const std::string& where) {
     const int c = key_of(a).compare(key_of(b));
     return c < 0 || (c == 0 && a.line < b.line);
   });
-  // The repeat reported is the first one in the text, with the value the key had before it.
+  // A key repeated with the same value is one value (instruments write such repeats); with
+  // another value it is a conflict with no evidence of which one the instrument meant. The one
+  // reported is the first in the text, with the value the key had before it.
   std::size_t repeat = 0;
   for (std::size_t i = 1; i < out.entries_.size(); ++i)
     if (key_of(out.entries_[i]) == key_of(out.entries_[i - 1]) &&
+        out.entry(i).second != out.entry(i - 1).second &&
         (repeat == 0 || out.entries_[i].line < out.entries_[repeat].line))
       repeat = i;
   if (repeat != 0) {

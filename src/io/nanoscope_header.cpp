@@ -2,6 +2,8 @@
 // ../shared/data/instrument/bruker/FORMAT_NOTES.md sections 1-2.
 #include "io/nanoscope_header.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 
@@ -43,6 +45,14 @@ std::optional<double> first_word_number(std::string_view s) {
 const std::string* NanoscopeSection::find(std::string_view key) const {
   for (const auto& [k, v] : entries)
     if (k == key) return &v;
+  return nullptr;
+}
+
+const std::string* NanoscopeSection::find_any_case(std::string_view key) const {
+  const auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
+  for (const auto& [k, v] : entries)
+    if (k.size() == key.size() && std::equal(k.begin(), k.end(), key.begin(), [&](char a, char b) { return lower(a) == lower(b); }))
+      return &v;
   return nullptr;
 }
 

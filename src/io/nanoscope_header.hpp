@@ -41,6 +41,9 @@ struct NanoscopeSection {
   std::vector<std::pair<std::string, std::string>> entries;  ///< (key, trimmed value)
   /// The first value of `key`, or nullptr.
   const std::string* find(std::string_view key) const;
+  /// The first value of a key equal to `key` but for the case of its letters, or nullptr: for
+  /// the keys NanoScope versions spell two ways (8.15 `Ramp size`, 9.20 `Ramp Size`).
+  const std::string* find_any_case(std::string_view key) const;
 };
 
 /// A parsed header with the accessors the force reader needs; every failure is an InputError

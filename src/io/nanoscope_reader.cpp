@@ -129,15 +129,20 @@ class NanoscopeSource final : public CurveSource {
 
     // The commanded ramp: its length is needed for the height unless a Z sensor is stored;
     // the durations are derived when the velocities are given (V/s, like the ramp size in V).
-    const std::string* ramp_text = defl_section->find("@4:Ramp Size");
-    const NanoscopeParameter ramp = ramp_text ? parse_nanoscope_parameter(*ramp_text) : NanoscopeParameter{};
+    // Fields are read where needed: a ramp that is missing or empty ('') costs the durations
+    // (0, unknown) and, without a Z sensor, the height of each curve - never the file.
+    const NanoscopeSection* force = h_.section("Ciao force list");
+    const NanoscopeParameter ramp = ramp_parameter(*defl_section, force);
     if (!sensor_) {
-      if (!ramp.hard_value || !(*ramp.hard_value > 0.0))
-        h_.fail(*defl_section, "\\@4:Ramp Size = '" + (ramp_text ? *ramp_text : std::string()) +
-                                   "': expected a ramp size > 0 V (the height axis, as no Z sensor is stored)");
-      ramp_m_ = *ramp.hard_value * h_.sensitivity(ramp.soft_scale, "\\@4:Ramp Size") * 1e-9;
+      if (ramp.hard_value)
+        ramp_m_ = *ramp.hard_value * h_.sensitivity(ramp.soft_scale, "\\@4:Ramp Size") * 1e-9;
+      else
+        ramp_error_ = path + ": \\*Ciao force image list: \\@4:Ramp Size = '" +
+                      (defl_section->find_any_case("@4:Ramp Size") ? *defl_section->find_any_case("@4:Ramp Size") : std::string()) +
+                      "': expected a ramp size > 0 V (or, where it is empty, a \\@4:Ramp Size Zsweep in \\*Ciao force "
+                      "list): the height axis needs it, as no Z sensor is stored";
     }
-    if (const NanoscopeSection* force = h_.section("Ciao force list"); force && ramp.hard_value) {
+    if (force && ramp.hard_value) {
       duration_extend_ = duration(*force, "Forward vel.", *ramp.hard_value);
       duration_retract_ = duration(*force, "Reverse vel.", *ramp.hard_value);
     }
@@ -148,7 +153,9 @@ class NanoscopeSource final : public CurveSource {
 
   InstrumentCurve curve(std::size_t i) const override {
     if (i >= curves_) throw std::out_of_range("nanoscope curve " + std::to_string(i) + " of " + std::to_string(curves_));
+    if (!ramp_error_.empty()) throw InputError(ramp_error_);
     InstrumentCurve c;
+    c.notes = notes_;
     c.index = static_cast<int>(i);
     c.spring_constant = spring_constant_;
     c.sensitivity = sensitivity_;
@@ -206,6 +213,23 @@ class NanoscopeSource final : public CurveSource {
     const std::optional<double> m = unit_metres(unit);
     if (!m && v != 0.0) h_.fail(scan, "\\" + std::string(key) + " = '" + h_.text(scan, key) + "': expected a length in nm or um");
     return m ? v * *m : 0.0;
+  }
+  // The force image list's `@4:Ramp Size` (8.15 spells it `Ramp size`), else the force list's
+  // `@4:Ramp Size Zsweep`, which holds the same value in every file seen (16.72241, 151.4807,
+  // 227.2211 V) and is used, with a note, where the first holds no number (missing, or a force
+  // volume's `\@4:Ramp Size: ''`); nothing (no hard value) if neither is a number > 0. A number
+  // that is not > 0 is not replaced: it is wrong, not missing.
+  NanoscopeParameter ramp_parameter(const NanoscopeSection& image, const NanoscopeSection* force) {
+    const std::string* own = image.find_any_case("@4:Ramp Size");
+    NanoscopeParameter ramp = own ? parse_nanoscope_parameter(*own) : NanoscopeParameter{};
+    if (ramp.hard_value) return *ramp.hard_value > 0.0 ? ramp : NanoscopeParameter{};
+    const std::string* sweep = force ? force->find_any_case("@4:Ramp Size Zsweep") : nullptr;
+    NanoscopeParameter fallback = sweep ? parse_nanoscope_parameter(*sweep) : NanoscopeParameter{};
+    if (!fallback.hard_value || !(*fallback.hard_value > 0.0)) return {};
+    notes_.push_back("the force image list's \\@4:Ramp Size is '" + (own ? *own : std::string()) +
+                     "': the force list's \\@4:Ramp Size Zsweep (" + format_double(*fallback.hard_value) +
+                     " V) is used for the ramp");
+    return fallback;
   }
   double duration(const NanoscopeSection& force, const char* key, double ramp_volts) const {
     const std::string* v = force.find(key);
@@ -287,6 +311,8 @@ class NanoscopeSource final : public CurveSource {
   Channel defl_;
   std::optional<Channel> sensor_;
   double spring_constant_ = 0.0, sensitivity_ = 0.0, ramp_m_ = 0.0;
+  std::string ramp_error_;          // why no height can be made (no sensor, no ramp): each curve says it
+  std::vector<std::string> notes_;  // the reader's choices, on every curve
   double duration_extend_ = 0.0, duration_retract_ = 0.0;
 };
 

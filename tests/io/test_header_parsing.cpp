@@ -45,7 +45,8 @@ InstrumentFile igor(const std::string& note) { return detail::read_ibw_bytes(tes
 
 }  // namespace
 
-TEST_CASE(".properties: a key given twice is an error naming it - escapes and continuations still read", "[io][headers]") {
+TEST_CASE(".properties: a key given twice with two values is an error naming it - escapes and continuations still read",
+          "[io][headers]") {
   const detail::Properties p = detail::parse_properties("a=1\n# c\nb : two\\\n  words\nc\\=d=3\n", "x.properties");
   CHECK(p.at("a") == "1");
   CHECK(p.at("b") == "twowords");
@@ -53,6 +54,7 @@ TEST_CASE(".properties: a key given twice is an error naming it - escapes and co
   CHECK_THAT(input_error([] { detail::parse_properties("a=1\nb=2\na=3\n", "seg/header.properties"); }),
              Catch::Contains("seg/header.properties") && Catch::Contains("'a' is given twice") &&
                  Catch::Contains("'1' and '3'"));
+  CHECK(detail::parse_properties("a=1\nb=2\na=1\n", "seg/header.properties").at("a") == "1");
 }
 
 TEST_CASE("JPK header numbers: the whole value must be one finite number", "[io][headers]") {
@@ -80,8 +82,10 @@ TEST_CASE("JPK header numbers: the whole value must be one finite number", "[io]
              Catch::Contains("position.x"));
 }
 
-TEST_CASE("JPK headers: a key given twice fails the file, naming the member and the key", "[io][headers]") {
+TEST_CASE("JPK headers: a key given twice with two values fails the file, naming the member and the key", "[io][headers]") {
   test::TempDir dir;
+  // The same value twice is one value.
+  CHECK(read_instrument_file(archive(dir, 1, "", "force-segment-header.duration=1.0")).curves.size() == 1);
   CHECK_THAT(input_error([&] { read_instrument_file(archive(dir, 1, "", "force-segment-header.duration=2.0")); }),
              Catch::Contains("hand.jpk-force") && Catch::Contains("segments/0/segment-header.properties") &&
                  Catch::Contains("'force-segment-header.duration' is given twice"));
@@ -128,11 +132,34 @@ TEST_CASE("Igor notes: SpringConstant and InvOLS must be whole finite numbers > 
   }
 }
 
-TEST_CASE("Igor notes: a key the reader uses given twice is an error - others may repeat", "[io][headers]") {
-  CHECK_NOTHROW(igor(kNote + "SpringConstant: 1.1841\rSaveImage:1\rSaveImage:0\r"));
-  CHECK_THAT(input_error([&] { igor(kNote + "SpringConstant: 1.1841\rSpringConstant: 0.5\r"); }),
-             Catch::Contains("hand.ibw") && Catch::Contains("SpringConstant twice") && Catch::Contains("'0.5'"));
-  CHECK_THAT(input_error([&] { igor(kNote + "SpringConstant: 1.1841\rInvOLS: 4.5e-08\r"); }), Catch::Contains("InvOLS twice"));
+TEST_CASE("Igor notes: a repeated key is one value - copies that differ give the last, the curve's own, and a note",
+          "[io][headers]") {
+  // As Asylum's ARDF export writes them (AR 13.16): the map's header block, then the curve's own.
+  const InstrumentFile same = igor(kNote + "SpringConstant: 1.1841\rSaveImage:1\rSaveImage:0\rSpringConstant: 1.1841\r");
+  CHECK(same.curves[0].spring_constant == 1.1841);
+  CHECK(same.curves[0].notes.empty());  // SaveImage is not read; a repeat with the same value is no news
+  const InstrumentFile differ = igor(kNote + "SpringConstant: 1.1841\rSpringConstant: 0.5\rInvOLS: 4.5e-08\r");
+  CHECK(differ.curves[0].spring_constant == 0.5);
+  CHECK(differ.curves[0].sensitivity == 4.5e-08);
+  REQUIRE(differ.curves[0].notes.size() == 2);
+  CHECK_THAT(differ.curves[0].notes[0], Catch::Contains("SpringConstant 2 times with different values ('1.1841', '0.5')") &&
+                                            Catch::Contains("the last"));
+  CHECK_THAT(differ.curves[0].notes[1], Catch::Contains("InvOLS"));
+  // The notes reach the fit's notices, not its warnings.
+  const CurveData d = to_curve_data(differ.curves[0], "hand.ibw");
+  CHECK(d.notes == differ.curves[0].notes);
+}
+
+TEST_CASE("Igor notes: NaN in Direction in any case - Asylum's export writes Nan", "[io][headers]") {
+  for (const char* nan : {"NaN", "Nan", "nan", "NAN"}) {
+    std::string note = kNote + "SpringConstant: 1.1841\r";
+    note.replace(note.find("Direction: NaN,1,-1,"), 20, std::string("Direction: ") + nan + ",1,-1,0,");
+    INFO(nan);
+    const InstrumentFile f = igor(note);
+    REQUIRE(f.curves[0].segments.size() == 2);
+    CHECK(f.curves[0].segments[0].style == SegmentStyle::extend);
+    CHECK(f.curves[0].segments[1].style == SegmentStyle::retract);
+  }
 }
 
 TEST_CASE("Igor notes: Indexes and Direction are lists of numbers, nothing else", "[io][headers]") {

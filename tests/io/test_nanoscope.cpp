@@ -357,3 +357,37 @@ TEST_CASE("nanoscope: damaged and foreign files give an InputError naming the fi
   CHECK_THAT(test::input_error([] { open_nanoscope(test::scratch().path().string(), ReadLimits{}); }),
              Contains("not a regular file"));
 }
+
+TEST_CASE("nanoscope: fields are read where needed - an empty Ramp Size falls back to the force list's Zsweep",
+          "[io][nanoscope]") {
+  test::NanoscopeSpec s;
+  s.mode = "Force Volume";
+  s.points = 2;
+  s.lines = 2;
+  s.defl = ramp_samples(4, 8);
+  s.ramp = "''";  // as a real force volume writes it in its force image list
+  const std::unique_ptr<detail::CurveSource> src = open_nanoscope(write("empty_ramp.spm", s), ReadLimits{});
+  REQUIRE(src->size() == 4);
+  const InstrumentCurve c = src->curve(3);
+  // The force list's Ramp Size Zsweep, 1 V x 10 nm/V = 10 nm over the 5 extend samples.
+  for (int t = 0; t < 5; ++t) CHECK(c.segments[0].height[t] == Approx((4 - t) * 2e-9).margin(1e-20));
+  CHECK(c.segments[0].duration == Approx(1.0 / 80));
+  REQUIRE(c.notes.size() == 1);
+  CHECK_THAT(c.notes[0], Catch::Contains("Ramp Size is ''") && Catch::Contains("Zsweep (1 V) is used"));
+  // 8.15 spells it "Ramp size": the same value.
+  test::NanoscopeSpec lower;
+  lower.defl = ramp_samples(1, 8);
+  std::string bytes = test::nanoscope_file(lower);
+  bytes.replace(bytes.find("\\@4:Ramp Size: V"), 16, "\\@4:Ramp size: V");
+  const InstrumentCurve l = open_nanoscope(write("lower.spm", bytes), ReadLimits{})->curve(0);
+  CHECK(l.segments[0].duration == Approx(40.0 / 80));
+  CHECK(l.notes.empty());
+  // Neither: the header still opens, and each curve says why it has no height.
+  std::string none = test::nanoscope_file(s);
+  none.replace(none.find("\\@4:Ramp Size Zsweep"), 20, "\\@4:Ramp Sise Zsweep");
+  const std::unique_ptr<detail::CurveSource> broken = open_nanoscope(write("no_ramp.spm", none), ReadLimits{});
+  CHECK(broken->size() == 4);
+  CHECK(broken->header().grid_shape_x == 2);
+  CHECK_THAT(test::input_error([&] { broken->curve(0); }),
+             Catch::Contains("no_ramp.spm") && Catch::Contains("Ramp Size = ''") && Catch::Contains("no Z sensor"));
+}
