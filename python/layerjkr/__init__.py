@@ -688,8 +688,8 @@ class FitResult:
                                                      "baseline_slope", "baseline_slope_stderr", "points",
                                                      "points_in_contact", "identifiable", "identifiability_known",
                                                      "identifiability_reason", "unidentifiable", "no_move_reason",
-                                                     "warnings", "initial_cost", "final_cost", "solve_seconds",
-                                                     "contact_point")}
+                                                     "warnings", "notices", "initial_cost", "final_cost",
+                                                     "solve_seconds", "contact_point")}
         self._params = {p.name: _Parameter(p.value, p.standard_error, p.initial, p.at_bound, p.identifiable,
                                               p.upper_bound, p.reason)
                         for p in s.parameters}
@@ -820,6 +820,12 @@ class FitResult:
         return list(self._fields["warnings"])
 
     @property
+    def notices(self) -> List[str]:
+        """What the fit records but does not warn about (never a :class:`ModelWarning`): a
+        numerical error far below what matters, a documented approximation, a reader's choice."""
+        return list(self._fields["notices"])
+
+    @property
     def model(self) -> str:
         """The contact model that was fitted."""
         return self._fields["model"]
@@ -898,7 +904,7 @@ class FitResult:
             "identifiability_known": f["identifiability_known"],
             "identifiability_reason": f["identifiability_reason"],
             "unidentifiable": list(f["unidentifiable"]), "no_move_reason": f["no_move_reason"],
-            "warnings": list(f["warnings"]),
+            "warnings": list(f["warnings"]), "notices": list(f["notices"]),
             "contact_point": {k: _finite_or_none(v) if isinstance(v, float) else v
                               for k, v in f["contact_point"].items()},
         }

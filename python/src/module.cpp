@@ -380,6 +380,7 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("unidentifiable", &FitSummary::unidentifiable)
       .def_property_readonly("no_move_reason", [](const FitSummary& s) { return python::text(s.no_move_reason); })
       .def_property_readonly("warnings", [](const FitSummary& s) { return python::texts(s.warnings); })
+      .def_property_readonly("notices", [](const FitSummary& s) { return python::texts(s.notices); })
       .def_property_readonly("delta", [](const FitSummary& s) { return to_array(s.delta); })
       .def_property_readonly("P", [](const FitSummary& s) { return to_array(s.P); })
       .def_property_readonly("P_fit", [](const FitSummary& s) { return to_array(s.P_fit); })
