@@ -12,6 +12,8 @@
 //                                         (the tip moves to more negative values on approach)
 //   z,deflection[,weight][,segment]       raw AFM: delta = z_sign*z - deflection_sign*d,
 //                                         P = k * deflection_sign*d  (needs spring_constant)
+//   z,force[,weight][,segment]            piezo and force (AFM Workshop, lab scripts):
+//                                         delta = z_sign*z - P/k, P = force (needs spring_constant)
 //   curve,segment,force,height,tip_position  `layerjkr export` of an instrument file: height is
 //                                         informational; a file of several curves needs
 //                                         CsvOptions::curve

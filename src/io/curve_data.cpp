@@ -10,6 +10,7 @@
 #include <string_view>
 #include <unordered_set>
 
+#include "io/afm_workshop.hpp"
 #include "io/csv_rows.hpp"
 #include "layerjkr/instrument.hpp"
 #include "io/read_file.hpp"
@@ -129,7 +130,7 @@ struct Fail {
 struct Layout {
   std::vector<std::string> header;
   std::map<Column, std::size_t> where;
-  bool raw = false;  // z,deflection
+  bool raw = false;  // z,deflection or z,force
   bool has(Column c) const { return where.count(c) > 0; }
 };
 
@@ -156,10 +157,13 @@ Layout read_layout(std::vector<std::string> header, const CsvOptions& options, c
   }
   l.raw = l.has(Column::z);
   if (l.raw) {
-    if (!l.has(Column::deflection)) fail("column z needs a deflection column");
-    if (l.has(Column::force)) fail("give either z,deflection or a force column, not both");
+    if (!l.has(Column::deflection) && !l.has(Column::force)) fail("column z needs a deflection or a force column");
+    if (l.has(Column::force) && l.has(Column::deflection))
+      fail("give z with either deflection or force, not both (force = k x deflection)");
     if (!(options.spring_constant > 0.0))
-      fail("z,deflection data need the cantilever spring constant k [N/m] (spring_constant)");
+      fail(std::string("z,") + (l.has(Column::force) ? "force" : "deflection") +
+           " data need the cantilever spring constant k [N/m] (spring_constant): the tip's position is z minus the "
+           "deflection" + (l.has(Column::force) ? ", force / k" : ""));
   } else {
     if (l.has(Column::deflection)) fail("column deflection is only used with z");
     if (!l.has(Column::force)) fail("needs a force column (P or force)");
@@ -198,7 +202,11 @@ void append_row(const std::vector<double>& v, const Layout& l, const CsvOptions&
     if (options.curve >= 0 && c != options.curve) return;
   }
   const double L = options.length_unit, F = options.force_unit;
-  if (l.raw) {
+  if (l.raw && l.has(Column::force)) {  // AFM Workshop, lab scripts: deflection = force / k
+    const double P = col(Column::force) * F;
+    d.delta.push_back(options.z_sign * col(Column::z) * L - P / options.spring_constant);
+    d.P.push_back(P);
+  } else if (l.raw) {
     const double dfl = options.deflection_sign * col(Column::deflection) * L;
     d.delta.push_back(options.z_sign * col(Column::z) * L - dfl);
     d.P.push_back(options.spring_constant * dfl);
@@ -237,6 +245,7 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
   if (text.find('\0') != std::string::npos)
     fail("is not a text file (it contains NUL bytes): not CSV, and its name is not of a known instrument format "
          "(known: " + known_instrument_formats() + ")");
+  if (detail::is_afm_workshop(text)) return detail::parse_afm_workshop(text, source, options);
   detail::CsvRows rows(text);
   std::size_t line_no = 0;
   auto next_row = [&](std::vector<std::string_view>* cells) {

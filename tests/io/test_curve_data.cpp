@@ -48,6 +48,22 @@ TEST_CASE("JPK tip_position,force and raw z,deflection forms", "[csv]") {
   CHECK_THROWS_WITH(parse_curve_csv("z,deflection\n1,2\n", "t"), Catch::Contains("spring constant k [N/m]"));
 }
 
+TEST_CASE("z,force: the piezo and the force, the deflection force / k (AFM Workshop, lab scripts)", "[csv]") {
+  CsvOptions o;
+  o.spring_constant = 0.05;
+  // The same sample as z,deflection 1e-6,2e-8 above: force = k x deflection = 1e-9 N.
+  const CurveData r = parse_curve_csv("z,force\n1e-6,1e-9\n", "t", o);
+  CHECK(r.delta[0] == Approx(1e-6 - 2e-8).epsilon(1e-15));
+  CHECK(r.P[0] == 1e-9);
+  parse_units("nm,nN", o);  // AFM Workshop writes Z-Sense in nm and Force in nN
+  const CurveData n = parse_curve_csv("z,force,segment\n1000,1,0\n", "t", o);
+  CHECK(n.delta[0] == Approx(1e-6 - 2e-8).epsilon(1e-15));
+  CHECK(n.P[0] == Approx(1e-9).epsilon(1e-15));
+  CHECK_THROWS_WITH(parse_curve_csv("z,force\n1,2\n", "t"),
+                    Catch::Contains("z,force data need the cantilever spring constant") && Catch::Contains("force / k"));
+  CHECK_THROWS_WITH(parse_curve_csv("z,force,deflection\n1,2,3\n", "t", o), Catch::Contains("not both"));
+}
+
 TEST_CASE("branches: segment column or a split at the deepest point", "[csv]") {
   CurveData c;
   c.delta = {0, 1, 2, 3, 2, 1};

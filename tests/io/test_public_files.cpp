@@ -4,8 +4,12 @@
 // of the research note in the README's commit, scaled by the header's V/LSB and sensitivity).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 
+#include "layerjkr/curve_data.hpp"
 #include "layerjkr/instrument.hpp"
 #include "support/test_support.hpp"
 
@@ -73,4 +77,32 @@ TEST_CASE("public files: a NanoScope 8.15 curve on sapphire - Ramp size, a Heigh
   check_close(c.segments[0].height.back(), -8.681144245500001e-07);
   // Ramp size (lower-case s in 8.15) 16.72241 V over Forward vel. 34.38 V/s.
   check_close(c.segments[0].duration, 16.72241 / 34.38);
+}
+
+TEST_CASE("public files: AFM Workshop exports - Z-Sense and Force, or T-B volts with the gain", "[io][public][csv]") {
+  const std::string force_file = kDir + "fmt-afm-workshop-fd_single_2020-02-14_13.41.25.csv";
+  // No spring constant in the file: the tip's position needs one.
+  CHECK_THROWS_WITH(read_curve_csv(force_file), Catch::Contains("no spring constant") && Catch::Contains("--spring-constant"));
+  CsvOptions o;
+  o.spring_constant = 40.0;
+  const CurveData d = read_curve_csv(force_file, o);
+  REQUIRE(d.size() == 2030);  // afmformats asserts 2030 samples and force[0] = 1276.4373e-9
+  CHECK(std::count(d.segment.begin(), d.segment.end(), 0) == 1015);
+  check_close(d.P[0], 1276.4373e-9);
+  check_close(d.delta[0], 15072.4571e-9 - 1276.4373e-9 / 40.0);  // Z-Sense grows towards the sample
+  check_close(d.P[1015], 3809.6950e-9);                          // the first retract row
+  CHECK(d.spring_constant == 40.0);
+  // T-B volts need the Light Lever Gain: refused without it; with the gain of afmformats' own test
+  // (100 mV/nm, its sensitivity 1e-8 m/V) and k = 20, force[0] = 0.6861 x 1e-8 x 20, as afmformats asserts.
+  const std::string volts_file = kDir + "fmt-afm-workshop-fd_single_2018-08-01_13.06.09.csv";
+  CHECK_THROWS_WITH(read_curve_csv(volts_file, o), Catch::Contains("T-B(V)") && Catch::Contains("Light Lever Gain"));
+  std::string text;
+  {
+    std::ifstream in(volts_file, std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  text.insert(text.find("\r\nExtend Z-Sense"), "\r\nLight Lever Gain, mV/nm:\t100\r\nForce Constant, nN/nm:\t20.0");
+  const CurveData v = parse_curve_csv(text, "gain.csv");
+  check_close(v.P[0], 0.6861 * 1e-8 * 20.0);
+  CHECK(v.spring_constant == 20.0);
 }
