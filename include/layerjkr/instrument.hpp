@@ -55,7 +55,9 @@ struct InstrumentCurve {
   double x = std::numeric_limits<double>::quiet_NaN();  ///< map position [m]
   double y = std::numeric_limits<double>::quiet_NaN();  ///< map position [m]
   int grid_x = -1, grid_y = -1;  ///< pixel of the map grid (-1: not a map)
-  double spring_constant = 0.0;  ///< [N/m]
+  /// [N/m]; NaN where the file gives none (an Asylum map export without its image): then
+  /// `force` holds the deflection [m], and to_curve_data needs a spring constant given.
+  double spring_constant = 0.0;
   double sensitivity = 0.0;      ///< [m/V] (InvOLS)
   std::vector<InstrumentSegment> segments;
   /// What the reader decided that the user should know, e.g. which of two different copies of a
@@ -101,6 +103,13 @@ struct ReadLimits {
 std::optional<InstrumentFormat> instrument_format(const std::string& path);
 /// True if the file name ends in an extension read_instrument_file knows.
 bool is_instrument_file(const std::string& path);
+/// True if `path` names an Asylum force map exported one Igor wave per channel per point
+/// (format ibw-map): a directory holding LineLLLLPointPPPP<Channel>.ibw files (Defl, ZSnsr,
+/// optionally Raw), directly or in LineLLLL folders, or a glob pattern every match of which is
+/// such a file. InstrumentReader reads it as one map: a curve per point, its pixel from the name,
+/// calibration and scan from the map image beside the files (a wave whose note says
+/// ForceMapImage:1), else each point's note and no spring constant (then one must be given).
+bool is_asylum_map_export(const std::string& path);
 /// The known formats in words, for messages ("known: " + this).
 std::string known_instrument_formats();
 
@@ -163,7 +172,8 @@ InstrumentFile read_instrument_file(const std::string& path);
 /// One curve as the fit consumes it: delta = -tip_position, P = force, segment 0 for the
 /// extend segments (and pauses before the first retract), 1 for the rest, the reader's notes.
 /// `source` names it in error messages. spring_constant > 0 [N/m] replaces the file's: the deflection is kept,
-/// so force scales by k / k_file and the tip position is height + deflection.
+/// so force scales by k / k_file and the tip position is height + deflection. A curve whose
+/// file gives no spring constant (NaN) needs one here (InputError naming `source` otherwise).
 CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source, double spring_constant = 0.0);
 
 }  // namespace layerjkr

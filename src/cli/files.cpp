@@ -29,21 +29,57 @@ void check_not_input(const std::string& output, const std::string& flag, const s
   }
 }
 
-std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
+namespace {
+
+// "3 entries: the folder bruker/ (...), notes.txt, ..." - at most 4 named.
+std::string skipped_line(const std::string& dir, const std::vector<std::string>& folders, const std::vector<std::string>& others) {
+  std::string line = dir + ": not read: ";
+  std::size_t named = 0;
+  const auto list = [&](const std::vector<std::string>& v, const char* suffix) {
+    std::string s;
+    for (const std::string& e : v)
+      if (named++ < 4) s += (s.empty() ? "" : ", ") + e + suffix;
+    return s;
+  };
+  if (!folders.empty())
+    line += std::to_string(folders.size()) + " folder(s) (" + list(folders, "/") +
+            (folders.size() > 4 ? ", ..." : "") + "; a folder's own files are read: name a sub-folder to fit its curves)";
+  if (!others.empty())
+    line += std::string(folders.empty() ? "" : "; ") + std::to_string(others.size()) + " other file(s) (" +
+            list(others, "") + (others.size() > 4 ? ", ..." : "") + "; not .csv or an instrument file)";
+  return line;
+}
+
+}  // namespace
+
+std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs, std::vector<std::string>* skipped) {
   std::vector<std::string> files;
   for (const auto& in : inputs) {
     std::error_code ec;
-    if (fs::is_directory(in, ec)) {
+    if (is_asylum_map_export(in)) {  // a directory or a pattern of per-channel waves: one map
+      files.push_back(in);
+    } else if (fs::is_directory(in, ec)) {
       // By name only: the entry's type is the batch's to check and report (a loop, a FIFO).
-      std::vector<std::string> found;
+      std::vector<std::string> found, folders, others;
       fs::directory_iterator it(in, ec), end;
       for (; !ec && it != end; it.increment(ec)) {
         const fs::path& e = it->path();
-        if (e.extension() == ".csv" || is_instrument_file(e.string())) found.push_back(e.string());
+        std::error_code type_ec;
+        if (e.extension() == ".csv" || is_instrument_file(e.string()))
+          found.push_back(e.string());
+        else if (it->is_directory(type_ec))
+          folders.push_back(e.filename().string());
+        else
+          others.push_back(e.filename().string());
       }
       if (ec) throw InputError(in + ": cannot list the directory (" + ec.message() + ")");
       std::sort(found.begin(), found.end());
-      if (found.empty()) throw InputError(in + ": the directory holds no .csv or instrument files");
+      std::sort(folders.begin(), folders.end());
+      std::sort(others.begin(), others.end());
+      if (found.empty())
+        throw InputError(in + ": the directory holds no .csv or instrument files" +
+                         (folders.empty() ? std::string() : " (" + skipped_line(in, folders, {}).substr(in.size() + 2) + ")"));
+      if (skipped && (!folders.empty() || !others.empty())) skipped->push_back(skipped_line(in, folders, others));
       files.insert(files.end(), found.begin(), found.end());
     } else if (in.find_first_of("*?[") != std::string::npos) {
       glob_t g{};

@@ -15,8 +15,11 @@ void check_not_input(const std::string& output, const std::string& flag, const s
 /// Directories, glob patterns and files, in the order given. A directory gives every entry
 /// whose name ends in .csv or an instrument extension, whatever it is (file, link - dangling or
 /// looping -, FIFO, directory), sorted by name: the batch reports the ones it cannot read as
-/// failed rows. Throws InputError for an input that names nothing or a directory that cannot
-/// be listed or holds no such entry.
-std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs);
+/// failed rows. A directory or a pattern that holds an Asylum map exported per channel
+/// (is_asylum_map_export) is one input, the map. What a directory holds besides (sub-folders,
+/// other files) is not read, and `skipped` gets one line a directory saying what and why. Throws
+/// InputError for an input that names nothing or a directory that cannot be listed or holds no
+/// such entry.
+std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs, std::vector<std::string>* skipped = nullptr);
 
 }  // namespace layerjkr::cli

@@ -195,9 +195,10 @@ namespace {
 
 // fit-map from prepared options and expanded inputs: the command and its --from-report share it.
 // `all_inputs`: every file the outputs must not be; `extra`: added to the sidecar.
+// `not_read`: what the input folders held besides curves, said once the outputs are checked.
 int map_and_record(const Prepared& p, const std::vector<std::string>& files, const std::vector<std::string>& all_inputs,
                    const std::string& curves, const MapOutputs& o, const std::vector<std::string>& command_line,
-                   const json& extra) {
+                   const json& extra, const std::vector<std::string>& not_read = {}) {
   check_count("--jobs", o.jobs, 1, kMaxJobs);
   if (o.resume && !o.plot_dir.empty())
     throw InputError("--plot-dir needs every fit, and --resume does not redo the earlier ones: run them apart");
@@ -219,6 +220,7 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
     record.emplace(sidecar);
   }
   if (!o.plot_dir.empty()) prepare_plot_dir(o.plot_dir, map_plot_names(p.options.free), o.force);
+  for (const std::string& line : not_read) std::cerr << "fit-map: " << printable(line) << "\n";
   // What the rows are made from, hashed before any is read (docs/provenance.md has the cost).
   std::vector<InputRecord> hashed;
   hashed.reserve(files.size());
@@ -315,10 +317,11 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
 int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs, const std::string& curves,
                 const MapOutputs& outputs, const std::vector<std::string>& command_line) {
   const Prepared p = prepare(args);
-  const std::vector<std::string> files = expand_inputs(inputs);
+  std::vector<std::string> skipped;
+  const std::vector<std::string> files = expand_inputs(inputs, &skipped);
   std::vector<std::string> all_inputs = files;
   all_inputs.push_back(args.scene);
-  return map_and_record(p, files, all_inputs, curves, outputs, command_line, json::object());
+  return map_and_record(p, files, all_inputs, curves, outputs, command_line, json::object(), skipped);
 }
 
 int run_fit_map_from_report(const std::string& from, const MapOutputs& outputs,

@@ -183,8 +183,9 @@ std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Sc
     Slot file_slot;
     // Once cancelled, the rest are not read: run_batch marks their items cancelled.
     cancelled = cancelled || (batch.cancelled && batch.cancelled());
-    if (!cancelled) file_slot.error = detail::not_a_file(path);
-    if (cancelled || !file_slot.error.empty() || !is_instrument_file(path)) {
+    const bool folder_map = !cancelled && is_asylum_map_export(path);  // a directory or a glob: one map
+    if (!cancelled && !folder_map) file_slot.error = detail::not_a_file(path);
+    if (cancelled || !file_slot.error.empty() || (!folder_map && !is_instrument_file(path))) {
       if (file_slot.error.empty()) file_slot.csv_path = path;
       add(std::move(file_item), std::move(file_slot));
       continue;

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "layerjkr/instrument.hpp"
 
@@ -33,6 +34,12 @@ std::unique_ptr<CurveSource> open_jpk_bytes(std::string bytes, const std::string
 std::unique_ptr<CurveSource> open_ibw(const std::string& path);
 std::unique_ptr<CurveSource> open_ibw_bytes(std::string bytes, const std::string& path);
 std::unique_ptr<CurveSource> open_nanoscope(const std::string& path, const ReadLimits& limits);
+/// The per-channel files of an Asylum map export `path` names (asylum_map.cpp): a directory
+/// holding LineLLLLPointPPPP<Channel>.ibw files, directly or in LineLLLL folders, or a glob
+/// pattern every match of which is such a file; empty otherwise.
+std::vector<std::string> asylum_channel_files(const std::string& path);
+/// The map those files make, one curve per point, named `path`.
+std::unique_ptr<CurveSource> open_asylum_map(const std::string& path, const std::vector<std::string>& files);
 std::unique_ptr<CurveSource> open_nanoscope_bytes(std::string bytes, const std::string& path, const ReadLimits& limits);
 
 }  // namespace layerjkr::detail

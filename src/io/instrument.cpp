@@ -61,6 +61,8 @@ InstrumentFormat format_by_content(const std::string& path) {
 }
 
 std::unique_ptr<detail::CurveSource> open_source(const std::string& path, const ReadLimits& limits) {
+  if (std::vector<std::string> files = detail::asylum_channel_files(path); !files.empty())
+    return detail::open_asylum_map(path, files);
   const std::optional<InstrumentFormat> named = instrument_format(path);
   const InstrumentFormat format = named ? *named : format_by_content(path);
   switch (format) {
@@ -69,6 +71,7 @@ std::unique_ptr<detail::CurveSource> open_source(const std::string& path, const 
     case InstrumentFormat::jpk_force:
     case InstrumentFormat::jpk_force_map:
     case InstrumentFormat::jpk_qi_data: return detail::open_jpk(path, format, limits);
+    case InstrumentFormat::ibw_map: return detail::open_asylum_map(path, detail::asylum_channel_files(path));
   }
   throw Error(path + ": InstrumentFormat " + std::to_string(static_cast<int>(format)) + " has no reader");
 }
@@ -98,6 +101,8 @@ std::optional<InstrumentFormat> instrument_format(const std::string& path) {
 }
 
 bool is_instrument_file(const std::string& path) { return instrument_format(path).has_value(); }
+
+bool is_asylum_map_export(const std::string& path) { return !detail::asylum_channel_files(path).empty(); }
 
 std::string known_instrument_formats() {
   return ".jpk-force, .jpk-force-map, .jpk-qi-data (JPK), .ibw (Asylum / Igor), .spm or .000-.999 (Bruker NanoScope)";
@@ -158,7 +163,8 @@ InstrumentCurve checked_curve(const CurveSource& source, std::size_t i) {
     throw std::out_of_range("InstrumentReader::curve: position " + std::to_string(i) + " of a file of " +
                             std::to_string(source.size()) + " curves");
   InstrumentCurve c = source.curve(i);
-  if (!(c.spring_constant > 0.0) || !std::isfinite(c.spring_constant))
+  // NaN: the file gives none (to_curve_data then needs one given); anything else must be a stiffness.
+  if (!std::isnan(c.spring_constant) && (!(c.spring_constant > 0.0) || !std::isfinite(c.spring_constant)))
     throw InputError(source.header().path + ": curve " + std::to_string(c.index) + " has spring constant " +
                      format_double(c.spring_constant) + " N/m; it must be finite and > 0");
   return c;
@@ -216,8 +222,13 @@ std::vector<double> InstrumentCurve::tip_position(std::size_t s) const {
 
 CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source, double spring_constant) {
   detail::require_non_negative("to_curve_data", "spring_constant", spring_constant);
+  if (std::isnan(curve.spring_constant) && !(spring_constant > 0.0))
+    throw InputError(source + ": the file gives no spring constant (an Asylum map export without its map image): "
+                              "give the cantilever's spring constant k [N/m] (--spring-constant), or put the map's "
+                              "image (its note says ForceMapImage:1) beside the curves");
   const double k = spring_constant > 0.0 ? spring_constant : curve.spring_constant;
-  const double scale = k / curve.spring_constant;
+  // Without the file's k its force is the deflection [m]: force = k x deflection.
+  const double scale = std::isnan(curve.spring_constant) ? k : k / curve.spring_constant;
   CurveData d;
   d.source = source;
   d.spring_constant = k;

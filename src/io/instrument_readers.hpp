@@ -2,10 +2,15 @@
 // fuzzers and the tests that build files in memory.
 #pragma once
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "io/curve_source.hpp"
+#include "io/igor_wave.hpp"
 #include "layerjkr/instrument.hpp"
 
 namespace layerjkr::detail {
@@ -21,6 +26,16 @@ std::unique_ptr<CurveSource> source_of(InstrumentFile file);
 InstrumentFile read_ibw(const std::string& path);
 /// The same from the file's bytes; `path` names it in errors.
 InstrumentFile read_ibw_bytes(std::string bytes, const std::string& path);
+/// (line, point) of an Asylum map's curve from a wave or file name ending in
+/// `LineLLLLPointPPPP` and an optional channel (`Defl`, `ZSnsr`, ...); nullopt otherwise.
+std::optional<std::pair<int, int>> asylum_line_point(const std::string& name);
+/// The segments of an Asylum curve of `rows` rows from its note's Indexes and Direction (without
+/// Direction: extend, retract, then pauses), `sample(row, segment)` appending each row's values;
+/// `path` names it in errors.
+std::vector<InstrumentSegment> asylum_segments(const IgorNote& note, std::size_t rows, double row_step,
+                                               const std::function<void(std::size_t, InstrumentSegment&)>& sample,
+                                               const std::string& path);
+
 /// Every curve of a JPK archive given as bytes; `path` names it in errors.
 InstrumentFile read_jpk_bytes(std::string bytes, const std::string& path, InstrumentFormat format,
                               const ReadLimits& limits);

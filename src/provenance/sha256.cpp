@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "io/curve_source.hpp"
 #include "io/read_file.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/provenance.hpp"
@@ -65,6 +66,29 @@ InputRecord record_file(const std::string& path) {
   std::error_code ec;
   const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
   r.path = ec ? path : absolute.lexically_normal().string();
+  // An Asylum map exported per channel (a directory or a pattern): its files, each hashed, in
+  // name order; the record's SHA-256 is that of the lines "name SHA-256" (names relative to the
+  // path given), its size their total, so that a changed, added or removed wave changes it.
+  if (const std::vector<std::string> files = detail::asylum_channel_files(path); !files.empty()) {
+    Sha256 list;
+    const std::filesystem::path base = path.find_first_of("*?[") == std::string::npos
+                                           ? std::filesystem::path(path)
+                                           : std::filesystem::path(path).parent_path();
+    for (const std::string& f : files) {
+      const InputRecord one = record_file(f);
+      if (!one.error.empty()) {
+        r.error = one.error;
+        r.size = 0;
+        return r;
+      }
+      const std::string line = std::filesystem::path(f).lexically_relative(base).string() + " " +
+                               one.sha256 + "\n";
+      list.update(line.data(), line.size());
+      r.size += one.size;
+    }
+    r.sha256 = list.hex();
+    return r;
+  }
   r.error = detail::not_a_file(path);
   if (!r.error.empty()) return r;
   const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));

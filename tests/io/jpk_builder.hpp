@@ -3,7 +3,11 @@
 // that include it link libzip.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
+#include <cstdio>
+#include <filesystem>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -176,6 +180,72 @@ inline std::string igor_wave(const std::string& note, int rows = 6) {
       put(64 + 320 + (c * static_cast<std::size_t>(rows) + static_cast<std::size_t>(r)) * 8, &v, 8);
     }
   return b + note + labels;
+}
+
+/// An Igor binary wave v5 (little-endian, float32) of any shape: `dims` (0 where unused), the
+/// wave's name, per-dimension index labels (each dimension's own label left empty) and its
+/// values column-major; the layout igor_wave.cpp reads and Asylum writes its map exports in.
+inline std::string igor_wave_of(const std::string& name, std::array<int, 4> dims, const std::vector<std::vector<std::string>>& labels,
+                                const std::vector<float>& values, const std::string& note, double row_step = 1e-3) {
+  std::string label_bytes;
+  std::int32_t label_sizes[4] = {0, 0, 0, 0};
+  for (std::size_t d = 0; d < labels.size() && d < 4; ++d) {
+    if (labels[d].empty()) continue;
+    std::string block(32 * (labels[d].size() + 1), '\0');
+    for (std::size_t i = 0; i < labels[d].size(); ++i)
+      std::memcpy(&block[32 * (i + 1)], labels[d][i].data(), std::min<std::size_t>(31, labels[d][i].size()));
+    label_sizes[d] = static_cast<std::int32_t>(block.size());
+    label_bytes += block;
+  }
+  const std::size_t data_bytes = values.size() * 4, wfm = 320 + data_bytes;
+  std::string b(64 + wfm, '\0');
+  auto put = [&](std::size_t at, const void* v, std::size_t n) { std::memcpy(&b[at], v, n); };
+  const std::int16_t version = 5, type = 2;
+  const std::int32_t wfm_size = static_cast<std::int32_t>(wfm), note_size = static_cast<std::int32_t>(note.size());
+  put(0, &version, 2);
+  put(4, &wfm_size, 4);
+  put(12, &note_size, 4);
+  for (int d = 0; d < 4; ++d) put(36 + 4 * static_cast<std::size_t>(d), &label_sizes[d], 4);
+  put(64 + 16, &type, 2);
+  std::memcpy(&b[64 + 28], name.data(), std::min<std::size_t>(31, name.size()));
+  for (int d = 0; d < 4; ++d) put(64 + 68 + 4 * static_cast<std::size_t>(d), &dims[static_cast<std::size_t>(d)], 4);
+  put(64 + 84, &row_step, 8);
+  put(64 + 320, values.data(), data_bytes);
+  return b + note + label_bytes;
+}
+
+/// An Asylum force map of 3 points x 2 lines exported one wave per channel per point, laid out
+/// as SOFA's public data are, under `root`: LineLLLL/LineLLLLPointPPPP{Defl,ZSnsr}.ibw (with
+/// `folders`, else flat), 9 float32 rows each (Defl = (r + 1 + line) nm, ZSnsr = (100 - r +
+/// point) nm; notes XLVDT = point um, YLVDT = 2 line um, Indexes 0,3,6,8), and with `with_image`
+/// the map image ForceMap01.ibw beside the folders: SpringConstant 0.5, InvOLS 3.5e-8, a 4 x 2 um
+/// scan offset by (1, -1) um, FMapScanPoints 3, FMapScanLines 2, ForceMapImage:1.
+inline void write_asylum_map_export(const std::string& root, bool with_image, bool folders = true) {
+  constexpr int points = 3, lines = 2, rows = 9;
+  const auto put = [](const std::string& path, const std::string& bytes) {
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    std::ofstream(path, std::ios::binary) << bytes;
+  };
+  for (int line = 0; line < lines; ++line)
+    for (int point = 0; point < points; ++point)
+      for (const std::string chan : {"Defl", "ZSnsr"}) {
+        char base[64];
+        std::snprintf(base, sizeof base, "Line%04dPoint%04d", line, point);
+        std::vector<float> v;
+        for (int r = 0; r < rows; ++r)
+          v.push_back(chan == "Defl" ? static_cast<float>((r + 1 + line) * 1e-9) : static_cast<float>((100 - r + point) * 1e-9));
+        const std::string note = "XLVDT:" + std::to_string(1e-6 * point) + "\rYLVDT:" + std::to_string(2e-6 * line) +
+                                 "\rIndexes:0,3,6,8,\r";
+        const std::string dir = folders ? root + "/Line" + std::string(base + 4, 4) : root;
+        put(dir + "/" + base + chan + ".ibw", igor_wave_of(base + chan, {rows, 0, 0, 0}, {{}, {chan}}, v, note, 5e-4));
+      }
+  if (with_image) {
+    const std::string note = "ScanSize: 4e-06\rFastScanSize: 4e-06\rSlowScanSize: 2e-06\rXOffset: 1e-06\rYOffset: -1e-06\r"
+                             "ScanAngle: 0\rInvOLS: 3.5e-08\rSpringConstant: 0.5\rFMapScanPoints: 3\rFMapScanLines: 2\r"
+                             "ForceMapImage:1\rVersion: 120804+2130\r";
+    put(root + "/ForceMap01.ibw", igor_wave_of("ForceMap01", {points, lines, 2, 0}, {{}, {}, {"MapHeight", "MapAdhesion"}},
+                                               std::vector<float>(points * lines * 2, 1e-7f), note));
+  }
 }
 
 }  // namespace test
