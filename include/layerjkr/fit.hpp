@@ -178,7 +178,8 @@ struct FitSummary {
   double initial_cost = 0.0, final_cost = 0.0;  ///< Ceres costs (dimensionless)
   std::size_t points = 0;             ///< samples on the branch
   std::size_t points_in_contact = 0;  ///< of which the model puts in contact
-  /// True only when every free parameter is identifiable (ParameterEstimate::identifiable).
+  /// True only when every free parameter is identifiable (ParameterEstimate::identifiable) and
+  /// the residuals are noise (residual_structure false).
   bool identifiable = false;
   /// False when identifiability could not be decided (the covariance failed or was not
   /// computed): then `identifiable` is false and identifiability_reason says why.
@@ -210,6 +211,17 @@ struct FitSummary {
   /// The measured pull-off force [N]: the lowest retract force minus the fitted baseline P0
   /// (NaN without retract samples).
   double pull_off_force = std::numeric_limits<double>::quiet_NaN();
+  /// The data's noise [N]: 1.4826 MAD of the force's second differences in acquisition order,
+  /// divided by sqrt(6) (a smooth curve cancels; white noise of sigma gives sigma).
+  double noise = std::numeric_limits<double>::quiet_NaN();
+  /// A runs test of the residuals' signs in acquisition order (Wald-Wolfowitz): the number of
+  /// runs as a z-score against noise's expectation, NaN with fewer than 20 fitted samples.
+  /// Below -4 with an rms residual above 1.5 x noise the residuals have structure: the model
+  /// does not describe the data, which a warning says and `identifiable` then never claims.
+  double runs_z = std::numeric_limits<double>::quiet_NaN();
+  /// The residuals are not noise (runs_z, or an rms residual above 3 x noise): the model does not
+  /// describe the data; `identifiable` is then false whatever the parameters' error bars say.
+  bool residual_structure = false;
   double solve_seconds = 0.0;
   /// The contact point: method, value and error, and the samples the ranges kept.
   ContactPointReport contact_point;

@@ -210,11 +210,13 @@ def test_offline_click_arrow_keys_and_status_filter(report, browser, tmp_path):
     def markers():  # the status markers drawn over the map, by trace name
         return browser.execute_script(
             "return document.getElementById('map').data.slice(1, -1).map(t => [t.name, t.x.length])")
-    failed = sum(1 for i in in_view if qualities[i] == "failed")
-    assert markers() == [["failed (%d)" % failed, failed]]
+    counts = {q: sum(1 for i in in_view if qualities[i] == q) for q in ("warning", "not identifiable", "not converged",
+                                                                         "failed")}
+    assert markers() == [["%s (%d)" % (q, n), n] for q, n in counts.items() if n]
+    failed = counts["failed"]
     browser.find_element(By.ID, "show-failed").click()
-    assert markers() == [] and browser.execute_script("return window.layerjkr.state().shown") == \
-        len(in_view) - ok_count - failed
+    assert markers() == [["%s (%d)" % (q, n), n] for q, n in counts.items() if n and q != "failed"]
+    assert browser.execute_script("return window.layerjkr.state().shown") == len(in_view) - ok_count - failed
     browser.find_element(By.ID, "show-failed").click()
     browser.find_element(By.ID, "show-ok").click()
     assert browser.execute_script("return window.layerjkr.state().shown") == len(in_view)

@@ -189,6 +189,7 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   out.excluded_count = static_cast<std::size_t>(std::count(excluded.begin(), excluded.end(), true));
   detail::assess_uncertainty(run, ev, map, x, options, data, &out);
   detail::explain_no_move(run, data, map, &out);
+  detail::diagnose_residuals(data, force_span, &out);
   for (const auto& note : model->notes()) out.warnings.push_back(note);  // after the fit: a grid may refine
   for (const auto& note : model->notes_at(physical_at_x())) out.warnings.push_back(note);
   const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;

@@ -17,14 +17,6 @@ double median(std::vector<double> v) {
   return *mid;
 }
 
-namespace {
-
-// The fewest samples a baseline and its noise are taken from.
-constexpr std::size_t kMinBaselineSamples = 3;
-
-// Noise of samples on a smooth curve, from the MAD of their second differences in acquisition
-// order: a trend (a necking tail, the unloading curve itself) cancels, white noise of sigma
-// gives differences of sigma sqrt(6). 0 for fewer than 3 samples.
 double second_difference_noise(const std::vector<double>& P, const std::vector<std::size_t>& idx) {
   if (idx.size() < 3) return 0.0;
   std::vector<double> d2;
@@ -34,6 +26,11 @@ double second_difference_noise(const std::vector<double>& P, const std::vector<s
   for (auto& v : d2) v = std::abs(v - m);
   return kMadToSigma * median(d2) / std::sqrt(6.0);
 }
+
+namespace {
+
+// The fewest samples a baseline and its noise are taken from.
+constexpr std::size_t kMinBaselineSamples = 3;
 
 }  // namespace
 

@@ -22,6 +22,18 @@ constexpr double kSignificantSigmas = 5.0;
 /// ...or, for noiseless data, this fraction of the force span.
 constexpr double kSignificantForceFraction = 1e-6;
 
+/// Noise [N] of samples on a smooth curve, from the MAD of their second differences in
+/// acquisition order (samples idx of P): a trend (a necking tail, the unloading curve itself)
+/// cancels, white noise of sigma gives differences of sigma sqrt(6). 0 for fewer than 3 samples.
+double second_difference_noise(const std::vector<double>& P, const std::vector<std::size_t>& idx);
+
+/// Whether the fit's residuals look like noise (fit_diagnosis.cpp): a runs test of their signs in
+/// acquisition order and their rms against the data's own second-difference noise, into
+/// out->runs_z and out->noise. Residuals with structure (far fewer runs than noise gives, and an
+/// rms well above the noise) mean the model does not describe the data: a warning saying so, and
+/// the fit is not called identifiable.
+void diagnose_residuals(const FitData& data, double force_span, FitSummary* out);
+
 /// The samples of options.branch, with their scales. Throws InputError for fewer samples
 /// than parameters, constant delta or P, or no contact region.
 FitData select_fit_data(const CurveData& curve, const FitOptions& options, double* span,

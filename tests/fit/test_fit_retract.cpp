@@ -49,11 +49,12 @@ void check_consistent(const FitSummary& s) {
     if (!bar) CHECK_FALSE(e.reason.empty());
     all = all && e.identifiable;
   }
-  CHECK(s.identifiable == all);
+  CHECK(s.identifiable == (all && !s.residual_structure));
   if (!s.identifiable) CHECK_FALSE(s.identifiability_reason.empty());
   if (s.identifiable) CHECK(s.identifiability_known);
   const std::string report = s.brief_report();
-  CHECK((report.find("identifiable: yes") != std::string::npos) == all);
+  CHECK((report.find("identifiable: yes") != std::string::npos) == (all && !s.residual_structure));
+  if (s.residual_structure) CHECK(report.find("the residuals are not noise") != std::string::npos);
 }
 
 // The deviance 2 (C - C0) / s^2 of the fit with w fixed in the scene at w_fixed, against the fit
@@ -287,6 +288,9 @@ TEST_CASE("real AFM retracts: every report is consistent, load or grips control"
       INFO(stem << " " << to_string(control));
       check_consistent(s);
       CHECK(std::isfinite(s[FitParameter::P0].standard_error));
-      if (control == RetractControl::fixed_grips) CHECK(s.identifiable);
+      // Under grips every parameter has its error bar (the real retracts' residuals show the
+      // model's limits - viscoelastic tails - so the fit itself may not be called identifiable).
+      if (control == RetractControl::fixed_grips)
+        for (const auto& e : s.parameters) CHECK(e.identifiable);
     }
 }

@@ -1,0 +1,64 @@
+// Whether a fit's residuals look like noise (fit_steps.hpp, diagnose_residuals).
+#include <cmath>
+#include <cstdio>
+
+#include "fit_steps.hpp"
+
+namespace layerjkr::detail {
+namespace {
+
+// Far fewer runs than noise gives: z below this (a one-sided p of 3e-5).
+constexpr double kStructuredRunsZ = -4.0;
+// ...and residuals larger than the noise by this factor: a misfit that matters.
+constexpr double kStructuredRmsOverNoise = 1.5;
+// Residuals this many times the noise are a misfit whatever their signs (a few samples far off,
+// as a retract's tail fitted under the wrong control): chi^2 / N = 9.
+constexpr double kMisfitRmsOverNoise = 3.0;
+// Residuals below this fraction of the force span are rounding: no structure to speak of.
+constexpr double kNumericalFloor = 1e-9;
+constexpr std::size_t kMinRunsSamples = 20;
+
+}  // namespace
+
+void diagnose_residuals(const FitData& data, double force_span, FitSummary* out) {
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < data.P.size(); ++i)
+    if (data.sqrt_weight[i] > 0.0) kept.push_back(i);
+  out->noise = second_difference_noise(data.P, kept);
+  std::size_t runs = 0, above = 0, below = 0;
+  int last = 0;
+  for (std::size_t i : kept) {
+    const double r = out->P[i] - out->P_fit[i];
+    const int s = r > 0.0 ? 1 : r < 0.0 ? -1 : 0;
+    if (s == 0) continue;
+    (s > 0 ? above : below) += 1;
+    if (s != last) ++runs;
+    last = s;
+  }
+  const double n = static_cast<double>(above + below);
+  if (above + below < kMinRunsSamples || above == 0 || below == 0) return;
+  const double mean = 2.0 * static_cast<double>(above) * static_cast<double>(below) / n + 1.0;
+  const double var = (mean - 1.0) * (mean - 2.0) / (n - 1.0);
+  if (!(var > 0.0)) return;
+  out->runs_z = (static_cast<double>(runs) - mean) / std::sqrt(var);
+  const double ratio = out->rms_residual / out->noise;
+  const bool above_floor = out->rms_residual > kNumericalFloor * force_span;
+  const bool runs_few = out->runs_z < kStructuredRunsZ && ratio > kStructuredRmsOverNoise;
+  if (!above_floor || !(runs_few || ratio > kMisfitRmsOverNoise)) return;
+  char what[320];
+  std::snprintf(what, sizeof what,
+                "the residuals are not noise: their rms %.3g N is %.3g times the data's noise %.3g N, with %zu runs of "
+                "signs where noise would give %.0f +- %.0f (z = %.3g)",
+                out->rms_residual, ratio, out->noise, runs, mean, std::sqrt(var), out->runs_z);
+  out->residual_structure = true;
+  out->warnings.push_back(std::string(what) + ": the model does not describe these data (check the model, the "
+                                              "retract's control, the branch, the baseline); no error bar is a "
+                                              "statement about the sample");
+  if (out->identifiable || out->identifiability_reason.empty()) {
+    out->identifiable = false;
+    out->identifiability_known = true;
+    out->identifiability_reason = std::string("the model does not describe the data (") + what + ")";
+  }
+}
+
+}  // namespace layerjkr::detail
