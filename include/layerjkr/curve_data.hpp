@@ -14,6 +14,8 @@
 //                                         P = k * deflection_sign*d  (needs spring_constant)
 //   z,force[,weight][,segment]            piezo and force (AFM Workshop, lab scripts):
 //                                         delta = z_sign*z - P/k, P = force (needs spring_constant)
+//   P,a[,weight][,segment]                a JKR rig's load and contact radius, no displacement
+//                                         (delta stays empty: a fit of P against a)
 //   curve,segment,force,height,tip_position  `layerjkr export` of an instrument file: height is
 //                                         informational; a file of several curves needs
 //                                         CsvOptions::curve
@@ -32,7 +34,9 @@ namespace layerjkr {
 
 /// A measured force curve in SI units.
 struct CurveData {
-  std::vector<double> delta;   ///< approach [m], arbitrary offset
+  /// approach [m], arbitrary offset; empty for (P, a) data - a rig's load against its measured
+  /// contact radius, fitted as P(a) without a displacement (then `a` is required)
+  std::vector<double> delta;
   std::vector<double> P;       ///< force [N], positive = repulsive
   std::vector<double> a;       ///< contact radius [m] (empty = not measured)
   std::vector<double> weight;  ///< relative weights > 0 (empty = all 1); a fit divides them by the largest, so only their ratios matter
@@ -44,14 +48,17 @@ struct CurveData {
   /// different copies of a header key it used.
   std::vector<std::string> notes;
 
-  std::size_t size() const { return delta.size(); }
+  std::size_t size() const { return P.size(); }
+  /// True for (P, a) data: no displacement, the contact radius measured at every sample.
+  bool radius_only() const { return delta.empty() && !a.empty(); }
 
   /// Throws InputError naming the source, the column and the row unless all columns
   /// have equal length, values are finite, a >= 0, weight > 0 and segment in {0, 1}.
   void validate() const;
 
   /// Indices of the samples on `branch`, in acquisition order. Without a segment
-  /// column the curve is split at its largest delta (approach up to and including it).
+  /// column the curve is split at its largest delta (approach up to and including it); (P, a)
+  /// data without one are all loading (approach).
   std::vector<std::size_t> select(Branch branch) const;
 
   /// Per sample: true on the retract branch (the rule select() uses). One pass.

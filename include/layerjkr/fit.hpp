@@ -68,7 +68,11 @@ struct FitOptions {
   /// What controls the retract. Under a cantilever of stiffness k the tip follows the adhesive
   /// branch beyond the load-controlled pull-off until dP/d delta = -k, then jumps free; under
   /// load control it jumps at the pull-off, under fixed grips at the minimum of delta.
-  /// `automatic` uses a cantilever where its stiffness is known, else load control;
+  /// `automatic` uses a cantilever where its stiffness is known, else load control - or fixed
+  /// grips where the data show it: when the load-controlled fit leaves retract samples it lets go
+  /// of in contact in the data (excluded, or residuals that are not noise), the fit is redone under
+  /// fixed grips and kept if it follows every sample better (a JKR rig unloading under
+  /// displacement control past the force minimum); a notice says which and why;
   /// `cantilever` requires the stiffness (the fit throws InputError naming the curve without it).
   RetractControl retract_control = RetractControl::load;
   /// The cantilever's stiffness [N/m], finite and > 0; nullopt: the curve's own
@@ -79,6 +83,11 @@ struct FitOptions {
   /// not JKR: they are excluded from the fit, counted and reported (FitSummary::excluded).
   /// 0 keeps every sample.
   double exclusion_sigmas = 3.0;
+  /// The noise of each fitted column when a curve carries measured contact radii (delta,P,a):
+  /// force [N] and radius [m], finite and > 0; unset: estimated from the data (the second
+  /// differences in acquisition order). Each column's residuals are divided by its own noise, so
+  /// the two weigh what they measure, whatever their units or spans.
+  std::optional<double> force_noise, radius_noise;
   /// Baseline::tilt also fits a linear tilt of the baseline, P0 + slope * delta, with the slope
   /// taken by least squares from the samples the fitted model puts off contact (never from
   /// excluded ones); the data are detilted and refitted once (FitSummary::baseline_slope).
@@ -211,14 +220,19 @@ struct FitSummary {
   /// The measured pull-off force [N]: the lowest retract force minus the fitted baseline P0
   /// (NaN without retract samples).
   double pull_off_force = std::numeric_limits<double>::quiet_NaN();
-  /// The data's noise [N]: 1.4826 MAD of the force's second differences in acquisition order,
-  /// divided by sqrt(6) (a smooth curve cancels; white noise of sigma gives sigma).
+  /// The data's noise [N]: 1.4826 MAD of the force's third differences in acquisition order,
+  /// divided by sqrt(20) (a smooth curve cancels; white noise of sigma gives sigma).
   double noise = std::numeric_limits<double>::quiet_NaN();
   /// A runs test of the residuals' signs in acquisition order (Wald-Wolfowitz): the number of
   /// runs as a z-score against noise's expectation, NaN with fewer than 20 fitted samples.
   /// Below -4 with an rms residual above 1.5 x noise the residuals have structure: the model
   /// does not describe the data, which a warning says and `identifiable` then never claims.
   double runs_z = std::numeric_limits<double>::quiet_NaN();
+  /// With measured contact radii: the noise each column's residuals were divided by - force [N]
+  /// and radius [m] - and whether each was given (FitOptions::force_noise, radius_noise) or
+  /// estimated; NaN without radii.
+  double force_noise = std::numeric_limits<double>::quiet_NaN(), radius_noise = std::numeric_limits<double>::quiet_NaN();
+  bool force_noise_given = false, radius_noise_given = false;
   /// The residuals are not noise (runs_z, or an rms residual above 3 x noise): the model does not
   /// describe the data; `identifiable` is then false whatever the parameters' error bars say.
   bool residual_structure = false;

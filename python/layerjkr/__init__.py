@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import contextlib
 import json
+import math
 import os
 import sys
 import tempfile
@@ -689,7 +690,9 @@ class FitResult:
                                                      "points_in_contact", "identifiable", "identifiability_known",
                                                      "identifiability_reason", "unidentifiable", "no_move_reason",
                                                      "warnings", "notices", "initial_cost", "final_cost",
-                                                     "solve_seconds", "contact_point")}
+                                                     "solve_seconds", "contact_point", "noise", "runs_z",
+                                                     "residual_structure", "force_noise", "radius_noise",
+                                                     "force_noise_given", "radius_noise_given")}
         self._params = {p.name: _Parameter(p.value, p.standard_error, p.initial, p.at_bound, p.identifiable,
                                               p.upper_bound, p.reason)
                         for p in s.parameters}
@@ -905,6 +908,9 @@ class FitResult:
             "identifiability_reason": f["identifiability_reason"],
             "unidentifiable": list(f["unidentifiable"]), "no_move_reason": f["no_move_reason"],
             "warnings": list(f["warnings"]), "notices": list(f["notices"]),
+            "noise": None if not math.isfinite(f["radius_noise"]) else {
+                "P": f["force_noise"], "P_given": f["force_noise_given"], "a": f["radius_noise"],
+                "a_given": f["radius_noise_given"]},
             "contact_point": {k: _finite_or_none(v) if isinstance(v, float) else v
                               for k, v in f["contact_point"].items()},
         }

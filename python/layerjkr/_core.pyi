@@ -158,6 +158,13 @@ class FitSummary:
     def warnings(self) -> List[str]: ...
     @property
     def notices(self) -> List[str]: ...
+    noise: float
+    runs_z: float
+    residual_structure: bool
+    force_noise: float
+    radius_noise: float
+    force_noise_given: bool
+    radius_noise_given: bool
     @property
     def delta(self) -> npt.NDArray[np.float64]: ...
     @property

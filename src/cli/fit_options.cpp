@@ -108,6 +108,9 @@ Prepared prepare_options(const FitArguments& a) {
       parse_range(a.indentation_range, "--indentation-range", -inf, inf, "MIN < MAX, finite, in m");
   p.options.force_range = parse_range(a.force_range, "--force-range", 0.0, 1.0, "0 <= MIN < MAX <= 1 (fractions)");
   p.options.baseline_window = parse_range(a.baseline_window, "--baseline-window", -inf, inf, "MIN < MAX, finite, in m");
+  // Given in the CSV's units, like the columns they describe.
+  if (a.force_noise != 0.0) p.options.force_noise = a.force_noise * p.csv.force_unit;
+  if (a.radius_noise != 0.0) p.options.radius_noise = a.radius_noise * p.csv.length_unit;
   try {
     p.options.validate();
     p.csv.validate();
@@ -149,6 +152,10 @@ void add_fit_options(CLI::App& c, FitArguments& a) {
                "MIN:MAX [m]: fit the approach samples whose indentation from the contact point is in the range");
   c.add_option("--force-range", a.force_range,
                "MIN:MAX: approach samples by force, as fractions of the largest force above the baseline (0 <= MIN < MAX <= 1)");
+  c.add_option("--force-noise", a.force_noise,
+               "With measured contact radii (delta,P,a): the force's noise [force unit]; default estimated from the data");
+  c.add_option("--radius-noise", a.radius_noise,
+               "With measured contact radii: the radius's noise [length unit]; default estimated from the data");
   c.add_option("--baseline-window", a.baseline_window,
                "MIN:MAX [m]: the delta range of the baseline samples (default: the quarter with the smallest delta)");
 }

@@ -90,6 +90,7 @@ double ParameterMap::derivative(FitParameter q, const double* x) const {
 
 std::size_t FitData::residuals() const {
   std::size_t m = delta.size();
+  if (radius_driven) return m;  // the radius is the given, not a residual
   for (double v : a) m += std::isnan(v) ? 0 : 1;
   return m;
 }
@@ -100,7 +101,7 @@ CurveEvaluator::CurveEvaluator(const CurveModel& model, const ParameterMap& map,
   const std::size_t n = data.delta.size();
   row_.assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i)
-    row_[i + 1] = row_[i] + 1 + (data.a.empty() || std::isnan(data.a[i]) ? 0 : 1);
+    row_[i + 1] = row_[i] + 1 + (data.radius_driven || data.a.empty() || std::isnan(data.a[i]) ? 0 : 1);
   order_.resize(n);
   std::iota(order_.begin(), order_.end(), std::size_t{0});
   std::stable_sort(order_.begin(), order_.end(),
@@ -262,6 +263,25 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
   if (jacobian) J_.assign(m * n_free_, 0.0);
   contact_count_ = 0;
   const double F = map_.F, A = data_.a_scale;
+  if (data_.radius_driven) {  // (P, a) data: the force at each measured radius
+    for (std::size_t i = 0; i < data_.P.size(); ++i) {
+      const double a = data_.a[i], sw = data_.sqrt_weight[i];
+      double P = 0.0, d = 0.0;
+      if (jacobian) {
+        J dj, Pj;
+        model_.evaluate(J(a, kRadiusSlot), pj, &dj, &Pj);
+        P = Pj.a;
+        for (std::size_t j = 0; j < n_free_; ++j) J_[i * n_free_ + j] = sw * (Pj.v[j] + P0j.v[j]) / F;
+      } else {
+        curve(p, a, &d, &P, nullptr, nullptr);
+      }
+      if (!std::isfinite(P)) return false;
+      P_fit_[i] = P0 + P;
+      r_[i] = sw * (P0 + P - data_.P[i]) / F;
+    }
+    contact_count_ = data_.P.size();
+    return true;
+  }
 
   for (int branch = 0; branch < 2; ++branch) {
     const bool retract = branch == 1;

@@ -55,6 +55,10 @@ struct FitData {
   /// the noise: the adhesive signal the start found (find_start).
   double dip = 0.0;
   bool adhesive = false;
+  /// (P, a) data - a rig's load and contact radius, no displacement: `delta` holds the measured
+  /// radius (an order of depth for the steps that sort by it), each sample's one residual is the
+  /// model's force at its radius against the measured force.
+  bool radius_driven = false;
   std::size_t residuals() const;
 };
 

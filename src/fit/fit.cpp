@@ -93,14 +93,70 @@ const ParameterEstimate& FitSummary::operator[](FitParameter p) const {
   throw Error(std::string("FitSummary: parameter ") + to_string(p) + " was not free in this fit");
 }
 
+namespace {
+
+FitSummary fit_once(const CurveData& curve, const Scene& scene, const FitOptions& options) {
+  FitSummary out = detail::steered_contact(options) ? detail::fit_steered(curve, scene, options)
+                                                    : detail::fit_core(curve, scene, options, false);
+  if (!detail::steered_contact(options)) detail::report_fitted_contact(curve, options, &out);
+  return out;
+}
+
+// Sum of squared force residuals over every sample, excluded ones too [N^2].
+double total_misfit(const FitSummary& s) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < s.P.size(); ++i) sum += (s.P[i] - s.P_fit[i]) * (s.P[i] - s.P_fit[i]);
+  return sum;
+}
+
+// `automatic` control where no cantilever stiffness is known: load control, unless the retract
+// samples the load-controlled model lets go of stay in contact in the data (a JKR rig unloading
+// under displacement control past the force minimum): then fixed grips, where it follows every
+// sample better. The choice and its evidence are a notice.
+FitSummary fit_automatic(const CurveData& curve, const Scene& scene, const FitOptions& options) {
+  FitOptions o = options;
+  o.retract_control = RetractControl::load;
+  FitSummary load = fit_once(curve, scene, o);
+  if (!load.residual_structure && load.excluded_count == 0) return load;
+  o.retract_control = RetractControl::fixed_grips;
+  FitSummary grips;
+  try {
+    grips = fit_once(curve, scene, o);
+  } catch (const Error&) {
+    return load;
+  }
+  const double misfit_load = total_misfit(load), misfit_grips = total_misfit(grips);
+  const auto rms = [&](double m) {
+    return detail::short_number(std::sqrt(m / static_cast<double>(std::max<std::size_t>(1, load.P.size()))));
+  };
+  if (!(misfit_grips < misfit_load)) {
+    load.notices.push_back("retract control: load (no spring constant known); fixed grips followed the samples no "
+                           "better (rms " + rms(misfit_grips) + " N against " + rms(misfit_load) + " N)");
+    return load;
+  }
+  grips.notices.push_back("retract control: fixed grips, chosen from the data - the retract stays in contact past the "
+                          "force minimum, as under displacement control (rms over every sample " + rms(misfit_grips) +
+                          " N against " + rms(misfit_load) + " N under load control); --control load keeps load control");
+  return grips;
+}
+
+}  // namespace
+
 FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& options) {
   const auto t_begin = std::chrono::steady_clock::now();
   options.validate();
   curve.validate();
   if (!scene.profile) throw InputError("fit: the scene has no indenter profile");
-  FitSummary out = detail::steered_contact(options) ? detail::fit_steered(curve, scene, options)
-                                                    : detail::fit_core(curve, scene, options, false);
-  if (!detail::steered_contact(options)) detail::report_fitted_contact(curve, options, &out);
+  if (curve.radius_only() && detail::steered_contact(options))
+    throw InputError(curve.source + ": (P, a) data have no displacement: no contact point to find and no indentation "
+                                    "range to select (use contact_point fit and no ranges)");
+  const bool stiffness_known = options.cantilever_stiffness.value_or(curve.spring_constant) > 0.0;
+  const std::vector<bool> retract = curve.retract_mask();
+  const bool retract_fitted = options.branch != Branch::approach && !curve.radius_only() &&
+                              std::find(retract.begin(), retract.end(), true) != retract.end();
+  FitSummary out = options.retract_control == RetractControl::automatic && !stiffness_known && retract_fitted
+                       ? fit_automatic(curve, scene, options)
+                       : fit_once(curve, scene, options);
   out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   return out;
 }
@@ -111,11 +167,12 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   double span = 0.0, force_span = 0.0;
   FitData data = detail::select_fit_data(curve, options, &span, &force_span);
   detail::require_usable_loss_scale(options, force_span, curve.source);
+  FitSummary out;
+  detail::weigh_columns(options, force_span, data, &out);
   if (contact_given) {
     data.contact_given = true;
     data.baseline = 0.0;  // the data were shifted to the found baseline
   }
-  FitSummary out;
   detail::SceneParameters fixed;
   const ResolvedModel resolved = resolve_model(scene);
   const std::unique_ptr<CurveModel> model = detail::make_curve_model(scene, resolved, options, span, &fixed);
@@ -137,7 +194,12 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   const double k = control_stiffness(options, curve);
   data.cantilever = k > 0.0;
   CurveEvaluator ev(*model, map, data, k);
-  {
+  if (data.radius_driven) {
+    if (map.is_free(FitParameter::delta0))
+      throw InputError(curve.source + ": (P, a) data have no displacement, so no contact point delta0 to fit; free "
+                                      "the stiffness, w and P0 only");
+    detail::find_radius_start(data, map, ev, x);
+  } else {
     // A model solved per parameter vector has the same medium under JKR scanned instead.
     const CurveModel* start_model = model->start_model();
     if (start_model) {

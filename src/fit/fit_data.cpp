@@ -99,8 +99,9 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
   // changes nothing, and no product of weights overflows.
   double largest_weight = 0.0;
   for (std::size_t i : idx) largest_weight = std::max(largest_weight, curve.weight.empty() ? 1.0 : curve.weight[i]);
+  data.radius_driven = curve.radius_only();
   for (std::size_t i : idx) {
-    data.delta.push_back(curve.delta[i]);
+    data.delta.push_back(data.radius_driven ? curve.a[i] : curve.delta[i]);
     data.P.push_back(curve.P[i]);
     data.a.push_back(curve.a.empty() ? kNaN : curve.a[i]);
     data.sqrt_weight.push_back(curve.weight.empty() ? 1.0 : std::sqrt(curve.weight[i] / largest_weight));
@@ -120,8 +121,16 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
   const auto [pmin, pmax] = std::minmax_element(data.P.begin(), data.P.end());
   *span = *dmax - *dmin;
   *force_span = *pmax - *pmin;
-  if (!(*span > 0.0)) throw InputError(curve.source + ": delta is constant on the chosen branch; nothing to fit");
+  if (!(*span > 0.0))
+    throw InputError(curve.source + (data.radius_driven ? ": a" : ": delta") + " is constant on the chosen branch; nothing to fit");
   if (!(*force_span > 0.0)) throw InputError(curve.source + ": P is constant on the chosen branch; nothing to fit");
+  if (data.radius_driven) {  // every sample is in contact: no baseline; the noise from the trend's residue
+    std::vector<std::size_t> all(data.P.size());
+    std::iota(all.begin(), all.end(), std::size_t{0});
+    data.baseline = 0.0;
+    data.noise = second_difference_noise(data.P, all);
+    return data;
+  }
 
   {
     // The deepest samples must lie clearly above the lowest force: a loading curve rises

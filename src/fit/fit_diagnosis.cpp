@@ -1,6 +1,8 @@
 // Whether a fit's residuals look like noise (fit_steps.hpp, diagnose_residuals).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 
 #include "fit_steps.hpp"
 
@@ -17,14 +19,27 @@ constexpr double kMisfitRmsOverNoise = 3.0;
 // Residuals below this fraction of the force span are rounding: no structure to speak of.
 constexpr double kNumericalFloor = 1e-9;
 constexpr std::size_t kMinRunsSamples = 20;
+// The least noise a column's weight assumes, as a fraction of its span.
+constexpr double kNoiseFloor = 1e-6;
 
 }  // namespace
+
+double third_difference_noise(const std::vector<double>& v, const std::vector<std::size_t>& idx) {
+  if (idx.size() < 4) return 0.0;
+  std::vector<double> d3;
+  d3.reserve(idx.size() - 3);
+  for (std::size_t k = 3; k < idx.size(); ++k)
+    d3.push_back(v[idx[k]] - 3.0 * v[idx[k - 1]] + 3.0 * v[idx[k - 2]] - v[idx[k - 3]]);
+  const double m = median(d3);
+  for (double& x : d3) x = std::abs(x - m);
+  return kMadToSigma * median(d3) / std::sqrt(20.0);
+}
 
 void diagnose_residuals(const FitData& data, double force_span, FitSummary* out) {
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < data.P.size(); ++i)
     if (data.sqrt_weight[i] > 0.0) kept.push_back(i);
-  out->noise = second_difference_noise(data.P, kept);
+  out->noise = third_difference_noise(data.P, kept);
   std::size_t runs = 0, above = 0, below = 0;
   int last = 0;
   for (std::size_t i : kept) {
@@ -59,6 +74,27 @@ void diagnose_residuals(const FitData& data, double force_span, FitSummary* out)
     out->identifiability_known = true;
     out->identifiability_reason = std::string("the model does not describe the data (") + what + ")";
   }
+}
+
+void weigh_columns(const FitOptions& options, double force_span, FitData& data, FitSummary* out) {
+  if (data.radius_driven || data.a.empty()) return;
+  std::vector<std::size_t> all(data.P.size()), with_a;
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  std::vector<double> a;
+  for (std::size_t i = 0; i < data.a.size(); ++i)
+    if (!std::isnan(data.a[i])) a.push_back(data.a[i]);
+  with_a.resize(a.size());
+  std::iota(with_a.begin(), with_a.end(), std::size_t{0});
+  double a_max = 0.0;
+  for (double v : a) a_max = std::max(a_max, v);
+  // Floors: a noiseless (synthetic) column is taken as resolved to a millionth of its span, so
+  // that neither swamps the other (rounding-level noise would make the solve ill-conditioned).
+  out->force_noise = options.force_noise.value_or(std::max(third_difference_noise(data.P, all), kNoiseFloor * force_span));
+  out->radius_noise = options.radius_noise.value_or(std::max(third_difference_noise(a, with_a), kNoiseFloor * a_max));
+  out->force_noise_given = options.force_noise.has_value();
+  out->radius_noise_given = options.radius_noise.has_value();
+  // Force residuals are divided by the force span: radius ones by sigma_a x span / sigma_P.
+  data.a_scale = out->radius_noise * force_span / out->force_noise;
 }
 
 }  // namespace layerjkr::detail

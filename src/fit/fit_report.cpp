@@ -33,6 +33,10 @@ void FitOptions::validate() const {
   if (!(window_fraction > 0.0 && window_fraction <= 1.0))
     throw DomainError(fn, "window_fraction", window_fraction, "(0, 1]");
   detail::validate_contact_options(*this);
+  if (force_noise && !(*force_noise > 0.0 && std::isfinite(*force_noise)))
+    throw DomainError(fn, "force_noise [N]", *force_noise, "finite and > 0 (unset: estimated)");
+  if (radius_noise && !(*radius_noise > 0.0 && std::isfinite(*radius_noise)))
+    throw DomainError(fn, "radius_noise [m]", *radius_noise, "finite and > 0 (unset: estimated)");
   if (!(exclusion_sigmas >= 0.0) || !std::isfinite(exclusion_sigmas))
     throw DomainError(fn, "exclusion_sigmas", exclusion_sigmas, "finite and >= 0 (0: keep every sample)");
 }
@@ -51,6 +55,9 @@ std::string FitSummary::brief_report() const {
     o << "  excluded " << excluded_count << " retract samples after the model's jump that had not "
       << "returned to the baseline (not JKR: peeling, necking, viscoelastic tail)\n";
   o << detail::contact_point_line(contact_point);
+  if (std::isfinite(radius_noise))
+    o << "  noise: P " << force_noise << " N (" << (force_noise_given ? "given" : "estimated") << "), a " << radius_noise
+      << " m (" << (radius_noise_given ? "given" : "estimated") << "): each column's residuals weighed by its own noise\n";
   if (!no_move_reason.empty()) o << "  did not move from the start: " << no_move_reason << "\n";
   for (std::size_t j = 0; j < parameters.size(); ++j) {
     const ParameterEstimate& e = parameters[j];

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Dense>
+
 #include "fit_steps.hpp"
 #include "layerjkr/error.hpp"
 
@@ -216,6 +218,57 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
     map.s_scale = std::sqrt(std::exp(0.5 * (lo + hi)));
     x[static_cast<std::size_t>(map.index(FitParameter::w))] = 1.0;
   }
+}
+
+void find_radius_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std::vector<double>& x) {
+  CurveParameters<double> p;
+  double d0 = 0.0, P0 = 0.0;
+  map.physical(x.data(), &p, &d0, &P0);
+  const bool free_k = map.is_free(FitParameter::K) || map.is_free(FitParameter::E);
+  const bool free_w = map.is_free(FitParameter::w), free_P0 = map.is_free(FitParameter::P0);
+  // Columns h (the non-adhesive force), g (the adhesive term at w = 1) and 1; unknowns k, c, P0.
+  const double w_fixed = p.s * p.s;
+  Eigen::MatrixXd A(static_cast<Eigen::Index>(data.P.size()), 3);
+  Eigen::VectorXd b(static_cast<Eigen::Index>(data.P.size()));
+  for (std::size_t i = 0; i < data.P.size(); ++i) {
+    double d = 0.0, h = 0.0, q = 0.0;
+    p.s = 0.0;
+    ev.curve(p, data.a[i], &d, &h, nullptr, nullptr);
+    p.s = 1.0;
+    ev.curve(p, data.a[i], &d, &q, nullptr, nullptr);
+    const auto r = static_cast<Eigen::Index>(i);
+    const double sw = data.sqrt_weight[i];
+    A(r, 0) = sw * h;
+    A(r, 1) = -sw * (h - q);
+    A(r, 2) = sw;
+    // What is not free is known: moved to the right-hand side.
+    b(r) = sw * (data.P[i] - (free_P0 ? 0.0 : P0) - (free_k ? 0.0 : h) + (free_w ? 0.0 : std::sqrt(w_fixed) * (h - q)));
+  }
+  std::vector<Eigen::Index> cols;
+  if (free_k) cols.push_back(0);
+  if (free_w) cols.push_back(1);
+  if (free_P0) cols.push_back(2);
+  double k = 1.0, c = std::sqrt(w_fixed), P0_start = free_P0 ? 0.0 : P0;
+  if (!cols.empty()) {
+    Eigen::MatrixXd M(A.rows(), static_cast<Eigen::Index>(cols.size()));
+    for (std::size_t j = 0; j < cols.size(); ++j) M.col(static_cast<Eigen::Index>(j)) = A.col(cols[j]);
+    const Eigen::VectorXd sol = M.colPivHouseholderQr().solve(b);
+    for (std::size_t j = 0; j < cols.size(); ++j) {
+      const double v = sol(static_cast<Eigen::Index>(j));
+      if (cols[j] == 0 && v > 0.0) k = v;
+      if (cols[j] == 1) c = std::max(v, 0.0);
+      if (cols[j] == 2) P0_start = v;
+    }
+  }
+  if (free_k) map.ref[static_cast<int>(map.is_free(FitParameter::K) ? FitParameter::K : FitParameter::E)] *= k;
+  if (free_P0) map.ref[static_cast<int>(FitParameter::P0)] = P0_start;
+  if (free_w) {
+    // c = sqrt(k w) at the reference stiffness; a w of zero starts just above its bound.
+    const double w = c * c / k;
+    map.s_scale = w > 0.0 ? std::sqrt(w) : map.s_scale;
+    x[static_cast<std::size_t>(map.index(FitParameter::w))] = w > 0.0 ? 1.0 : 1e-3;
+  }
+  data.adhesive = c > 0.0;
 }
 
 }  // namespace layerjkr::detail

@@ -27,6 +27,17 @@ constexpr double kSignificantForceFraction = 1e-6;
 /// cancels, white noise of sigma gives differences of sigma sqrt(6). 0 for fewer than 3 samples.
 double second_difference_noise(const std::vector<double>& P, const std::vector<std::size_t>& idx);
 
+/// With measured contact radii (not (P, a) data): each column's noise, given or estimated from
+/// its second differences, into out->force_noise / radius_noise, and data.a_scale set so that
+/// the radius residuals, like the force's, are in units of their own noise.
+void weigh_columns(const FitOptions& options, double force_span, FitData& data, FitSummary* out);
+
+/// Noise [N or m] of samples on a smooth curve from the MAD of their third differences in
+/// acquisition order (idx of v): a quadratic trend - curvature, unevenly spaced samples -
+/// cancels, white noise of sigma gives differences of sigma sqrt(20). 0 for fewer than 4 samples.
+/// The scale the fit's diagnosis and its column weights judge residuals against.
+double third_difference_noise(const std::vector<double>& v, const std::vector<std::size_t>& idx);
+
 /// Whether the fit's residuals look like noise (fit_diagnosis.cpp): a runs test of their signs in
 /// acquisition order and their rms against the data's own second-difference noise, into
 /// out->runs_z and out->noise. Residuals with structure (far fewer runs than noise gives, and an
@@ -58,6 +69,12 @@ bool unloading_contact_region(FitData& data, double force_span);
 /// data.contact (retract samples up to the observed pull-off). `source` names the curve.
 void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std::vector<double>& x,
                 const std::string& source);
+
+/// The start for (P, a) data (FitData::radius_driven): the JKR force at a radius is linear in
+/// the stiffness factor k and in sqrt(k w), P(a) = k P_H(a) - sqrt(k w) g(a) with g the adhesive
+/// term at w = 1 J/m^2 (and + P0 when free), so a linear least-squares solve over the samples gives
+/// both - no guess, no scan. Sets map's stiffness reference, s_scale, P0's reference and x's w slot.
+void find_radius_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std::vector<double>& x);
 
 class FitRun;
 

@@ -50,9 +50,10 @@ std::string shorten(std::string_view s) { return printable(s, 40); }
 }  // namespace
 
 void CurveData::validate() const {
-  const std::size_t n = delta.size();
+  const std::size_t n = P.size();
   auto fail = [&](const std::string& what) { throw InputError(source + ": " + what); };
-  if (P.size() != n) fail("columns delta and P differ in length");
+  if (delta.empty() && a.empty() && n > 0) fail("has forces but neither delta nor contact radii a");
+  if (!delta.empty() && delta.size() != n) fail("columns delta and P differ in length");
   if (!(spring_constant >= 0.0) || !std::isfinite(spring_constant))
     fail("spring constant " + format_double(spring_constant) + " N/m is invalid; valid range: finite and >= 0 (0: unknown)");
   if (!a.empty() && a.size() != n) fail("column a has " + std::to_string(a.size()) + " rows, not " + std::to_string(n));
@@ -61,7 +62,7 @@ void CurveData::validate() const {
   if (n == 0) fail("has no data rows");
   for (std::size_t i = 0; i < n; ++i) {
     const std::string row = " in row " + std::to_string(i + 1);
-    if (!std::isfinite(delta[i])) fail("delta = " + format_double(delta[i]) + row + " is not finite");
+    if (!delta.empty() && !std::isfinite(delta[i])) fail("delta = " + format_double(delta[i]) + row + " is not finite");
     if (!std::isfinite(P[i])) fail("P = " + format_double(P[i]) + row + " is not finite");
     if (!a.empty() && !(a[i] >= 0.0 && std::isfinite(a[i])))
       fail("a = " + format_double(a[i]) + row + " is invalid; valid range: finite and >= 0");
@@ -74,9 +75,10 @@ void CurveData::validate() const {
 
 std::vector<bool> CurveData::retract_mask() const {
   std::vector<bool> mask(size());
-  // Without a segment column the retract branch starts after the deepest sample.
+  // Without a segment column the retract branch starts after the deepest sample ((P, a) data:
+  // none, all loading).
   const std::size_t deepest =
-      static_cast<std::size_t>(std::max_element(delta.begin(), delta.end()) - delta.begin());
+      delta.empty() ? size() : static_cast<std::size_t>(std::max_element(delta.begin(), delta.end()) - delta.begin());
   for (std::size_t i = 0; i < size(); ++i) mask[i] = segment.empty() ? i > deepest : segment[i] == 1;
   return mask;
 }
@@ -131,6 +133,7 @@ struct Layout {
   std::vector<std::string> header;
   std::map<Column, std::size_t> where;
   bool raw = false;  // z,deflection or z,force
+  bool radius_only = false;  // P,a: a rig's load and contact radius, no displacement
   bool has(Column c) const { return where.count(c) > 0; }
 };
 
@@ -150,10 +153,12 @@ Layout read_layout(std::vector<std::string> header, const CsvOptions& options, c
   if (si_labelled && (options.length_unit != 1.0 || options.force_unit != 1.0))
     fail("the header labels its columns as SI (_m/_N) but non-SI units were requested");
   const int length_forms = int(l.has(Column::delta)) + int(l.has(Column::tip_position)) + int(l.has(Column::z));
-  if (length_forms != 1) {
+  l.radius_only = length_forms == 0 && l.has(Column::a) && l.has(Column::force);
+  if (length_forms != 1 && !l.radius_only) {
     std::string joined;
     for (const auto& h : header) joined += (joined.empty() ? "" : ",") + h;
-    fail("needs exactly one of the columns delta, tip_position, z (header: " + shorten(joined) + ")");
+    fail("needs exactly one of the columns delta, tip_position, z - or P with a, a rig's load and contact radius "
+         "(header: " + shorten(joined) + ")");
   }
   l.raw = l.has(Column::z);
   if (l.raw) {
@@ -168,7 +173,8 @@ Layout read_layout(std::vector<std::string> header, const CsvOptions& options, c
     if (l.has(Column::deflection)) fail("column deflection is only used with z");
     if (!l.has(Column::force)) fail("needs a force column (P or force)");
   }
-  if (l.has(Column::a) && !l.has(Column::delta)) fail("column a is only accepted with the delta,P form");
+  if (l.has(Column::a) && !l.has(Column::delta) && !l.radius_only)
+    fail("column a is only accepted with the delta,P form, or as P,a (a rig's load and contact radius)");
   if (l.has(Column::height) && !l.has(Column::tip_position))
     fail("column height (layerjkr export) is only accepted with tip_position");
   if (options.curve >= 0 && !l.has(Column::curve))
@@ -210,6 +216,8 @@ void append_row(const std::vector<double>& v, const Layout& l, const CsvOptions&
     const double dfl = options.deflection_sign * col(Column::deflection) * L;
     d.delta.push_back(options.z_sign * col(Column::z) * L - dfl);
     d.P.push_back(options.spring_constant * dfl);
+  } else if (l.radius_only) {
+    d.P.push_back(col(Column::force) * F);
   } else {
     d.delta.push_back(l.has(Column::delta) ? col(Column::delta) * L : -col(Column::tip_position) * L);
     d.P.push_back(col(Column::force) * F);
@@ -275,9 +283,9 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
   }
   if (options.curve < 0 && curves.size() > 1)
     fail("holds " + std::to_string(curves.size()) + " curves (column curve); select one (option curve = N)");
-  if (options.curve >= 0 && d.delta.empty())
+  if (options.curve >= 0 && d.P.empty())
     fail("has no rows of curve " + std::to_string(options.curve));
-  if (d.delta.empty()) fail("has a header but no data rows");
+  if (d.P.empty()) fail("has a header but no data rows");
   d.validate();
   require_acquisition_order(d, fail);
   return d;

@@ -158,15 +158,25 @@ TEST_CASE("the retract control: typed, with the curve's own spring constant by d
     o.cantilever_stiffness.reset();
   });
   CHECK(same_fit(automatic, given));
-  // Without any stiffness, auto falls back to load control, and cantilever refuses, naming the curve.
+  // Without any stiffness, auto fits under load control and, since samples it lets go of stay in
+  // contact here, under fixed grips too: it keeps the one that follows every sample better and
+  // says so; cantilever refuses, naming the curve.
   c.spring_constant = 0.0;
   c.source = "retract.csv";
   const FitSummary load = fit_retract(c, kK, 3.0, [](FitOptions& o) { o.retract_control = RetractControl::load; });
+  const FitSummary grips = fit_retract(c, kK, 3.0, [](FitOptions& o) { o.retract_control = RetractControl::fixed_grips; });
   const FitSummary fallback = fit_retract(c, kK, 3.0, [](FitOptions& o) {
     o.retract_control = RetractControl::automatic;
     o.cantilever_stiffness.reset();
   });
-  CHECK(same_fit(fallback, load));
+  const auto misfit = [](const FitSummary& s) {
+    double m = 0.0;
+    for (std::size_t i = 0; i < s.P.size(); ++i) m += (s.P[i] - s.P_fit[i]) * (s.P[i] - s.P_fit[i]);
+    return m;
+  };
+  CHECK(same_fit(fallback, misfit(grips) < misfit(load) ? grips : load));
+  REQUIRE_FALSE(fallback.notices.empty());
+  CHECK_THAT(fallback.notices.back(), Catch::Contains("retract control: "));
   INFO(given.brief_report() << load.brief_report());
   CHECK_FALSE(same_fit(load, given));
   CHECK_THROWS_WITH(fit_retract(c, kK, 3.0, [](FitOptions& o) { o.cantilever_stiffness.reset(); }),

@@ -48,6 +48,19 @@ TEST_CASE("JPK tip_position,force and raw z,deflection forms", "[csv]") {
   CHECK_THROWS_WITH(parse_curve_csv("z,deflection\n1,2\n", "t"), Catch::Contains("spring constant k [N/m]"));
 }
 
+TEST_CASE("P,a: a rig's load and contact radius without a displacement", "[csv]") {
+  CsvOptions o;
+  parse_units("um,mN", o);
+  const CurveData d = parse_curve_csv("P,a,segment\n0.5,200,0\n1.5,300,0\n-0.5,150,1\n", "rig", o);
+  CHECK(d.radius_only());
+  CHECK(d.size() == 3);
+  CHECK(d.delta.empty());
+  CHECK(d.a[1] == Approx(300e-6));
+  CHECK(d.P[2] == Approx(-0.5e-3));
+  CHECK(d.retract_mask() == std::vector<bool>{false, false, true});
+  CHECK_THROWS_WITH(parse_curve_csv("P,weight\n1,1\n", "t"), Catch::Contains("or P with a"));
+}
+
 TEST_CASE("z,force: the piezo and the force, the deflection force / k (AFM Workshop, lab scripts)", "[csv]") {
   CsvOptions o;
   o.spring_constant = 0.05;

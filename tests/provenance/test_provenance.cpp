@@ -122,6 +122,8 @@ TEST_CASE("every option survives the JSON round trip bit for bit", "[provenance]
   o.retract_control = RetractControl::cantilever;
   o.cantilever_stiffness = 0.1 + 0.2;
   o.exclusion_sigmas = 1.0 / 3.0;
+  o.force_noise = 1.0 / 7.0;
+  o.radius_noise = 2.0 / 7.0;
   o.baseline = Baseline::tilt;
   o.retract_window = RetractWindow::force_fraction;
   o.window_fraction = 0.7000000000000001;
@@ -141,7 +143,7 @@ TEST_CASE("every option survives the JSON round trip bit for bit", "[provenance]
   o.force_range = Interval{0.0, 1.0 / 3.0};
   o.baseline_window = Interval{-3e-6, -2.5e-6};
   const std::string text = to_json(o);
-  CHECK(nlohmann::json::parse(text).size() == 23);  // one key per field
+  CHECK(nlohmann::json::parse(text).size() == 25);  // one key per field
   const FitOptions b = fit_options_from_json(text);
   CHECK(b.free == o.free);
   CHECK(b.branch == o.branch);
@@ -149,6 +151,10 @@ TEST_CASE("every option survives the JSON round trip bit for bit", "[provenance]
   REQUIRE(b.cantilever_stiffness);
   CHECK(bits(*b.cantilever_stiffness) == bits(*o.cantilever_stiffness));
   CHECK(bits(b.exclusion_sigmas) == bits(o.exclusion_sigmas));
+  REQUIRE(b.force_noise);
+  REQUIRE(b.radius_noise);
+  CHECK(bits(*b.force_noise) == bits(*o.force_noise));
+  CHECK(bits(*b.radius_noise) == bits(*o.radius_noise));
   CHECK(b.baseline == o.baseline);
   CHECK(b.retract_window == o.retract_window);
   CHECK(bits(b.window_fraction) == bits(o.window_fraction));
