@@ -18,7 +18,7 @@ namespace {
 
 // The curve `fit` reads: a CSV file, or one curve of an instrument file (only that one is read).
 CurveData read_fit_data(const std::string& path, const Prepared& p) {
-  if (!is_instrument_file(path)) return read_curve_csv(path, p.csv);
+  if (!is_instrument_file(path) && !is_asylum_map_export(path)) return read_curve_csv(path, p.csv);
   const InstrumentReader reader(path);
   if (p.csv.curve < 0 && reader.size() > 1)
     throw InputError(path + ": holds " + std::to_string(reader.size()) +

@@ -59,6 +59,11 @@ struct FitData {
   /// radius (an order of depth for the steps that sort by it), each sample's one residual is the
   /// model's force at its radius against the measured force.
   bool radius_driven = false;
+  /// With a known spring constant k: d(deflection)/dz over the contact samples, deflection P/k
+  /// and piezo z = delta + P/k (1 where the sample does not deform, 0 where the lever does not
+  /// bend); NaN without k or with fewer than 5 samples clearly in contact.
+  double contact_slope = std::numeric_limits<double>::quiet_NaN();
+  double spring_constant = 0.0;  ///< [N/m] the curve's or the options', 0 if unknown
   std::size_t residuals() const;
 };
 

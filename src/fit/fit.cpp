@@ -95,6 +95,10 @@ const ParameterEstimate& FitSummary::operator[](FitParameter p) const {
 
 namespace {
 
+// A w this small a fraction of the data-driven start is at its bound, for the rescue below.
+constexpr double kWBoundFraction = 1e-12;
+constexpr int kRescueStarts = 8;
+
 FitSummary fit_once(const CurveData& curve, const Scene& scene, const FitOptions& options) {
   FitSummary out = detail::steered_contact(options) ? detail::fit_steered(curve, scene, options)
                                                     : detail::fit_core(curve, scene, options, false);
@@ -238,6 +242,16 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   run.solve();
   if (refine()) run.solve();
   run.try_extra_starts();
+  // w at its bound while the data's retract goes clearly below the baseline: the solve slid off
+  // the adhesion the data show - try again from more starts with w from the dip.
+  if (map.is_free(FitParameter::w) && data.adhesive &&
+      map.value(FitParameter::w, x.data()) <= kWBoundFraction * map.s_scale * map.s_scale) {
+    run.try_extra_starts(kRescueStarts, true);
+    const double w = map.value(FitParameter::w, x.data());
+    out.notices.push_back("w reached its bound 0 although the retract goes " + detail::short_number(-data.dip) +
+                          " N below the baseline: refitted from " + std::to_string(kRescueStarts) + " more starts, w = " +
+                          detail::short_number(w) + " J/m^2 after them");
+  }
   const std::vector<double> weights = data.sqrt_weight;
   std::vector<bool> excluded = run.exclude_non_jkr();
   if (options.baseline == Baseline::tilt) {
@@ -252,6 +266,7 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   detail::assess_uncertainty(run, ev, map, x, options, data, &out);
   detail::explain_no_move(run, data, map, &out);
   detail::diagnose_residuals(data, force_span, &out);
+  detail::diagnose_indentation(data, &out);
   for (const auto& note : model->notes()) out.warnings.push_back(note);  // after the fit: a grid may refine
   for (const auto& note : model->notes_at(physical_at_x())) out.warnings.push_back(note);
   const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;

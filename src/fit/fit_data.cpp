@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "contact_steps.hpp"
+#include "core/line_fit.hpp"
 #include "fit_steps.hpp"
 #include "layerjkr/error.hpp"
 
@@ -172,13 +173,47 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
     const bool at_rest = restrict || bottom == data.P.size();
     const bool whole_branch =
         at_rest && deep - *std::min_element(data.P.begin(), data.P.end()) > kSignificantSigmas * data.noise;
+    data.spring_constant = options.cantilever_stiffness.value_or(curve.spring_constant);
+    data.contact_slope = contact_slope(data);
     if (!whole_branch && !unloading_contact_region(data, *force_span))
       throw InputError(curve.source + ": no contact region - the force does not grow with delta on the " +
                        to_string(options.branch) + " branch, neither over the whole branch nor over the unloading "
-                       "samples before the observed pull-off (check the sign conventions: delta grows "
-                       "towards the sample, P is positive when repulsive)");
+                       "samples before the observed pull-off" + no_contact_hint(data));
   }
   return data;
+}
+
+double contact_slope(const FitData& data) {
+  const double k = data.spring_constant;
+  if (!(k > 0.0) || data.P.empty()) return std::numeric_limits<double>::quiet_NaN();
+  // Clearly in contact: a fifth of the way up from the baseline to the largest force, and 10
+  // noise sigmas above it; the approach where it has such samples, else the retract.
+  const double top = *std::max_element(data.P.begin(), data.P.end());
+  const double floor = data.baseline + std::max(10.0 * data.noise, 0.2 * (top - data.baseline));
+  std::vector<std::size_t> idx;
+  for (bool retract : {false, true}) {
+    for (std::size_t i = 0; i < data.P.size(); ++i)
+      if (data.retract[i] == retract && data.P[i] > floor) idx.push_back(i);
+    if (idx.size() >= 5) break;
+    idx.clear();
+  }
+  if (idx.size() < 5) return std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> z(data.P.size()), d(data.P.size());
+  for (std::size_t i : idx) {
+    d[i] = data.P[i] / k;
+    z[i] = data.delta[i] + d[i];
+  }
+  const LineFit line = fit_line(z, d, idx);
+  return line.sxx > 0.0 ? line.slope : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string no_contact_hint(const FitData& data) {
+  if (data.contact_slope >= kRigidContactSlope)
+    return ": the tip does not indent measurably - the contact slope d(deflection)/dz is " +
+           short_number(data.contact_slope) + " (1 where the sample does not deform): the sample is far stiffer than "
+           "the lever (k = " + short_number(data.spring_constant) + " N/m)";
+  return " (check the sign conventions: delta grows towards the sample, P is positive when repulsive; and whether a "
+         "baseline offset of the force was removed)";
 }
 
 void require_usable_loss_scale(const FitOptions& options, double force_span, const std::string& source) {

@@ -76,6 +76,24 @@ void diagnose_residuals(const FitData& data, double force_span, FitSummary* out)
   }
 }
 
+void diagnose_indentation(const FitData& data, FitSummary* out) {
+  if (!(data.contact_slope >= kRigidContactSlope)) return;
+  const double share = std::min(1.0, data.contact_slope);
+  const std::string what =
+      "the tip barely indents: the contact slope d(deflection)/dz is " + short_number(data.contact_slope) +
+      " (1 where the sample does not deform), so the lever (k = " + short_number(data.spring_constant) +
+      " N/m) takes " + short_number(100.0 * share) + " % of the piezo's motion and the indentation is within the "
+      "deflection's calibration error" +
+      (data.contact_slope > 1.0 ? " (above 1: the deflection sensitivity itself is off by " +
+                                      short_number(100.0 * (data.contact_slope - 1.0)) + " % or more)"
+                                : std::string()) +
+      ": the sample is far stiffer than the lever, and E cannot be told from a rigid sample - use a stiffer lever";
+  out->warnings.push_back(what);
+  out->identifiable = false;
+  out->identifiability_known = true;
+  out->identifiability_reason = what;
+}
+
 void weigh_columns(const FitOptions& options, double force_span, FitData& data, FitSummary* out) {
   if (data.radius_driven || data.a.empty()) return;
   std::vector<std::size_t> all(data.P.size()), with_a;

@@ -51,6 +51,8 @@ std::string FitSummary::brief_report() const {
   if (baseline_slope != 0.0)
     o << "  baseline tilt " << baseline_slope << " +- " << baseline_slope_stderr
       << " N/m (from the samples off contact; the data were detilted)\n";
+  if (std::isfinite(pull_off_force))
+    o << "  measured pull-off " << pull_off_force << " N (the lowest retract force, from the baseline)\n";
   if (excluded_count > 0)
     o << "  excluded " << excluded_count << " retract samples after the model's jump that had not "
       << "returned to the baseline (not JKR: peeling, necking, viscoelastic tail)\n";

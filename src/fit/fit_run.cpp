@@ -183,14 +183,15 @@ double FitRun::cost_with_held(FitParameter q, double xq) {
   return s2.IsSolutionUsable() && finite_solve(s2) ? s2.final_cost : kNaN;
 }
 
-void FitRun::try_extra_starts() {
+void FitRun::try_extra_starts(int count, bool w_from_start) {
+  if (count < 0) count = options_.extra_starts;
   const auto at = [&](std::vector<double>& v, FitParameter q) -> double& {
     return v[static_cast<std::size_t>(map_.index(q))];
   };
   bool moved = false;
-  for (int k = 1; k <= options_.extra_starts; ++k) {
+  for (int k = 1; k <= count; ++k) {
     std::vector<double> xs(x_.size(), 0.0);
-    if (map_.is_free(FitParameter::w)) at(xs, FitParameter::w) = at(x_, FitParameter::w) > 0 ? 1.0 : 0.0;
+    if (map_.is_free(FitParameter::w)) at(xs, FitParameter::w) = at(x_, FitParameter::w) > 0 || w_from_start ? 1.0 : 0.0;
     const double sign = (k % 2) ? 1.0 : -1.0;
     const int ring = (k + 1) / 2;  // starts 1, 2 alternate sides; 3, 4 go twice as far
     if (map_.is_free(FitParameter::delta0)) at(xs, FitParameter::delta0) = sign * kExtraStartContactStep * ring;

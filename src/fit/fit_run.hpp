@@ -30,8 +30,9 @@ class FitRun {
   /// its gradient is not finite at the start or at the solution (a solve that reports
   /// convergence on NaN is a failure, never a result).
   void solve();
-  /// Solves again from options.extra_starts perturbed starts; keeps the lowest cost.
-  void try_extra_starts();
+  /// Solves again from `count` perturbed starts (options.extra_starts when negative); keeps the
+  /// lowest cost. A w at its bound restarts from the data-driven w where `w_from_start`.
+  void try_extra_starts(int count = -1, bool w_from_start = false);
   /// The rule of FitOptions::exclusion_sigmas: marks the retract samples the model has let go
   /// of that have not returned to the baseline, and refits without them (weight 0).
   std::vector<bool> exclude_non_jkr();

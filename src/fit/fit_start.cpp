@@ -184,7 +184,7 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
       // observed pull-off, keep the scene's stiffness, estimate w and scan again.
       if (!(pass == 0 && estimate_w))
         throw InputError(source + ": no contact region - no trial contact point puts three or more "
-                         "samples in contact with a positive stiffness (check the sign conventions)");
+                         "samples in contact with a positive stiffness" + no_contact_hint(data));
       const auto deepest = std::min_element(data.P.begin(), data.P.end()) - data.P.begin();
       map.ref[static_cast<int>(FitParameter::delta0)] = data.delta[static_cast<std::size_t>(deepest)];
       map.ref[static_cast<int>(FitParameter::P0)] = P0_start;

@@ -22,10 +22,27 @@ constexpr double kSignificantSigmas = 5.0;
 /// ...or, for noiseless data, this fraction of the force span.
 constexpr double kSignificantForceFraction = 1e-6;
 
+/// A contact slope d(deflection)/dz at or above this is a tip that does not indent measurably:
+/// the lever takes 90 % or more of the piezo's motion, and the indentation is within the
+/// deflection's calibration error (InvOLS is known to a few %).
+constexpr double kRigidContactSlope = 0.9;
+
+/// FitData::contact_slope of the selected samples (fit_data.cpp), from data.spring_constant,
+/// data.baseline and data.noise.
+double contact_slope(const FitData& data);
+/// What a refusal for "no contact region" adds: the tip not indenting (contact slope >= 0.9),
+/// else the sign conventions and a baseline offset to check.
+std::string no_contact_hint(const FitData& data);
+
 /// Noise [N] of samples on a smooth curve, from the MAD of their second differences in
 /// acquisition order (samples idx of P): a trend (a necking tail, the unloading curve itself)
 /// cancels, white noise of sigma gives differences of sigma sqrt(6). 0 for fewer than 3 samples.
 double second_difference_noise(const std::vector<double>& P, const std::vector<std::size_t>& idx);
+
+/// A tip that does not indent measurably (data.contact_slope >= kRigidContactSlope): a warning
+/// with the slope and the lever, and the fit is not called identifiable - E cannot be told from
+/// a rigid sample within the deflection's calibration error.
+void diagnose_indentation(const FitData& data, FitSummary* out);
 
 /// With measured contact radii (not (P, a) data): each column's noise, given or estimated from
 /// its second differences, into out->force_noise / radius_noise, and data.a_scale set so that

@@ -338,13 +338,25 @@ void assess_uncertainty(FitRun& run, CurveEvaluator& ev, const ParameterMap& map
       std::string adhesive = !any_retract   ? "no retract samples, and the loading curve's shape does not call for w; "
                              : data.adhesive ? ""
                                              : "the retract shows no force below the baseline beyond noise; ";
-      w.identifiable = std::isfinite(w.upper_bound);
-      w.reason = "at its lower bound 0: no adhesive signal (" + adhesive + why + "); the error bar is one-sided: " +
-                 (w.identifiable ? "w < " + short_number(w.upper_bound) + " J/m^2 (95 %, profile likelihood)"
-                                 : std::string(kUnknown) + "no upper bound: " + no_bound);
-      out->warnings.push_back("w = 0 at its lower bound: the data show no adhesion on this branch; the other "
-                              "parameters and their error bars are from the fit with w held at 0" +
-                              std::string(w.identifiable ? "; w < " + short_number(w.upper_bound) + " J/m^2 (95 %)" : ""));
+      if (data.adhesive) {
+        // The data show adhesion the model does not reproduce: never "no adhesive signal".
+        const std::string shown = "the retract goes " + short_number(-data.dip) + " N below the baseline, " +
+                                  short_number(-data.dip / std::max(data.noise, 1e-300)) + " noise sigmas";
+        w.identifiable = false;
+        w.upper_bound = kNaN;
+        w.reason = "at its lower bound 0 although " + shown + ": the model does not reproduce the adhesion the "
+                   "data show (check the retract's control, the model, the contact point)";
+        out->warnings.push_back("w = 0 at its lower bound although " + shown +
+                                ": the fit does not describe the adhesion the data show; no statement about w");
+      } else {
+        w.identifiable = std::isfinite(w.upper_bound);
+        w.reason = "at its lower bound 0: no adhesive signal (" + adhesive + why + "); the error bar is one-sided: " +
+                   (w.identifiable ? "w < " + short_number(w.upper_bound) + " J/m^2 (95 %, profile likelihood)"
+                                   : std::string(kUnknown) + "no upper bound: " + no_bound);
+        out->warnings.push_back("w = 0 at its lower bound: the data show no adhesion on this branch; the other "
+                                "parameters and their error bars are from the fit with w held at 0" +
+                                std::string(w.identifiable ? "; w < " + short_number(w.upper_bound) + " J/m^2 (95 %)" : ""));
+      }
       // Re-evaluate where the others were assessed (the profile moved the evaluator).
       if (!ev.evaluate(x.data(), true)) throw NumericalError("fit: the model cannot be evaluated at the solution");
     }
