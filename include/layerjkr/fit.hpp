@@ -92,6 +92,11 @@ struct FitOptions {
   /// taken by least squares from the samples the fitted model puts off contact (never from
   /// excluded ones); the data are detilted and refitted once (FitSummary::baseline_slope).
   Baseline baseline = Baseline::constant;
+  /// With P0 not free: the force's offset - the median of the samples at rest (the shallowest
+  /// quarter, or baseline_window) - is subtracted before the fit where it exceeds 3 of its own
+  /// standard errors, as JPK's software and nanite do (FitSummary::baseline_offset says how much);
+  /// false keeps the forces as they are, their zero the baseline.
+  bool remove_offset = true;
   /// Which unloading samples a retract fit uses: every one (all); from the largest force
   /// down to the observed pull-off, the force minimum (to_pull_off); or from the largest force
   /// down to P_max - window_fraction (P_max - P_min) (force_fraction), as linearised-JKR and
@@ -217,6 +222,8 @@ struct FitSummary {
   std::size_t excluded_count = 0;
   /// Baseline::tilt: the baseline's slope [N/m] and its standard error (0 without).
   double baseline_slope = 0.0, baseline_slope_stderr = 0.0;
+  /// The force offset [N] subtracted before the fit (FitOptions::remove_offset; 0 when none was).
+  double baseline_offset = 0.0;
   /// The measured pull-off force [N]: the lowest retract force minus the fitted baseline P0
   /// (NaN without retract samples).
   double pull_off_force = std::numeric_limits<double>::quiet_NaN();

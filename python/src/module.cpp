@@ -395,6 +395,7 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("excluded_count", &FitSummary::excluded_count)
       .def_readonly("baseline_slope", &FitSummary::baseline_slope)
       .def_readonly("baseline_slope_stderr", &FitSummary::baseline_slope_stderr)
+      .def_readonly("baseline_offset", &FitSummary::baseline_offset)
       .def_readonly("pull_off_force", &FitSummary::pull_off_force)
       .def_readonly("solve_seconds", &FitSummary::solve_seconds)
       .def_property_readonly("contact_point", [](const FitSummary& s) {

@@ -101,6 +101,7 @@ Prepared prepare_options(const FitArguments& a) {
   // the readers put into CurveData::spring_constant).
   p.options.retract_control = parse_enum<RetractControl>(a.control, "--control");
   p.options.baseline = parse_enum<Baseline>(a.baseline, "--baseline");
+  p.options.remove_offset = !a.keep_offset;
   parse_window(a.window, p.options);
   p.options.contact_point = parse_enum<ContactPointMethod>(a.contact_point, "--contact-point");
   const double inf = std::numeric_limits<double>::max();
@@ -139,6 +140,9 @@ void add_fit_options(CLI::App& c, FitArguments& a) {
   c.add_option("--max-iterations", a.max_iterations, "Ceres iteration limit (default 200)");
   c.add_option("--curve", a.curve, "Which curve of a file holding several (instrument map or export)");
   c.add_option("--baseline", a.baseline, "constant | tilt (a linear baseline from the samples off contact)");
+  c.add_flag("--keep-offset", a.keep_offset,
+             "With P0 not free: keep the forces as they are (by default an offset of the samples at rest is subtracted, "
+             "as JPK's software and nanite do)");
   c.add_option("--window", a.window,
                "Retract samples used: all | pull-off (largest force to the force minimum) | fraction:F (the top F "
                "of the unloading force range)");

@@ -51,6 +51,7 @@ json report_json(const FitSummary& s, Branch branch) {
   j["pull_off_force"] = finite_or_null(s.pull_off_force);
   j["baseline_slope"] = s.baseline_slope;
   j["baseline_slope_stderr"] = s.baseline_slope_stderr;
+  j["baseline_offset"] = s.baseline_offset;
   j["points"] = s.points;
   j["points_in_contact"] = s.points_in_contact;
   j["identifiable"] = s.identifiable;

@@ -43,6 +43,8 @@ struct FitData {
   double a_scale = 1.0;                          ///< divides contact-radius residuals [m]
   /// Median force and MAD noise of the shallowest quarter of the samples [N].
   double baseline = 0.0, noise = 0.0;
+  /// The offset [N] subtracted from P (FitOptions::remove_offset), 0 when none was.
+  double offset = 0.0;
   /// The retract is controlled by a cantilever (FitOptions::cantilever_stiffness > 0).
   bool cantilever = false;
   /// The contact point and baseline were found beforehand and the data shifted there: a free

@@ -265,6 +265,11 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   out.excluded_count = static_cast<std::size_t>(std::count(excluded.begin(), excluded.end(), true));
   detail::assess_uncertainty(run, ev, map, x, options, data, &out);
   detail::explain_no_move(run, data, map, &out);
+  out.baseline_offset = data.offset;
+  if (data.offset != 0.0)
+    out.notices.push_back("baseline offset " + detail::short_number(data.offset) + " N subtracted (the median of the " +
+                          "samples at rest; P0 is not free): free P0 to fit it, or remove_offset = false "
+                          "(--keep-offset) to keep the forces as they are");
   detail::diagnose_residuals(data, force_span, &out);
   detail::diagnose_indentation(data, &out);
   for (const auto& note : model->notes()) out.warnings.push_back(note);  // after the fit: a grid may refine

@@ -33,6 +33,27 @@ namespace {
 // The fewest samples a baseline and its noise are taken from.
 constexpr std::size_t kMinBaselineSamples = 3;
 
+// The baseline samples (the shallowest quarter of the candidates) are an approach's at rest: their spread
+// (data.noise, their MAD) is the curve's own noise - at most twice the third-difference noise of
+// the samples in acquisition order - and their force has no trend beyond 3 noise sigmas over
+// their span of delta: not a rig's curve, in contact throughout.
+bool flat_at_rest(const FitData& data, const std::vector<std::size_t>& by_delta, std::size_t quarter,
+                  const std::vector<char>& candidate, bool restrict) {
+  std::vector<std::size_t> idx, all(data.P.size());
+  for (std::size_t k = 0; k < by_delta.size() && idx.size() < quarter; ++k)
+    if (!restrict || candidate[by_delta[k]]) idx.push_back(by_delta[k]);
+  if (idx.size() < kMinBaselineSamples) return false;
+  // An approach's samples before contact: a retract's tail may be a plateau in tension.
+  const auto approach = static_cast<std::size_t>(std::count_if(idx.begin(), idx.end(), [&](std::size_t i) { return !data.retract[i]; }));
+  if (2 * approach < idx.size()) return false;
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  if (data.noise > 2.0 * third_difference_noise(data.P, all)) return false;
+  const LineFit line = fit_line(data.delta, data.P, idx);
+  if (!(line.sxx > 0.0)) return true;
+  const auto [lo, hi] = std::minmax_element(idx.begin(), idx.end(), [&](auto i, auto j) { return data.delta[i] < data.delta[j]; });
+  return std::abs(line.slope) * (data.delta[*hi] - data.delta[*lo]) <= 3.0 * data.noise;
+}
+
 }  // namespace
 
 // Retract-only data need not hold a baseline: a tension-only unloading curve, or one around the
@@ -173,6 +194,16 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
     const bool at_rest = restrict || bottom == data.P.size();
     const bool whole_branch =
         at_rest && deep - *std::min_element(data.P.begin(), data.P.end()) > kSignificantSigmas * data.noise;
+    // P0 not free: an offset of the samples at rest beyond 3 standard errors of their median
+    // (1.2533 sigma / sqrt(n)) is the instrument's, not the sample's - removed, as JPK's software
+    // and nanite do, so that the fit's zero is the baseline.
+    const bool P0_free = std::find(options.free.begin(), options.free.end(), FitParameter::P0) != options.free.end();
+    if (whole_branch && !P0_free && options.remove_offset && flat_at_rest(data, by_delta, quarter, candidate, restrict) &&
+        std::abs(data.baseline) > 3.0 * 1.2533 * data.noise / std::sqrt(static_cast<double>(std::max<std::size_t>(shallow.size(), 1)))) {
+      for (double& p : data.P) p -= data.baseline;
+      data.offset = data.baseline;
+      data.baseline = 0.0;
+    }
     data.spring_constant = options.cantilever_stiffness.value_or(curve.spring_constant);
     data.contact_slope = contact_slope(data);
     if (!whole_branch && !unloading_contact_region(data, *force_span))

@@ -51,6 +51,7 @@ std::string FitSummary::brief_report() const {
   if (baseline_slope != 0.0)
     o << "  baseline tilt " << baseline_slope << " +- " << baseline_slope_stderr
       << " N/m (from the samples off contact; the data were detilted)\n";
+  if (baseline_offset != 0.0) o << "  baseline offset " << baseline_offset << " N subtracted (P0 not free)\n";
   if (std::isfinite(pull_off_force))
     o << "  measured pull-off " << pull_off_force << " N (the lowest retract force, from the baseline)\n";
   if (excluded_count > 0)

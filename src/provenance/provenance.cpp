@@ -39,6 +39,7 @@ void fit_fields(Options& o, Visit&& v) {
   v("force_noise", o.force_noise);
   v("radius_noise", o.radius_noise);
   v("baseline", o.baseline);
+  v("remove_offset", o.remove_offset);
   v("retract_window", o.retract_window);
   v("window_fraction", o.window_fraction);
   v("loss", o.loss);
@@ -73,7 +74,7 @@ void csv_fields(Options& o, Visit&& v) {
 // Tripwires (64-bit libstdc++ / libc++ layouts). When one fires: add the new field's line to
 // the table above, set it to a non-default value in tests/provenance/test_provenance.cpp
 // ("every option survives the round trip"), then update the size here.
-static_assert(sizeof(void*) != 8 || sizeof(FitOptions) == 256,
+static_assert(sizeof(void*) != 8 || sizeof(FitOptions) == 264,
               "FitOptions changed: add its new field to fit_fields() in src/provenance/provenance.cpp and to the "
               "non-default options of tests/provenance/test_provenance.cpp, then update this size");
 static_assert(sizeof(void*) != 8 || sizeof(CsvOptions) == 64,

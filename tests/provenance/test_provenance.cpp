@@ -125,6 +125,7 @@ TEST_CASE("every option survives the JSON round trip bit for bit", "[provenance]
   o.force_noise = 1.0 / 7.0;
   o.radius_noise = 2.0 / 7.0;
   o.baseline = Baseline::tilt;
+  o.remove_offset = false;
   o.retract_window = RetractWindow::force_fraction;
   o.window_fraction = 0.7000000000000001;
   o.loss = LossType::cauchy;
@@ -143,7 +144,7 @@ TEST_CASE("every option survives the JSON round trip bit for bit", "[provenance]
   o.force_range = Interval{0.0, 1.0 / 3.0};
   o.baseline_window = Interval{-3e-6, -2.5e-6};
   const std::string text = to_json(o);
-  CHECK(nlohmann::json::parse(text).size() == 25);  // one key per field
+  CHECK(nlohmann::json::parse(text).size() == 26);  // one key per field
   const FitOptions b = fit_options_from_json(text);
   CHECK(b.free == o.free);
   CHECK(b.branch == o.branch);
@@ -156,6 +157,7 @@ TEST_CASE("every option survives the JSON round trip bit for bit", "[provenance]
   CHECK(bits(*b.force_noise) == bits(*o.force_noise));
   CHECK(bits(*b.radius_noise) == bits(*o.radius_noise));
   CHECK(b.baseline == o.baseline);
+  CHECK(b.remove_offset == o.remove_offset);
   CHECK(b.retract_window == o.retract_window);
   CHECK(bits(b.window_fraction) == bits(o.window_fraction));
   CHECK(b.loss == o.loss);
