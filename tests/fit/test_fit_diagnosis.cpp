@@ -80,3 +80,39 @@ TEST_CASE("a retract that goes below the baseline is never 'no adhesion', and it
   CHECK_FALSE(has(none.warnings, "the data show no adhesion"));
   CHECK_FALSE(none.identifiable);
 }
+
+TEST_CASE("an approach whose baseline sits off zero fits with P0 fixed, and the offset is said", "[fit][diagnosis]") {
+  // A QI-like approach of a cell: the baseline at -115 pN, as JPK's files come before the software zeroes it.
+  const auto cell = [](double E) {
+    return parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5e-6},
+        "medium": {"type": "half_space", "E": )" + format_double(E) + R"(, "nu": 0.5}, "w": 0})", "cell");
+  };
+  const Scene truth = cell(2000);
+  SimulationOptions so;
+  so.branch = Branch::approach;
+  so.max_indentation = 1e-6;
+  so.noise = 5e-12;
+  so.P0 = -1.15e-10;
+  const CurveData c = simulate_curve(truth, so);
+  const Scene start = cell(800);
+  const FitOptions options = free_of({FitParameter::E, FitParameter::delta0}, Branch::approach);
+  const FitSummary s = fit(c, start, options);
+  INFO(s.brief_report());
+  CHECK(s.baseline_offset == Approx(-1.15e-10).margin(5e-12));
+  CHECK(s[FitParameter::E].value == Approx(2000).epsilon(0.02));
+  CHECK(has(s.notices, "baseline"));
+  CHECK(s.identifiable);
+  CHECK_THAT(s.brief_report(), Catch::Contains("baseline offset"));
+  // Kept as given, the same fit cannot follow the data and says so.
+  FitOptions keep = options;
+  keep.remove_offset = false;
+  const FitSummary kept = fit(c, start, keep);
+  INFO(kept.brief_report());
+  CHECK(kept.baseline_offset == 0.0);
+  CHECK_FALSE(kept.identifiable);
+  // A baseline at zero is left alone.
+  so.P0 = 0.0;
+  const FitSummary zeroed = fit(simulate_curve(truth, so), start, options);
+  CHECK(zeroed.baseline_offset == 0.0);
+  CHECK(zeroed[FitParameter::E].value == Approx(2000).epsilon(0.02));
+}
