@@ -54,6 +54,21 @@ bool flat_at_rest(const FitData& data, const std::vector<std::size_t>& by_delta,
   return std::abs(line.slope) * (data.delta[*hi] - data.delta[*lo]) <= 3.0 * data.noise;
 }
 
+// A short contact at the end of a long approach (a QI curve: 12 of 500 samples rising 90 pN over
+// 20 pN of noise) is too short for the deepest twentieth's mean to stand clear of the lowest
+// force: the deepest m samples (3 <= m <= m20) whose mean lies above the baseline by more than
+// kSignificantSigmas standard errors (noise / sqrt(m)) are a contact region all the same.
+bool deepest_above_baseline(const FitData& data, const std::vector<std::size_t>& by_delta, std::size_t m20) {
+  if (!(data.noise > 0.0)) return false;
+  double sum = 0.0;
+  for (std::size_t m = 1; m <= m20 && m <= by_delta.size(); ++m) {
+    sum += data.P[by_delta[by_delta.size() - m]] - data.baseline;
+    const double n = static_cast<double>(m);
+    if (m >= kMinBaselineSamples && sum / n > kSignificantSigmas * data.noise / std::sqrt(n)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 // Retract-only data need not hold a baseline: a tension-only unloading curve, or one around the
@@ -193,7 +208,8 @@ FitData select_fit_data(const CurveData& curve, const FitOptions& options, doubl
     }
     const bool at_rest = restrict || bottom == data.P.size();
     const bool whole_branch =
-        at_rest && deep - *std::min_element(data.P.begin(), data.P.end()) > kSignificantSigmas * data.noise;
+        at_rest && (deep - *std::min_element(data.P.begin(), data.P.end()) > kSignificantSigmas * data.noise ||
+                    deepest_above_baseline(data, by_delta, m20));
     // P0 not free: an offset of the samples at rest beyond 3 standard errors of their median
     // (1.2533 sigma / sqrt(n)) is the instrument's, not the sample's - removed, as JPK's software
     // and nanite do, so that the fit's zero is the baseline.

@@ -116,3 +116,30 @@ TEST_CASE("an approach whose baseline sits off zero fits with P0 fixed, and the 
   CHECK(zeroed.baseline_offset == 0.0);
   CHECK(zeroed[FitParameter::E].value == Approx(2000).epsilon(0.02));
 }
+
+TEST_CASE("a QI curve whose last 12 of 500 samples rise 90 pN over 20 pN noise is a contact, not a sign error", "[fit][diagnosis]") {
+  const auto cell = [](double E) {
+    return parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5.76e-6},
+        "medium": {"type": "half_space", "E": )" + format_double(E) + R"(, "nu": 0.5}, "w": 0})", "qi");
+  };
+  SimulationOptions so;
+  so.branch = Branch::approach;
+  so.max_indentation = 4.8e-8;  // 90 pN at E = 2 kPa
+  so.free_fraction = 488.0 / 12.0;
+  so.noise = 2e-11;
+  so.P0 = -1.15e-10;
+  so.seed = 3;
+  const CurveData c = simulate_curve(cell(2000), so);
+  for (const bool P0_free : {false, true}) {
+    std::vector<FitParameter> free{FitParameter::E, FitParameter::delta0};
+    if (P0_free) free.push_back(FitParameter::P0);
+    const FitSummary s = fit(c, cell(1000), free_of(free, Branch::approach));
+    INFO(s.brief_report());
+    CHECK(std::abs(s[FitParameter::E].value - 2000) < 2 * s[FitParameter::E].standard_error);
+    CHECK(s[FitParameter::E].standard_error < 0.5 * 2000);
+  }
+  // Pure noise (a sample too soft to push back) is still no contact.
+  const CurveData flat = simulate_curve(cell(1e-6), so);
+  CHECK_THROWS_WITH(fit(flat, cell(1000), free_of({FitParameter::E, FitParameter::delta0}, Branch::approach)),
+                    Catch::Contains("no contact region"));
+}
