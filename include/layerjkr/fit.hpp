@@ -74,7 +74,7 @@ struct FitOptions {
   /// fixed grips and kept if it follows every sample better (a JKR rig unloading under
   /// displacement control past the force minimum); a notice says which and why;
   /// `cantilever` requires the stiffness (the fit throws InputError naming the curve without it).
-  RetractControl retract_control = RetractControl::load;
+  RetractControl retract_control = RetractControl::automatic;
   /// The cantilever's stiffness [N/m], finite and > 0; nullopt: the curve's own
   /// CurveData::spring_constant (an instrument file's; 0 there means unknown).
   std::optional<double> cantilever_stiffness;

@@ -65,6 +65,9 @@ class FitRun {
   const std::string& first_message() const { return first_message_; }
 
  private:
+  // Marks, walking back from the first detached sample `first`, the samples of a tail that
+  // began before the model let go (see the definition).
+  void hold_tail_start(std::size_t first, double band, std::vector<bool>* tail) const;
   std::unique_ptr<ceres::Problem> solve_from(std::vector<double>& xs, ceres::Solver::Summary* summary,
                                              int held) const;
   bool resolve_in_place();

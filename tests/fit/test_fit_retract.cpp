@@ -4,12 +4,14 @@
 // unloading data (with a necking tail or baseline after the pull-off) fitted, not refused.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <random>
 
 #include <boost/math/constants/constants.hpp>
 
+#include "layerjkr/answer.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/fit.hpp"
 #include "layerjkr/simulate.hpp"
@@ -107,6 +109,47 @@ Unloading tension_only(After after, double noise, unsigned seed) {
     for (int k = 1; k <= 15; ++k) add(d_end - 2e-8 * k, u.P_pull_off * std::exp(-k / 4.0));
   if (after == After::baseline)
     for (int k = 1; k <= 5; ++k) add(d_end - 2e-7 * k, 0.0);
+  return u;
+}
+
+// The same sphere unloaded under fixed grips: 70 samples even in delta from 0.74 of the pull-off
+// force, through the pull-off, along the branch displacement control keeps to its limit
+// (d delta / da = 0, at 5/9 of the pull-off force), then a necking tail of 15 samples relaxing
+// to zero instead of the jump.
+Unloading grips_with_tail(unsigned seed) {
+  std::vector<double> radii;
+  for (int k = 0; k <= 20000; ++k) radii.push_back(2e-7 + 60e-6 * k / 20000.0);
+  const CurveAnswer truth = solve_curve(sphere(25e-6, 1e6, 0.027), radii);
+  std::vector<double> a, P, delta;
+  for (const AdhesiveState& st : truth.states) {
+    P.push_back(st.P);
+    delta.push_back(st.delta);
+  }
+  const std::size_t grips = static_cast<std::size_t>(std::min_element(delta.begin(), delta.end()) - delta.begin());
+  const std::size_t pull_off = static_cast<std::size_t>(std::min_element(P.begin(), P.end()) - P.begin());
+  std::size_t start = pull_off;
+  while (P[start] < 0.74 * P[pull_off]) ++start;
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0.0, 1e-8);
+  Unloading u;
+  u.P_pull_off = P[pull_off];
+  CurveData& c = u.curve;
+  c.source = "grips";
+  const double d0 = delta[start], d1 = delta[grips], step = (d1 - d0) / 69.0;
+  for (int k = 0; k < 70; ++k) {
+    const double d = d0 + step * k;
+    std::size_t j = grips;  // delta grows with a from the grips point: interpolate there
+    while (j + 1 < start && delta[j + 1] < d) ++j;
+    const double f = (d - delta[j]) / (delta[j + 1] - delta[j]);
+    c.delta.push_back(d);
+    c.P.push_back(P[j] + f * (P[j + 1] - P[j]) + g(rng));
+    c.segment.push_back(1);
+  }
+  for (int k = 1; k <= 15; ++k) {
+    c.delta.push_back(d1 + step * k);
+    c.P.push_back(P[grips] * std::exp(-k / 4.0) + g(rng));
+    c.segment.push_back(1);
+  }
   return u;
 }
 
@@ -241,6 +284,27 @@ TEST_CASE("tension-only unloading data are fitted: alone, with a necking tail, w
   CHECK(std::abs(s[FitParameter::w].value - 0.027) < 4 * s[FitParameter::w].standard_error);
   CHECK(std::abs(s[FitParameter::E].value - 1e6) < 4 * s[FitParameter::E].standard_error);
   CHECK(std::abs(s[FitParameter::P0].value) < 4 * s[FitParameter::P0].standard_error);
+}
+
+TEST_CASE("a necking tail beyond the fixed-grips limit is excluded, not fitted as contact", "[fit][tension]") {
+  // Before: the tail's first sample was held in contact by pulling the model's grips limit out
+  // to it - E 3 % low (2.2 standard errors), residuals 6.8 x the noise, identifiable: no.
+  const Unloading u = grips_with_tail(7);
+  const FitSummary s = fit(u.curve, sphere(25e-6, 3e5, 0.0), retract({FitParameter::E, FitParameter::w, FitParameter::delta0}));
+  INFO(s.brief_report());
+  check_consistent(s);
+  CHECK(s.identifiable);
+  CHECK_FALSE(s.residual_structure);
+  CHECK(std::abs(s[FitParameter::w].value - 0.027) < 4 * s[FitParameter::w].standard_error);
+  CHECK(std::abs(s[FitParameter::E].value - 1e6) < 4 * s[FitParameter::E].standard_error);
+  CHECK(rel_err(s[FitParameter::w].value, 0.027) < 0.005);
+  CHECK(rel_err(s[FitParameter::E].value, 1e6) < 0.01);
+  // The tail is excluded down to where it is back within 5 noise deviations of the baseline.
+  for (std::size_t i = 70; i < u.curve.size(); ++i)
+    if (u.curve.P[i] < -5e-8) CHECK(s.excluded[i]);
+  CHECK(s.excluded_count <= 17);  // the tail, and at most the two samples at the grips limit
+  CHECK(std::any_of(s.notices.begin(), s.notices.end(),
+                    [](const std::string& n) { return n.find("fixed grips, chosen from the data") != std::string::npos; }));
 }
 
 TEST_CASE("retract data with no contact region are still refused, with the reason", "[fit][tension][errors]") {
