@@ -8,10 +8,10 @@
 #include <glob.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <regex>
 
 #include "io/csv_rows.hpp"
 #include "io/igor_wave.hpp"
@@ -25,11 +25,14 @@ namespace {
 
 // A per-channel file's (line, point, channel), or nullopt.
 std::optional<std::tuple<int, int, std::string>> channel_file(const fs::path& p) {
-  static const std::regex pattern(R"(^Line(\d{1,6})Point(\d{1,6})([A-Za-z][A-Za-z0-9]*)\.ibw$)");
-  std::smatch m;
   const std::string name = p.filename().string();
-  if (!std::regex_match(name, m, pattern)) return std::nullopt;
-  return std::make_tuple(std::stoi(m[1].str()), std::stoi(m[2].str()), m[3].str());
+  const std::string suffix = ".ibw";
+  if (name.size() <= suffix.size() || name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return std::nullopt;
+  auto parts = asylum_point_name(name.substr(0, name.size() - suffix.size()), true);
+  if (!parts || parts->channel.empty() || !std::isalpha(static_cast<unsigned char>(parts->channel[0])))
+    return std::nullopt;
+  return std::make_tuple(parts->line, parts->point, parts->channel);
 }
 
 bool is_glob(const std::string& s) { return s.find_first_of("*?[") != std::string::npos; }

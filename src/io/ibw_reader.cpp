@@ -2,7 +2,8 @@
 // columns by label (Raw, Defl, ZSnsr), calibration from the note (igor_wave.hpp).
 #include <cmath>
 #include <map>
-#include <regex>
+#include <algorithm>
+#include <cctype>
 
 #include "io/igor_wave.hpp"
 #include "io/instrument_readers.hpp"
@@ -11,11 +12,49 @@
 
 namespace layerjkr::detail {
 
+namespace {
+
+// The 1-6 digits at `pos` of `s` as a number, advancing `pos`; nullopt without digits or with more.
+std::optional<int> short_index(const std::string& s, std::size_t& pos) {
+  const std::size_t start = pos;
+  int v = 0;
+  while (pos < s.size() && std::isdigit(static_cast<unsigned char>(s[pos])) && pos - start < 7)
+    v = 10 * v + (s[pos++] - '0');
+  if (pos == start || pos - start > 6) return std::nullopt;
+  return v;
+}
+
+std::optional<AsylumPointName> point_name_at(const std::string& s, std::size_t pos) {
+  AsylumPointName out;
+  pos += 4;  // "Line"
+  const auto line = short_index(s, pos);
+  if (!line || s.compare(pos, 5, "Point") != 0) return std::nullopt;
+  pos += 5;
+  const auto point = short_index(s, pos);
+  if (!point) return std::nullopt;
+  out.line = *line;
+  out.point = *point;
+  out.channel = s.substr(pos);
+  const bool alnum = std::all_of(out.channel.begin(), out.channel.end(),
+                                 [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0; });
+  if (!alnum) return std::nullopt;
+  return out;
+}
+
+}  // namespace
+
+std::optional<AsylumPointName> asylum_point_name(const std::string& name, bool whole) {
+  if (whole) return name.rfind("Line", 0) == 0 ? point_name_at(name, 0) : std::nullopt;
+  for (std::size_t pos = name.rfind("Line"); pos != std::string::npos;
+       pos = pos == 0 ? std::string::npos : name.rfind("Line", pos - 1))
+    if (auto parts = point_name_at(name, pos)) return parts;
+  return std::nullopt;
+}
+
 std::optional<std::pair<int, int>> asylum_line_point(const std::string& name) {
-  static const std::regex pattern(R"(Line(\d{1,6})Point(\d{1,6})[A-Za-z0-9]*$)");
-  std::smatch m;
-  if (!std::regex_search(name, m, pattern)) return std::nullopt;
-  return std::make_pair(std::stoi(m[1].str()), std::stoi(m[2].str()));
+  const auto parts = asylum_point_name(name);
+  if (!parts) return std::nullopt;
+  return std::make_pair(parts->line, parts->point);
 }
 
 std::vector<InstrumentSegment> asylum_segments(const IgorNote& note, std::size_t rows, double row_step,

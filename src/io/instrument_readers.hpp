@@ -26,8 +26,18 @@ std::unique_ptr<CurveSource> source_of(InstrumentFile file);
 InstrumentFile read_ibw(const std::string& path);
 /// The same from the file's bytes; `path` names it in errors.
 InstrumentFile read_ibw_bytes(std::string bytes, const std::string& path);
-/// (line, point) of an Asylum map's curve from a wave or file name ending in
-/// `LineLLLLPointPPPP` and an optional channel (`Defl`, `ZSnsr`, ...); nullopt otherwise.
+/// An Asylum map curve's name split: `LineLLLLPointPPPP<channel>` (1-6 digits each; the channel,
+/// `Defl`, `ZSnsr`, ..., letters and digits, possibly empty).
+struct AsylumPointName {
+  int line = 0;
+  int point = 0;
+  std::string channel;
+};
+/// The parts of `name` from its last `LineLLLLPointPPPP<channel>` that runs to the end of `name`
+/// (a wave's or file stem's name), or with `whole` only if that is all of `name`; nullopt
+/// otherwise. Hand-parsed: GCC 12's <regex> trips -Wmaybe-uninitialized under the sanitizers' -O1.
+std::optional<AsylumPointName> asylum_point_name(const std::string& name, bool whole = false);
+/// (line, point) of an Asylum map's curve from a wave or file name (asylum_point_name).
 std::optional<std::pair<int, int>> asylum_line_point(const std::string& name);
 /// The segments of an Asylum curve of `rows` rows from its note's Indexes and Direction (without
 /// Direction: extend, retract, then pauses), `sample(row, segment)` appending each row's values;

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "io/instrument_readers.hpp"
 #include "io/jpk_builder.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/instrument.hpp"
@@ -93,4 +94,28 @@ TEST_CASE("Asylum map exports: a glob of the waves, a lone channel and the image
   const InstrumentReader partial(root.string());
   CHECK_THAT(test::input_error([&] { partial.curve(2); }), Catch::Contains("line 0 point 2 has no ZSnsr file"));
   CHECK_NOTHROW(partial.curve(1));
+}
+
+TEST_CASE("Asylum point names: LineLLLLPointPPPP<channel>, from the end of a wave's or a file's name", "[io][asylum]") {
+  using detail::asylum_point_name;
+  const auto full = asylum_point_name("Line0012Point0345Defl", true);
+  REQUIRE(full);
+  CHECK(full->line == 12);
+  CHECK(full->point == 345);
+  CHECK(full->channel == "Defl");
+  const auto in_wave = asylum_point_name("PAAm_Line0001Point0002");  // a wave name with a prefix
+  REQUIRE(in_wave);
+  CHECK(in_wave->line == 1);
+  CHECK(in_wave->point == 2);
+  CHECK(in_wave->channel.empty());
+  CHECK_FALSE(asylum_point_name("PAAm_Line0001Point0002", true));  // whole: must start with Line
+  CHECK_FALSE(asylum_point_name("Line0001Point0002Defl.ibw"));      // '.' is not a channel's
+  CHECK_FALSE(asylum_point_name("Line1234567Point0002"));            // 7 digits
+  CHECK_FALSE(asylum_point_name("LinePoint0002"));
+  CHECK_FALSE(asylum_point_name("Line0001Point"));
+  CHECK_FALSE(asylum_point_name("Line0001Pt0002"));
+  const auto later = asylum_point_name("Line0001Point0002_Line0003Point0004Raw");  // the last one counts
+  REQUIRE(later);
+  CHECK(later->line == 3);
+  CHECK(later->channel == "Raw");
 }
