@@ -100,23 +100,29 @@ def csv_cell(text):
     return '"' + text.replace('"', '""').replace("\n", " ").replace("\r", " ") + '"'
 
 
+def shortest(v):
+    """repr's shortest round-trip digits, as C's format_double writes them (1000, not 1000.0)."""
+    text = repr(float(v))
+    return text[:-2] if text.endswith(".0") else text
+
+
 def rows_for(items, free):
-    """The header and rows of `layerjkr fit-map`, as its text: numbers as C's %.17g (fit-map's
-    format_double), non-finite and absent values empty."""
+    """The header and rows of `layerjkr fit-map`, as its text: numbers in their shortest round-trip
+    form, whole numbers without '.0' (fit-map's format_double), non-finite and absent values empty."""
     header = ["file", "curve", "x", "y", "grid_x", "grid_y", "status", "error", "model", "converged", "iterations",
               "rms_residual", "identifiable", "identifiability", "contact_point", "contact_point_err",
               "range_samples"]
     for p in free:
         header += [p, p + "_stderr"]
     rows = []
-    num = lambda v: "" if v is None or not math.isfinite(v) else "%.17g" % v
+    num = lambda v: "" if v is None or not math.isfinite(v) else shortest(v)
     index = lambda v: "" if v is None else str(v)
     for it in items:
         row = [csv_cell(it.source), index(it.curve), num(it.x), num(it.y), index(it.grid_x), index(it.grid_y),
                "ok" if it.ok else "error", csv_cell(it.error or "")]
         if it.ok:
             r = it.result
-            row += [r.model, str(int(r.converged)), str(r.iterations), "%.17g" % r.rms_residual,
+            row += [r.model, str(int(r.converged)), str(r.iterations), shortest(r.rms_residual),
                     str(int(r.identifiable)),
                     csv_cell("yes" if r.identifiable else
                              ("no: " if r.identifiability_known else "unknown: ") + r.identifiability_reason)]

@@ -50,6 +50,7 @@ struct SummaryAnswer {
   /// without a JKR pull-off.
   std::optional<AdhesionCheck> adhesion;
   std::vector<std::string> warnings;  ///< validity of constants, model and adhesion error above threshold
+  std::vector<std::string> notices;   ///< recorded, not warned about (ResolvedModel::notices)
   double seconds = 0.0;               ///< wall time of the answer [s]
 };
 
@@ -62,6 +63,7 @@ struct CurveAnswer {
   std::optional<AutoChoice> choice;    ///< model "auto": what it chose
   std::optional<AdhesionCheck> adhesion;  ///< as SummaryAnswer::adhesion
   std::vector<std::string> warnings;   ///< validity of constants, model and adhesion error above threshold
+  std::vector<std::string> notices;    ///< recorded, not warned about (ResolvedModel::notices)
   double seconds = 0.0;                ///< wall time of the answer [s]
 };
 

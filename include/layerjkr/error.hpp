@@ -45,7 +45,8 @@ class NumericalError : public Error {
   explicit NumericalError(const std::string& message) : Error(message) {}
 };
 
-/// Formats a double with 17 significant digits (round-trip precision).
+/// Formats a double in the fewest significant digits (at most 17) that read back as the same
+/// double: a message shows what the user wrote (0.49, not 0.48999999999999999).
 std::string format_double(double value);
 
 namespace detail {

@@ -99,9 +99,11 @@ struct ResolvedModel {
   std::optional<double> G;  ///< [N/m] shear modulus, or the tension T (see g_is_tension)
   bool g_is_tension = false;  ///< Filonenko-Borodich: G holds the membrane tension T
   std::optional<double> E_star;  ///< plane-strain modulus [Pa]: layers and the half-space
-  /// The thin-layer constants' validity warnings, and the note of an indenter the profile only
-  /// approximates (Profile::approximation: a pyramid).
+  /// The thin-layer constants' validity warnings: something to act on.
   std::vector<std::string> warnings;
+  /// What an answer records but does not warn about: the note of an indenter the profile only
+  /// approximates by a documented rule (Profile::approximation: a pyramid as its equivalent cone).
+  std::vector<std::string> notices;
 };
 ResolvedModel resolve_model(const Scene& scene);
 

@@ -240,12 +240,13 @@ class Curve:
     as well: ``c["P"]`` is ``c.P``.
     """
 
-    __slots__ = ("_block", "_warnings", "_model", "_reference", "_choice", "_seconds")
+    __slots__ = ("_block", "_warnings", "_model", "_reference", "_choice", "_seconds", "_notices")
 
     def __init__(self, block: npt.NDArray[np.float64], warnings: List[str], model: str, reference: str,
-                 choice: Optional[AutoChoice], seconds: float) -> None:
+                 choice: Optional[AutoChoice], seconds: float, notices: Sequence[str] = ()) -> None:
         self._block, self._warnings, self._model = block, warnings, model
         self._reference, self._choice, self._seconds = reference, choice, seconds
+        self._notices = list(notices)
 
     @property
     def a(self) -> npt.NDArray[np.float64]:
@@ -304,6 +305,12 @@ class Curve:
         return list(self._warnings)
 
     @property
+    def notices(self) -> List[str]:
+        """What the answer records but does not warn about (never a :class:`ModelWarning`): a
+        documented approximation such as the pyramid's equivalent cone."""
+        return list(self._notices)
+
+    @property
     def model(self) -> str:
         """The model that answered."""
         return self._model
@@ -343,7 +350,7 @@ class Curve:
         return "layerjkr.Curve(model=%r, %d radii, %d warnings)" % (self._model, len(self), len(self._warnings))
 
 
-_CURVE_KEYS = _CURVE_ROWS + ("error_est", "warnings", "model", "reference", "choice")
+_CURVE_KEYS = _CURVE_ROWS + ("error_est", "warnings", "notices", "model", "reference", "choice")
 
 
 def curve(scene: SceneLike, a: npt.ArrayLike, *, warning_threshold: float = 0.05) -> Curve:
@@ -380,9 +387,9 @@ def curve(scene: SceneLike, a: npt.ArrayLike, *, warning_threshold: float = 0.05
     ModelWarning
         Each of the curve's warnings.
     """
-    block, warnings, model, reference, choice, seconds = _core.curve(
+    block, warnings, model, reference, choice, seconds, notices = _core.curve(
         _as_scene(scene), np.asarray(a, dtype=np.float64), _number("warning_threshold", warning_threshold))
-    result = Curve(block, warnings, model, reference, _choice(choice), seconds)
+    result = Curve(block, warnings, model, reference, _choice(choice), seconds, notices)
     _warn(warnings, 2)
     return result
 
@@ -402,6 +409,7 @@ class _SummaryFields(NamedTuple):  # the bound SummaryAnswer as plain (picklable
     adhesion_model: str
     adhesion: Optional[Tuple[float, float, bool, float, str]]
     warnings: List[str]
+    notices: List[str]
     seconds: float
 
 
@@ -511,6 +519,11 @@ class Summary:
         return list(self._a.warnings)
 
     @property
+    def notices(self) -> List[str]:
+        """What the answer records but does not warn about (never a :class:`ModelWarning`)."""
+        return list(self._a.notices)
+
+    @property
     def seconds(self) -> float:
         """Wall time of the C++ answer [s]."""
         return self._a.seconds
@@ -525,7 +538,7 @@ class Summary:
             zero_load_radius, fixed_grips_critical ({force, radius, delta} or None),
             model_error_estimate ({pull_off_force, zero_load_radius, reference}), K and G (or
             T) where known, E_star where known, adhesion_check ({lambda, sigma0, sigma0_assumed,
-            pull_off_error, basis} or None), model_choice for model "auto", warnings.
+            pull_off_error, basis} or None), model_choice for model "auto", warnings, notices.
         """
         fg = self.fixed_grips
         err = self.model_error
@@ -551,6 +564,7 @@ class Summary:
             d["model_choice"] = {"model": self._choice.model, "estimated_error": self._choice.estimated_error,
                                  "tolerance": self._choice.tolerance}
         d["warnings"] = self.warnings
+        d["notices"] = self.notices
         return d
 
     def __getitem__(self, key: str) -> Any:

@@ -73,12 +73,14 @@ class SummaryAnswer:
     @property
     def warnings(self) -> List[str]: ...
     @property
+    def notices(self) -> List[str]: ...
+    @property
     def seconds(self) -> float: ...
 
 def curve(scene: Scene, a: npt.ArrayLike, warning_threshold: float
-          ) -> Tuple[npt.NDArray[np.float64], List[str], str, str, Optional[AutoChoice], float]:
-    """(block, warnings, model, reference, choice, seconds); block is (9, n): a, P, delta, P_H,
-    delta_H, S, dS_da, error_estimate, c."""
+          ) -> Tuple[npt.NDArray[np.float64], List[str], str, str, Optional[AutoChoice], float, List[str]]:
+    """(block, warnings, model, reference, choice, seconds, notices); block is (9, n): a, P, delta,
+    P_H, delta_H, S, dS_da, error_estimate, c."""
 
 def summary(scene: Scene, warning_threshold: float) -> SummaryAnswer: ...
 

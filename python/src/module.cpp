@@ -105,7 +105,7 @@ py::tuple curve(const Scene& scene, const Array& radii, double warning_threshold
     a = {};
   }
   py::object choice = c.choice ? py::cast(*c.choice) : py::none();
-  return py::make_tuple(block, c.warnings, c.model, c.reference, choice, c.seconds);
+  return py::make_tuple(block, c.warnings, c.model, c.reference, choice, c.seconds, c.notices);
 }
 
 SummaryAnswer summary(const Scene& scene, double warning_threshold) {
@@ -323,6 +323,7 @@ PYBIND11_MODULE(_core, m) {
       })
       .def_readonly("choice", &SummaryAnswer::choice)
       .def_property_readonly("warnings", [](const SummaryAnswer& s) { return python::texts(s.warnings); })
+      .def_property_readonly("notices", [](const SummaryAnswer& s) { return python::texts(s.notices); })
       .def_readonly("seconds", &SummaryAnswer::seconds);
 
   m.def("curve", &curve, py::arg("scene"), py::arg("a"), py::arg("warning_threshold"));

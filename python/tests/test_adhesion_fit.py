@@ -6,6 +6,9 @@ bisection in plain Python: an oracle that shares nothing with the library's solv
 """
 import math
 
+import re
+import warnings
+
 import numpy as np
 import pytest
 
@@ -92,8 +95,10 @@ def test_maugis_dugdale_on_a_film_fits_back_the_library_curve():
     delta = np.concatenate([c.delta, c.delta[-1] - span * np.arange(1, 21) / 40])
     P = np.concatenate([c.P, np.zeros(20)])
     start = dict(film, medium=dict(film["medium"], E=6e9))
-    with pytest.warns(layerjkr.ModelWarning, match="31 radii .* interpolation error"):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # its ~1e-8 interpolation error is a notice, not a warning
         r = layerjkr.fit(delta, P, start, free=["E", "w"], segment=np.ones(delta.size, dtype=int), branch="retract")
+    assert any(re.search("31 radii .* interpolation error", n) for n in r.notices)
     assert r.converged
     assert r.family == "dugdale" and r.model == "maugis_dugdale on exact"
     assert abs(r.values["E"] / 3e9 - 1) < 1e-5

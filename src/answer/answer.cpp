@@ -105,6 +105,7 @@ SummaryAnswer solve_summary(const Scene& scene, const AnswerOptions& options) {
   s.E_star = built.resolved.E_star;
   s.choice = built.choice;
   s.warnings = std::move(built.resolved.warnings);
+  s.notices = std::move(built.resolved.notices);
   if (!std::isfinite(s.error.worst()))
     s.warnings.push_back("model '" + s.contact.model + "' misses a critical point its reference model '" +
                          s.error.reference + "' has (estimated error unbounded)");
@@ -144,6 +145,7 @@ CurveAnswer solve_curve(const Scene& scene, const std::vector<double>& radii, co
   c.reference = estimator.reference_name();
   c.choice = built.choice;
   c.warnings = std::move(built.resolved.warnings);
+  c.notices = std::move(built.resolved.notices);
   c.adhesion = checked_adhesion(scene, built, jkr_solution(built, solution), solution, options, &c.warnings);
   double worst = 0.0, worst_a = 0.0;
   for (std::size_t i = 0; i < c.states.size(); ++i) {

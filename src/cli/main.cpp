@@ -49,8 +49,9 @@ int fail(int code, const std::string& message) {
   return code;
 }
 
-void print_warnings(const std::vector<std::string>& warnings) {
+void print_warnings(const std::vector<std::string>& warnings, const std::vector<std::string>& notices) {
   for (const auto& w : warnings) std::cerr << "layerjkr: warning: " << layerjkr::printable(w) << "\n";
+  for (const auto& n : notices) std::cerr << "layerjkr: note: " << layerjkr::printable(n) << "\n";
 }
 
 void print_choice(const std::optional<layerjkr::AutoChoice>& choice) {
@@ -70,7 +71,7 @@ int run_curve(const std::string& path, const std::string& at, double a_max, int 
   }
   // Compute everything before printing so a failure never leaves partial output.
   const layerjkr::CurveAnswer answer = layerjkr::solve_curve(scene, radii);
-  print_warnings(answer.warnings);
+  print_warnings(answer.warnings, answer.notices);
   print_choice(answer.choice);
   std::cout << layerjkr::cli::curve_csv(answer);
   return 0;
@@ -78,7 +79,7 @@ int run_curve(const std::string& path, const std::string& at, double a_max, int 
 
 int run_summary(const std::string& path) {
   const layerjkr::SummaryAnswer answer = layerjkr::solve_summary(layerjkr::load_scene(path));
-  print_warnings(answer.warnings);
+  print_warnings(answer.warnings, answer.notices);
   print_choice(answer.choice);
   std::cout << layerjkr::cli::summary_json(answer).dump(2) << "\n";
   return 0;

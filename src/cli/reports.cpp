@@ -149,6 +149,7 @@ json summary_json(const SummaryAnswer& a) {
                          {"estimated_error", a.choice->estimated_error},
                          {"tolerance", a.choice->tolerance}};
   j["warnings"] = a.warnings;
+  j["notices"] = a.notices;
   return j;
 }
 

@@ -1,13 +1,26 @@
 #include "layerjkr/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 namespace layerjkr {
 
 std::string format_double(double value) {
+  // The shortest form that reads back as the same double: 0.49 is "0.49", not
+  // "0.48999999999999999", and a value just outside a bound still shows the digits that put it there.
+  // Whole numbers below 1e16 keep their digits ("1000", not "1e+03"), as a user types them.
   char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  int digits = 1;
+  for (; digits < 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    if (!std::isfinite(value) || std::strtod(buffer, nullptr) == value) break;
+  }
+  const double magnitude = std::fabs(value);
+  if (std::isfinite(value) && magnitude >= 1.0 && magnitude < 1e16)
+    digits = std::max(digits, static_cast<int>(std::floor(std::log10(magnitude))) + 1);
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;
 }
 

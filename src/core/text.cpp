@@ -2,6 +2,9 @@
 #include "layerjkr/text.hpp"
 
 #include <cstddef>
+#include <cstdio>
+
+#include "core/short_number.hpp"
 
 namespace layerjkr {
 namespace {
@@ -101,4 +104,13 @@ std::string unescape_bytes(const std::string& s) {
   return out;
 }
 
+namespace detail {
+
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+}  // namespace detail
 }  // namespace layerjkr

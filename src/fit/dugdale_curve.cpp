@@ -15,6 +15,7 @@
 #include <boost/math/interpolators/barycentric_rational.hpp>
 
 #include "core/scalar.hpp"
+#include "core/short_number.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {
@@ -149,10 +150,11 @@ class DugdaleCurve final : public CurveModelBase<DugdaleCurve> {
   double max_radius() const override { return a_max_; }
   FitFamily family() const override { return FitFamily::dugdale; }
   std::string model_name() const override { return std::string(kind_name()) + " on " + medium_; }
+  double measured_error() const override { return error_; }
   std::vector<std::string> notes() const override {
     return {std::string(kind_name()) + " on '" + medium_ + "' solved per parameter vector on " +
-            std::to_string(radii_.size()) + " radii in [0, " + format_double(a_max_) +
-            "] m and interpolated; measured interpolation error " + format_double(error_) +
+            std::to_string(radii_.size()) + " radii in [0, " + short_number(a_max_) +
+            "] m and interpolated; measured interpolation error " + short_number(error_) +
             " of the force and indentation spans at the start (target 1e-6)"};
   }
   std::vector<std::string> notes_at(const CurveParameters<double>& p) const override {
@@ -160,7 +162,7 @@ class DugdaleCurve final : public CurveModelBase<DugdaleCurve> {
     const double error = interpolation_error(p.s * p.s / kappa, p.sigma0 / kappa);
     if (error <= kTargetError) return {};
     return {"at the fitted parameters the " + std::string(kind_name()) + " grid's measured interpolation error is " +
-            format_double(error) + " of the force and indentation spans (target 1e-6): the fit's precision is limited by it"};
+            short_number(error) + " of the force and indentation spans (target 1e-6): the fit's precision is limited by it"};
   }
   const CurveModel* start_model() const override { return start_.get(); }
 

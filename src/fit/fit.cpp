@@ -192,7 +192,7 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
                            "foundation in closed form");
   out.warnings.insert(out.warnings.end(), fixed.warnings.begin(), fixed.warnings.end());
   out.notices.insert(out.notices.end(), curve.notes.begin(), curve.notes.end());
-  if (std::optional<std::string> note = scene.profile->approximation()) out.warnings.push_back(*note);
+  out.notices.insert(out.notices.end(), resolved.notices.begin(), resolved.notices.end());
 
   std::vector<double> x(options.free.size(), 0.0);
   const double k = control_stiffness(options, curve);
@@ -272,7 +272,7 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
                           "(--keep-offset) to keep the forces as they are");
   detail::diagnose_residuals(data, force_span, &out);
   detail::diagnose_indentation(data, &out);
-  for (const auto& note : model->notes()) out.warnings.push_back(note);  // after the fit: a grid may refine
+  detail::record_model_notes(*model, data, &out);  // after the fit: a grid may refine
   for (const auto& note : model->notes_at(physical_at_x())) out.warnings.push_back(note);
   const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;
   for (std::size_t i = 0; i < data.P.size(); ++i)

@@ -76,6 +76,24 @@ void diagnose_residuals(const FitData& data, double force_span, FitSummary* out)
   }
 }
 
+void record_model_notes(const CurveModel& model, const FitData& data, FitSummary* out) {
+  // 1e-4: 500 times below the answers' default warning threshold (5 %), and below what any
+  // measured force curve resolves.
+  constexpr double kNegligibleModelError = 1e-4;
+  const double error = model.measured_error();
+  const auto [lo, hi] = std::minmax_element(data.P.begin(), data.P.end());
+  const double force_error = data.P.empty() ? 0.0 : error * (*hi - *lo);
+  const bool negligible = error <= kNegligibleModelError || force_error < 0.1 * data.noise;
+  for (const std::string& note : model.notes()) {
+    if (negligible) {
+      out->notices.push_back(note);
+    } else {
+      out->warnings.push_back(note + ": a force error of about " + short_number(force_error) + " N against the data's noise " +
+                              short_number(data.noise) + " N limits the fit's precision");
+    }
+  }
+}
+
 void diagnose_indentation(const FitData& data, FitSummary* out) {
   if (!(data.contact_slope >= kRigidContactSlope)) return;
   const double share = std::min(1.0, data.contact_slope);

@@ -13,6 +13,7 @@
 #include "dugdale_curve.hpp"
 #include "core/gsl_support.hpp"
 #include "core/scalar.hpp"
+#include "core/short_number.hpp"
 #include "jkr/jkr_transform.hpp"
 #include "models/state_formulas.hpp"
 #include "layerjkr/adhesion.hpp"
@@ -236,10 +237,11 @@ class TabulatedCurve final : public CurveModelBase<TabulatedCurve> {
   double max_radius() const override { return a_hi_; }
   FitFamily family() const override { return FitFamily::tabulated; }
   std::string model_name() const override { return law_.name(model_->name()); }
+  double measured_error() const override { return max_error_; }
   std::vector<std::string> notes() const override {
-    return {"model '" + model_->name() + "' tabulated on a in [" + format_double(a_lo_) + ", " +
-            format_double(a_hi_) + "] m; measured interpolation error " +
-            format_double(max_error_) + " (relative)"};
+    return {"model '" + model_->name() + "' tabulated on a in [" + short_number(a_lo_) + ", " +
+            short_number(a_hi_) + "] m; measured interpolation error " +
+            short_number(max_error_) + " (relative)"};
   }
 
  private:

@@ -52,8 +52,11 @@ class CurveModel {
   virtual double max_radius() const = 0;
   virtual FitFamily family() const = 0;
   virtual std::string model_name() const = 0;
-  /// Extra lines for FitSummary::warnings (e.g. the table's interpolation error).
+  /// How the model was built (e.g. the table's interpolation error): FitSummary::notices, or
+  /// warnings where measured_error() matters against the data's noise.
   virtual std::vector<std::string> notes() const { return {}; }
+  /// The measured relative interpolation error of the model's curve (0 for a closed form).
+  virtual double measured_error() const { return 0.0; }
   /// Makes the model meet its accuracy target at the parameters p where it is built per parameter
   /// vector (a finer grid); true if it changed, and the fit must then evaluate again.
   virtual bool refine_at(const CurveParameters<double>& p) {

@@ -7,6 +7,7 @@
 
 #include <ceres/problem.h>
 
+#include "core/short_number.hpp"
 #include "curve_evaluator.hpp"
 #include "layerjkr/fit.hpp"
 
@@ -43,6 +44,12 @@ double second_difference_noise(const std::vector<double>& P, const std::vector<s
 /// with the slope and the lever, and the fit is not called identifiable - E cannot be told from
 /// a rigid sample within the deflection's calibration error.
 void diagnose_indentation(const FitData& data, FitSummary* out);
+
+/// The model's build notes (CurveModel::notes): notices where its measured interpolation error
+/// is far below what the data resolve - at most kNegligibleModelError, or a force error
+/// (error x the data's force span) under a tenth of their noise - else warnings that give the
+/// force error against the noise.
+void record_model_notes(const CurveModel& model, const FitData& data, FitSummary* out);
 
 /// With measured contact radii (not (P, a) data): each column's noise, given or estimated from
 /// its second differences, into out->force_noise / radius_noise, and data.a_scale set so that
@@ -108,8 +115,6 @@ constexpr double kUpperBoundDeviance = 2.705543454095404;
 /// A cost (dimensionless residuals, force / force span) per degree of freedom below this is
 /// rounding: residuals of 1e-12 of the force span.
 constexpr double kNoiselessCost = 1e-24;
-/// Three significant digits, for numbers inside sentences.
-std::string short_number(double v);
 
 /// Maugis' lambda of the parameters at x (fit_sigma0.cpp; NaN at w = 0).
 double maugis_lambda_at(const ParameterMap& map, const std::vector<double>& x);

@@ -122,7 +122,7 @@ void report_correlated_pairs(const std::vector<bool>& separable, const FitOption
     for (std::size_t j = i + 1; j < p_free; ++j)
       if (separable[i] && separable[j] && std::abs(out->correlation[i][j]) > options.correlation_limit) {
         out->unidentifiable.push_back(std::string(to_string(options.free[i])) + " and " + to_string(options.free[j]) +
-                                      " (correlation " + format_double(out->correlation[i][j]) + ")");
+                                      " (correlation " + short_number(out->correlation[i][j]) + ")");
         for (std::size_t k : {i, j}) {
           out->parameters[k].standard_error = kNaN;
           out->parameters[k].identifiable = false;
@@ -287,12 +287,6 @@ void conclude(FitSummary* out) {
 }
 
 }  // namespace
-
-std::string short_number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 void assess_uncertainty(FitRun& run, CurveEvaluator& ev, const ParameterMap& map, std::vector<double>& x,
                         const FitOptions& options, const FitData& data, FitSummary* out) {

@@ -151,9 +151,10 @@ ResolvedModel resolve_medium(const Scene& s) {
 
 ResolvedModel resolve_model(const Scene& s) {
   ResolvedModel r = resolve_medium(s);
-  // An indenter the profile only approximates (a pyramid) is stated on every answer.
+  // An indenter the profile only approximates (a pyramid) is stated on every answer: a documented
+  // approximation, a notice rather than a warning.
   if (s.profile)
-    if (std::optional<std::string> note = s.profile->approximation()) r.warnings.push_back(*note);
+    if (std::optional<std::string> note = s.profile->approximation()) r.notices.push_back(*note);
   return r;
 }
 

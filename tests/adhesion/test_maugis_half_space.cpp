@@ -272,7 +272,7 @@ TEST_CASE("Maugis lambda, Tabor mu and the Lennard-Jones Dugdale stress", "[adhe
 }
 
 TEST_CASE("Maugis-Dugdale rejects bad input naming the parameter, value and range", "[adhesion][errors]") {
-  CHECK_THROWS_WITH(maugis_point(1e-5, 1.0), Catch::Contains("lambda = 1.0000000000000001e-05") &&
+  CHECK_THROWS_WITH(maugis_point(1e-5, 1.0), Catch::Contains("lambda = 1e-05") &&
                                                  Catch::Contains("[1e-4, 1e4]"));
   CHECK_THROWS_AS(maugis_point(2e4, 1.0), DomainError);
   CHECK_THROWS_AS(maugis_point(NAN, 1.0), DomainError);

@@ -81,6 +81,20 @@ TEST_CASE("summary prints the documented JSON keys", "[cli]") {
   CHECK(j["fixed_grips_critical"].is_null());  // Winkler-like: delta(a) is monotone
 }
 
+TEST_CASE("a pyramid's cone equivalence is a note, not a warning", "[cli]") {
+  const std::string scene = unique("pyramid.json");
+  std::ofstream(scene) << R"({"indenter": {"shape": "pyramid", "semi_angle_deg": 35, "sides": 4},
+                             "medium": {"type": "half_space", "E": 1500, "nu": 0.5}, "w": 0})";
+  const Run r = run("summary " + scene);
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["warnings"].empty());
+  REQUIRE(j["notices"].size() == 1);
+  CHECK(j["notices"][0].get<std::string>().find("equivalent cone") != std::string::npos);
+  CHECK(r.err.find("layerjkr: note: the 4-sided pyramid") != std::string::npos);
+  CHECK(r.err.find("warning") == std::string::npos);
+}
+
 TEST_CASE("help exits 0 and lists the commands", "[cli]") {
   Run r = run("--help");
   CHECK(r.code == 0);

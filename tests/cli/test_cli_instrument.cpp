@@ -76,7 +76,7 @@ TEST_CASE("a map: fit needs --curve, fit-map gives every curve its row with inde
   const auto rows = lines(slurp(out));
   REQUIRE(rows.size() == 10);  // header, 4 + 4 curves, 1 broken file
   CHECK(rows[1].rfind(map + "#0,0,", 0) == 0);
-  CHECK(rows[3].find("#2,2,0.00057183593750000008,-0.00021373046875000003,9,9,") != std::string::npos);
+  CHECK(rows[3].find("#2,2,0.0005718359375000001,-0.00021373046875000003,9,9,") != std::string::npos);
   CHECK(rows[6].find("#1,1,") != std::string::npos);
   CHECK(rows[6].find(",1,0,") != std::string::npos);  // QI pixel (1, 0)
   CHECK(rows[9].find("broken.jpk-force,,,,,,error,") != std::string::npos);

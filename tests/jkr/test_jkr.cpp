@@ -74,7 +74,7 @@ TEST_CASE("the adhesive correction vanishes like sqrt(w) as w -> 0", "[jkr]") {
 
 TEST_CASE("jkr_transform and the explicit forms reject invalid input", "[jkr][errors]") {
   const NonAdhesiveState ok{1e-4, 1.0, 1e-6, 10.0, 1e5};
-  CHECK_THROWS_WITH(jkr_transform(ok, -0.1), Catch::Contains("w = -0.10000000000000001"));
+  CHECK_THROWS_WITH(jkr_transform(ok, -0.1), Catch::Contains("w = -0.1"));
   CHECK_THROWS_AS(jkr_transform(ok, NAN), DomainError);
   CHECK_THROWS_AS(jkr_transform(ok, INFINITY), DomainError);
   NonAdhesiveState flat = ok;

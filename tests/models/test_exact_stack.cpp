@@ -209,6 +209,6 @@ TEST_CASE("Stack: an incompressible stack's squeeze-film law approaches the exac
 
 TEST_CASE("Stack: invalid stacks name the layer and the key", "[exact][stack][errors]") {
   CHECK_THROWS_WITH(ExactLayerKernel(stack({})), Catch::Contains("layers"));
-  CHECK_THROWS_WITH(ExactLayerKernel(stack({{1.0, 0.3, 1.0}, {1.0, 0.6, 1.0}})), Catch::Contains("layers[1].nu = 0.59999999999999998"));
+  CHECK_THROWS_WITH(ExactLayerKernel(stack({{1.0, 0.3, 1.0}, {1.0, 0.6, 1.0}})), Catch::Contains("layers[1].nu = 0.6"));
   CHECK_THROWS_WITH(ExactLayerKernel(on_half_space({{1.0, 0.3, 1.0}}, 0.0, 0.3)), Catch::Contains("substrate.E = 0"));
 }

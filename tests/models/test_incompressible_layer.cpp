@@ -89,7 +89,7 @@ TEST_CASE("incompressible layer: the exact layer at nu = 1/2 approaches it as O(
 
 TEST_CASE("incompressible layer: bad input names the parameter", "[incompressible]") {
   const auto p = make_paraboloid(1.0);
-  CHECK_THROWS_WITH(make_incompressible_layer(p, {1.0, 0.49, 1.0, Base::bonded}), Catch::Contains("nu = 0.48"));
+  CHECK_THROWS_WITH(make_incompressible_layer(p, {1.0, 0.49, 1.0, Base::bonded}), Catch::Contains("nu = 0.49"));
   CHECK_THROWS_WITH(make_incompressible_layer(p, {1.0, 0.5, 1.0, Base::frictionless}), Catch::Contains("bonded"));
   CHECK_THROWS_WITH(make_incompressible_layer(p, {1.0, 0.5, -1.0, Base::bonded}), Catch::Contains("h = -1"));
   CHECK_THROWS_WITH(make_incompressible_layer(p, {1.0, 0.5, 1.0, Base::bonded})->state(-1.0), Catch::Contains("-1"));

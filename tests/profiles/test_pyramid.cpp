@@ -44,8 +44,12 @@ TEST_CASE("a pyramid's Hertz force is Bilodeau's c_n E* tan(theta) delta^2", "[p
         const double delta = s.hertz.delta_H;
         CHECK(rel_err(s.hertz.P_H, c * E_star * std::tan(deg * kDeg) * delta * delta) < 1e-12);
       }
-      CHECK(mentions_pyramid(answer.warnings));
-      CHECK(mentions_pyramid(solve_summary(parse_scene(pyramid_scene(deg, sides, 1e-4))).warnings));
+      // The cone equivalence is a stated model error, not a sign of trouble: a notice.
+      CHECK(mentions_pyramid(answer.notices));
+      CHECK_FALSE(mentions_pyramid(answer.warnings));
+      const SummaryAnswer summary = solve_summary(parse_scene(pyramid_scene(deg, sides, 1e-4)));
+      CHECK(mentions_pyramid(summary.notices));
+      CHECK(summary.warnings.empty());
     }
   }
 }
@@ -102,7 +106,9 @@ TEST_CASE("a fit with a pyramid returns the modulus of data made from the pyrami
   REQUIRE(s.converged);
   CHECK(rel_err(s[FitParameter::E].value, E) < 1e-6);
   CHECK(std::abs(s[FitParameter::delta0].value - delta0) < 1e-12);
-  CHECK(mentions_pyramid(s.warnings));
+  CHECK(mentions_pyramid(s.notices));
+  INFO(s.brief_report());
+  CHECK(s.warnings.empty());  // a clean curve of the model's own law: nothing to warn about
 }
 
 TEST_CASE("an approach curve fits with a ratio-of-variances point, a pyramid and an indentation range",
@@ -162,5 +168,5 @@ TEST_CASE("an approach curve fits with a ratio-of-variances point, a pyramid and
   const ParameterEstimate& e = refined[FitParameter::E];
   CHECK(std::abs(e.value - E) < 4.0 * e.standard_error);
   CHECK(std::abs(refined[FitParameter::delta0].value - delta0) < 4.0 * refined[FitParameter::delta0].standard_error);
-  CHECK(mentions_pyramid(s.warnings));
+  CHECK(mentions_pyramid(s.notices));
 }
