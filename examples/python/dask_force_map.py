@@ -114,6 +114,7 @@ def rows_for(items, free):
               "range_samples"]
     for p in free:
         header += [p, p + "_stderr"]
+    header += ["quality", "warnings", "notices"]
     rows = []
     num = lambda v: "" if v is None or not math.isfinite(v) else shortest(v)
     index = lambda v: "" if v is None else str(v)
@@ -130,8 +131,11 @@ def rows_for(items, free):
             row += [num(c["value"]), num(c["stderr"]), str(c["samples_in_range"])]
             for p in free:
                 row += [num(r.values[p]), num(r.errors[p])]
+            quality = ("not converged" if not r.converged else "not identifiable" if not r.identifiable else
+                       "warning" if r.warnings else "ok")
+            row += [quality, csv_cell(" | ".join(r.warnings)), csv_cell(" | ".join(r.notices))]
         else:
-            row += [""] * (9 + 2 * len(free))
+            row += [""] * (9 + 2 * len(free)) + ["failed", "", ""]
         rows.append(row)
     return header, rows
 

@@ -251,6 +251,10 @@ struct FitSummary {
   const ParameterEstimate& operator[](FitParameter p) const;
   /// A few lines: status, estimates +- errors, rms, identifiability, warnings, notices.
   std::string brief_report() const;
+  /// The contact point [m] the model's indentation delta_i - delta0 is measured from: the fitted
+  /// delta0 when it was free, else the one held fixed (contact_point.value: a contact-point
+  /// method's, or 0). Plots draw force against this indentation.
+  double model_delta0() const;
   /// The verdict in one cell: "yes", or "no: " / "unknown: " followed by identifiability_reason
   /// (the fit-map table's and the map report's identifiability column).
   std::string identifiability() const;
@@ -281,7 +285,8 @@ struct BatchItem {
   bool ok = false;
   std::string error;   ///< the Error's message when !ok
   /// Without the per-sample vectors (delta, P, P_fit, excluded), to bound memory; with
-  /// BatchOptions::display_points, a thinned copy of them.
+  /// BatchOptions::display_points, a thinned copy of them - for a curve that was read but could
+  /// not be fitted, its samples as read (delta, P; P_fit and excluded empty).
   FitSummary summary;
   /// Instrument files: the curve's number in the file, map position [m] and grid pixel
   /// (-1 / NaN where the file has none, and for CSV files).
@@ -293,6 +298,11 @@ struct BatchItem {
   /// BatchOptions::cancelled stopped the batch before this item started (ok = false).
   bool cancelled = false;
 };
+
+/// The item's quality in one word, as fit-map's table (`quality`) and the map report's status
+/// layer name it: "failed" (not fitted), "not converged", "not identifiable", "warning" (fitted
+/// with warnings; notices do not count), or "ok".
+std::string batch_quality(const BatchItem& item);
 
 /// How a batch runs, and the hooks that let a caller keep what it finished. Every hook may be
 /// empty. The hooks are called from the worker threads: `cancelled` and `skip` concurrently

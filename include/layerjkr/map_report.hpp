@@ -54,7 +54,8 @@ std::vector<std::size_t> display_samples(const std::vector<double>& P, const std
 
 /// Replaces the per-sample vectors of `s` (delta, P, P_fit, excluded) by the samples
 /// display_samples keeps; the rest of the summary (excluded_count, points ...) is unchanged.
-/// A summary without samples stays as it is.
+/// A summary without samples stays as it is; one without P_fit (a curve that failed, kept
+/// as read) is thinned by its force alone.
 void thin_for_display(FitSummary& s, std::size_t max_points);
 
 struct MapReportOptions {

@@ -26,6 +26,7 @@ BUILD = pathlib.Path(os.environ.get("LAYERJKR_BUILD_DIR", SOURCE / "build"))
 MAKE_MAP = os.environ.get("LAYERJKR_MAKE_MAP", str(BUILD / "bin" / "make_instrument_map"))
 # Markup in a file name is shown as text, never interpreted.
 BROKEN = "<b>broken<i> &amp;.jpk-force"
+FLAT = "flat.csv"
 SCENE = '{"indenter": {"shape": "paraboloid", "R": 4e-8}, "medium": {"type": "half_space", "E": 3e5, "nu": 0.5}}'
 
 
@@ -47,13 +48,16 @@ def report(tmp_path_factory):
         pytest.skip("the layerjkr CLI is not built at %s" % CLI)
     d = tmp_path_factory.mktemp("report")
     (d / BROKEN).write_text("not a zip")
+    # Readable but not fittable: a flat curve, no contact anywhere. Its pixel shows its samples.
+    (d / FLAT).write_text("delta,P\n" + "".join("%g,%g\n" % (1e-8 * k, 1e-12 * ((k * 7919) % 13 - 6))
+                                                   for k in range(60)))
     source = SHARED / "data" / "instrument"
     real = SHARED / "data" / "real" / "jpk_spot3_0192_approach.csv"
     if source.is_dir() and real.exists() and os.path.exists(MAKE_MAP):
         subprocess.run([MAKE_MAP, "qi", "8", str(d / "map8.jpk-qi-data"), "--source", str(source)], check=True,
                        capture_output=True)
         (d / "hertz.json").write_text(SCENE)
-        inputs = [str(d / "map8.jpk-qi-data"), str(d / BROKEN), str(real)]
+        inputs = [str(d / "map8.jpk-qi-data"), str(d / BROKEN), str(real), str(d / FLAT)]
         flags = ["--scene", str(d / "hertz.json"), "--free", "E,delta0,P0"]
         grid = True
     else:
@@ -64,6 +68,7 @@ def report(tmp_path_factory):
             shutil.copy(SOURCE / "data" / "curves" / "hydrogel_film_two_term.csv", d / ("c%d.csv" % k))
             inputs.append(str(d / ("c%d.csv" % k)))
         inputs.append(str(d / BROKEN))
+        inputs.append(str(d / FLAT))
         flags = ["--scene", str(SOURCE / "data" / "scenes" / "hydrogel_film_two_term.json"), "--branch", "all",
                  "--free", "E,w,delta0,P0"]
         grid = False
@@ -102,8 +107,10 @@ def _open(browser, page):
 
 def _same(csv_cell, value, column):
     """A CSV cell against the page's value: empty <-> null, numbers exactly, text exactly."""
-    if column in ("file", "status", "error", "model", "identifiability"):
+    if column in ("file", "status", "error", "model", "identifiability", "quality"):
         return (csv_cell or None) == (value or None)
+    if column in ("warnings", "notices"):  # the table joins a list in one cell
+        return csv_cell == " | ".join(value or [])
     if csv_cell == "":
         return value is None
     return value is not None and float(csv_cell) == float(value)
@@ -113,7 +120,7 @@ def test_select_returns_the_csv_values_and_the_page_stays_offline(report, browse
     _, page, rows, grid = report
     _open(browser, page)
     n = browser.execute_script("return window.layerjkr.data.count")
-    assert n == len(rows) == (66 if grid else 9)
+    assert n == len(rows) == (67 if grid else 10)
     assert {r["status"] for r in rows} == {"ok", "error"}  # both kinds are checked below
     for i in range(n):
         got = browser.execute_script("return window.layerjkr.select(arguments[0])", i)
@@ -134,6 +141,20 @@ def test_select_returns_the_csv_values_and_the_page_stays_offline(report, browse
     browser.execute_script("window.layerjkr.select(arguments[0])", broken)
     assert BROKEN in browser.execute_script("return document.querySelector('#curve .gtitle').textContent")
     assert BROKEN in browser.find_element(By.ID, "values").text
+    # A curve that was read but not fitted shows its samples as read, and why it failed.
+    flat = next(i for i, r in enumerate(rows) if r["file"].endswith(FLAT))
+    assert rows[flat]["status"] == "error" and rows[flat]["quality"] == "failed"
+    browser.execute_script("window.layerjkr.select(arguments[0])", flat)
+    traces = browser.execute_script("return document.getElementById('curve').data.map(t => [t.name, t.x.length])")
+    assert traces == [["data (not fitted)", 60]]
+    notes = browser.execute_script("return document.querySelectorAll('#curve .annotation-text')[0].textContent")
+    assert notes.startswith("not fitted: ") and rows[flat]["error"][:30] in notes
+    # A fitted curve: force against indentation in prefixed units, the fit as a line.
+    browser.execute_script("window.layerjkr.select(arguments[0])", ok)
+    curve = browser.execute_script("return document.getElementById('curve').data.map(t => [t.name, t.mode])")
+    assert ["fit", "lines"] in curve
+    xtitle = browser.execute_script("return document.querySelector('#curve .xtitle').textContent")
+    assert xtitle.startswith("indentation") and ("[\u00b5m]" in xtitle or "[nm]" in xtitle), xtitle
     # A bad index is an error, not a silent no-op.
     with pytest.raises(Exception, match="not in 0 .. %d" % (n - 1)):
         browser.execute_script("return window.layerjkr.select(arguments[0])", n)
@@ -195,17 +216,16 @@ def test_offline_click_arrow_keys_and_status_filter(report, browser, tmp_path):
     for key, x, y in path:
         ActionChains(browser).send_keys(key).perform()
         assert _selected(browser) == cells[y * nx + x], key
-    # The status filter: hiding "ok" leaves only the other pixels drawn.
+    # The status boxes toggle the markers over the map; every pixel keeps its value.
     qualities = browser.execute_script("return window.layerjkr.data.columns.quality")
-    ok_count = sum(1 for i in in_view if qualities[i] == "ok")
-    assert 0 < ok_count < len(in_view)
-    browser.find_element(By.ID, "show-ok").click()
-    state = browser.execute_script("return window.layerjkr.state()")
-    assert "ok" not in state["show"] and state["shown"] == len(in_view) - ok_count
     E = browser.execute_script("return window.layerjkr.data.columns.E")
-    z = browser.execute_script("return document.getElementById('map').data[0].z")
-    drawn = {(x, y) for y, zr in enumerate(z) for x, val in enumerate(zr) if val is not None}
-    assert drawn == {(k % nx, k // nx) for k, i in enumerate(cells) if i >= 0 and qualities[i] != "ok" and E[i] is not None}
+
+    def drawn():
+        z = browser.execute_script("return document.getElementById('map').data[0].z")
+        return {(x, y) for y, zr in enumerate(z) for x, val in enumerate(zr) if val is not None}
+    with_value = {(k % nx, k // nx) for k, i in enumerate(cells) if i >= 0 and E[i] is not None}
+    assert drawn() == with_value
+    assert browser.find_elements(By.ID, "show-ok") == []  # ok pixels carry no marker to toggle
 
     def markers():  # the status markers drawn over the map, by trace name
         return browser.execute_script(
@@ -213,13 +233,14 @@ def test_offline_click_arrow_keys_and_status_filter(report, browser, tmp_path):
     counts = {q: sum(1 for i in in_view if qualities[i] == q) for q in ("warning", "not identifiable", "not converged",
                                                                          "failed")}
     assert markers() == [["%s (%d)" % (q, n), n] for q, n in counts.items() if n]
-    failed = counts["failed"]
-    browser.find_element(By.ID, "show-failed").click()
-    assert markers() == [["%s (%d)" % (q, n), n] for q, n in counts.items() if n and q != "failed"]
-    assert browser.execute_script("return window.layerjkr.state().shown") == len(in_view) - ok_count - failed
-    browser.find_element(By.ID, "show-failed").click()
-    browser.find_element(By.ID, "show-ok").click()
-    assert browser.execute_script("return window.layerjkr.state().shown") == len(in_view)
+    for q in [q for q, n in counts.items() if n]:
+        box = browser.find_element(By.ID, "show-" + q.replace(" ", "-"))
+        box.click()
+        assert markers() == [["%s (%d)" % (p, n), n] for p, n in counts.items() if n and p != q]
+        assert drawn() == with_value, q  # unmarking a status hides no value
+        assert browser.execute_script("return window.layerjkr.state().shown") == len(in_view)
+        box.click()
+    assert markers() == [["%s (%d)" % (q, n), n] for q, n in counts.items() if n]
     # Another field and the status map draw without errors.
     browser.execute_script("""
         var s = document.getElementById('field');

@@ -47,7 +47,14 @@ std::string header(const std::vector<FitParameter>& free) {
   std::string h = "file,curve,x,y,grid_x,grid_y,status,error,model,converged,iterations,rms_residual,identifiable,"
                   "identifiability,contact_point,contact_point_err,range_samples";
   for (FitParameter q : free) h += std::string(",") + to_string(q) + "," + to_string(q) + "_stderr";
-  return h + "\n";
+  return h + ",quality,warnings,notices\n";
+}
+
+// Messages in one cell, separated by " | ".
+std::string messages_cell(const std::vector<std::string>& messages) {
+  std::string joined;
+  for (const std::string& m : messages) joined += (joined.empty() ? "" : " | ") + m;
+  return message_cell(joined);
 }
 
 // The file cell is the name as given, escaped reversibly (text.hpp): a name with a line break
@@ -63,9 +70,11 @@ std::string row(const BatchItem& it, std::size_t free) {
         << "," << num(s.contact_point.value) << "," << num(s.contact_point.standard_error) << ","
         << s.contact_point.samples_in_range;
     for (const auto& e : s.parameters) csv << "," << num(e.value) << "," << num(e.standard_error);
+    csv << "," << batch_quality(it) << "," << messages_cell(s.warnings) << "," << messages_cell(s.notices);
   } else {
     csv << ",,,,,,,,,";
     for (std::size_t k = 0; k < free; ++k) csv << ",,";
+    csv << "," << batch_quality(it) << ",,";
   }
   csv << "\n";
   return csv.str();

@@ -19,31 +19,69 @@ std::string num(double v) { return std::isfinite(v) ? format_double(v) : ""; }
 
 }  // namespace
 
-// Data, fitted curve and residuals with gnuplot (pngcairo), through a temporary file.
-// The data go to a private scratch file that gnuplot reads by name, removed whether gnuplot
-// succeeds or not.
+namespace {
+
+// The SI prefix for values up to `largest` in magnitude: (factor to multiply by, label such as
+// "µm"); the axes then carry plain numbers and the unit in their titles.
+std::pair<double, std::string> si_scale(double largest, const std::string& unit) {
+  static const std::pair<double, const char*> prefixes[] = {{1e-15, "f"}, {1e-12, "p"}, {1e-9, "n"}, {1e-6, "\u00b5"},
+                                                           {1e-3, "m"},   {1.0, ""},     {1e3, "k"},  {1e6, "M"},
+                                                           {1e9, "G"}};
+  std::pair<double, const char*> chosen = prefixes[5];
+  if (std::isfinite(largest) && largest > 0.0)
+    for (const auto& p : prefixes)
+      if (largest >= 0.999 * p.first) chosen = p;
+  return {1.0 / chosen.first, chosen.second + unit};
+}
+
+double largest_magnitude(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v)
+    if (std::isfinite(x)) m = std::max(m, std::fabs(x));
+  return m;
+}
+
+}  // namespace
+
+// Data, fitted curve and residuals with gnuplot, through a temporary file: force against the
+// indentation from the model's contact point (FitSummary::model_delta0), the fit as a line, units
+// scaled to a prefix. The data go to a private scratch file that gnuplot reads by name, removed
+// whether gnuplot succeeds or not.
 void plot_fit(const FitSummary& s, OutputFile& png) {
+  const double d0 = s.model_delta0();
+  std::vector<double> indentation(s.delta.size()), residual(s.delta.size());
+  for (std::size_t i = 0; i < s.delta.size(); ++i) {
+    indentation[i] = s.delta[i] - d0;
+    residual[i] = s.P[i] - s.P_fit[i];
+  }
+  const auto x = si_scale(largest_magnitude(indentation), "m");
+  const auto y = si_scale(std::max(largest_magnitude(s.P), largest_magnitude(s.P_fit)), "N");
+  const auto r = si_scale(largest_magnitude(residual), "N");
   ScratchFile data("plot-data");
   {
     std::ostringstream f;
     f.precision(17);
     for (std::size_t i = 0; i < s.delta.size(); ++i)
-      f << s.delta[i] << " " << s.P[i] << " " << s.P_fit[i] << " " << s.P[i] - s.P_fit[i] << " "
-        << (!s.excluded.empty() && s.excluded[i] ? 1 : 0) << "\n";
+      f << indentation[i] * x.first << " " << s.P[i] * y.first << " " << s.P_fit[i] * y.first << " "
+        << residual[i] * r.first << " " << (!s.excluded.empty() && s.excluded[i] ? 1 : 0) << "\n";
     data.write(f.str());
   }
   const std::string dat = gnuplot_quoted(data.path());
   std::ostringstream g;
+  std::ostringstream rms;
+  rms.precision(4);
+  rms << s.rms_residual;
   g << "set terminal pngcairo size 900,750 font ',10' noenhanced\n"
     << "set output " << gnuplot_quoted(png.temporary()) << "\n"
-    << "set multiplot layout 2,1 title 'layerjkr fit: " << s.model << " (rms " << s.rms_residual << " N)'\n"
-    << "set format x '%.3s%c'\nset format y '%.1s%c'\nset grid\n"
-    << "set ylabel 'force P [N]'\nset key top left\n"
-    << "plot " << dat << " using 1:($5 == 0 ? $2 : 1/0) with points pt 7 ps 0.4 lc rgb '#777777' title 'data', "
+    << "set multiplot layout 2,1 title 'layerjkr fit: " << s.model << " (rms " << rms.str() << " N)'\n"
+    << "set grid\n"
+    << "set ylabel 'force [" << y.second << "]'\nset key top left\n"
+    << "plot " << dat << " using 1:($5 == 0 ? $2 : 1/0) with points pt 7 ps 0.4 lc rgb '#3b6ea8' title 'data', "
     << "'' using 1:($5 == 1 ? $2 : 1/0) with points pt 7 ps 0.4 lc rgb '#e67e22' title 'excluded (not JKR)', "
-    << "'' using 1:3 with points pt 7 ps 0.3 lc rgb '#c0392b' title 'fit'\n"
-    << "set xlabel 'delta [m]'\nset ylabel 'residual [N]'\nunset key\n"
-    << "plot " << dat << " using 1:4 with points pt 7 ps 0.3 lc rgb '#2c3e50', 0 lc rgb '#c0392b'\n"
+    << "'' using 1:3 with lines lw 2 lc rgb '#c0392b' title 'fit'\n"
+    << "set xlabel 'indentation delta - delta0 [" << x.second << "]'\nset ylabel 'residual [" << r.second
+    << "]'\nunset key\n"
+    << "plot " << dat << " using 1:4 with points pt 7 ps 0.3 lc rgb '#3b6ea8', 0 lc rgb '#c0392b'\n"
     << "unset multiplot\n";
   run_gnuplot(g.str(), png.temporary(), "--plot");
   png.commit();

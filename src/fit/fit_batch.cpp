@@ -18,6 +18,17 @@
 namespace layerjkr {
 namespace {
 
+// A curve that could not be fitted keeps its samples as read (thinned; no fit, nothing
+// excluded), so a report can show what failed beside why.
+void keep_raw_for_display(const CurveData& data, std::size_t display_points, FitSummary* s) {
+  s->delta = data.delta;
+  s->P = data.P;
+  s->P_fit.clear();
+  s->excluded.clear();
+  s->points = data.delta.size();
+  thin_for_display(*s, display_points);
+}
+
 // `load(i, item)` reads item i (and may fill in its map position); `unread(i)` is told of an
 // item that will not be loaded (skipped or cancelled), so that a file reader can close.
 template <class Load, class Unread>
@@ -63,7 +74,13 @@ std::vector<BatchItem> run_batch(std::vector<BatchItem> items, Load load, Unread
           item.skipped = true;
           unread(i);
         } else {
-          item.summary = fit(load(i, item), scene, options);
+          const CurveData data = load(i, item);
+          try {
+            item.summary = fit(data, scene, options);
+          } catch (const std::exception&) {
+            if (batch.display_points > 0) keep_raw_for_display(data, batch.display_points, &item.summary);
+            throw;
+          }
           if (batch.display_points > 0) {
             // Thinned copies are moved in, so the full vectors' memory goes with them.
             thin_for_display(item.summary, batch.display_points);
@@ -233,6 +250,18 @@ std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Sc
       },
       scene, options, batch, cancelled);
   return done;
+}
+
+}  // namespace layerjkr
+
+namespace layerjkr {
+
+std::string batch_quality(const BatchItem& item) {
+  if (!item.ok) return "failed";
+  if (!item.summary.converged) return "not converged";
+  if (!item.summary.identifiable) return "not identifiable";
+  if (!item.summary.warnings.empty()) return "warning";
+  return "ok";
 }
 
 }  // namespace layerjkr

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "contact_steps.hpp"
+#include "core/short_number.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {
@@ -220,6 +221,19 @@ FitSummary fit_steered(const CurveData& curve, const Scene& scene, const FitOpti
     if (has(options, FitParameter::delta0)) report.standard_error = s[FitParameter::delta0].standard_error;
   }
   report.samples_in_range = kept;
+  if (method != ContactPointMethod::fit && has(options, FitParameter::delta0) && s.converged) {
+    // The method's point measured the ranges and started the fit; the model's contact point is
+    // the fitted delta0, which every modulus reported here comes from.
+    const ParameterEstimate& d0 = s[FitParameter::delta0];
+    const double apart = d0.value - d_c;
+    std::string how_far = short_number(std::fabs(apart)) + " m";
+    if (std::isfinite(d0.standard_error) && d0.standard_error > 0.0)
+      how_far += ", " + short_number(std::fabs(apart) / d0.standard_error) + " standard errors";
+    s.notices.push_back("the contact point (" + std::string(to_string(method)) + ") " + short_number(d_c) +
+                        " m measured the ranges and started the fit; the model's contact point is the fitted delta0 = " +
+                        short_number(d0.value) + " m (" + how_far + " " + (apart >= 0.0 ? "deeper" : "shallower") +
+                        "), from which the estimates come");
+  }
   s.contact_point = report;
   return s;
 }

@@ -83,6 +83,12 @@ std::string FitSummary::brief_report() const {
   return o.str();
 }
 
+double FitSummary::model_delta0() const {
+  for (const ParameterEstimate& e : parameters)
+    if (e.parameter == FitParameter::delta0) return e.value;
+  return std::isfinite(contact_point.value) ? contact_point.value : 0.0;
+}
+
 std::string FitSummary::identifiability() const {
   if (identifiable) return "yes";
   return (identifiability_known ? "no: " : "unknown: ") + identifiability_reason;

@@ -61,14 +61,6 @@ const char* unit(FitParameter p) {
   return "";
 }
 
-std::string quality(const BatchItem& it) {
-  if (!it.ok) return "failed";
-  if (!it.summary.converged) return "not converged";
-  if (!it.summary.identifiable) return "not identifiable";
-  if (!it.summary.warnings.empty()) return "warning";
-  return "ok";
-}
-
 // The file an item came from: fit_files names a curve of a file of several `path#curve`.
 std::string file_of(const BatchItem& it) {
   if (it.curve < 0) return it.source;
@@ -120,13 +112,15 @@ std::pair<double, double> range_of(const std::vector<double>& a, const std::vect
   return lo <= hi ? std::make_pair(lo, hi) : std::make_pair(0.0, 0.0);
 }
 
-json curve_of(const FitSummary& full, std::size_t max_points) {
-  if (full.delta.empty() || full.P.size() != full.delta.size() || full.P_fit.size() != full.delta.size())
-    return nullptr;
+// A curve's samples for the page: fitted (P_fit aligned, indentation from `delta0`) or, for
+// one that failed, as read (no P_fit, no delta0: the page plots the data's displacement).
+json curve_of(const FitSummary& full, std::size_t max_points, bool fitted) {
+  const bool with_fit = fitted && full.P_fit.size() == full.delta.size();
+  if (full.delta.empty() || full.P.size() != full.delta.size() || (fitted && !with_fit)) return nullptr;
   FitSummary s;
   s.delta = full.delta;
   s.P = full.P;
-  s.P_fit = full.P_fit;
+  if (with_fit) s.P_fit = full.P_fit;
   s.excluded = full.excluded;
   thin_for_display(s, max_points);
   json c;
@@ -134,7 +128,13 @@ json curve_of(const FitSummary& full, std::size_t max_points) {
   const auto d = range_of(s.delta), p = range_of(s.P, s.P_fit);
   c["delta"] = {{"lo", d.first}, {"hi", d.second}, {"codes", codes(s.delta, d.first, d.second)}};
   c["P"] = {{"lo", p.first}, {"hi", p.second}, {"codes", codes(s.P, p.first, p.second)}};
-  c["P_fit"] = {{"lo", p.first}, {"hi", p.second}, {"codes", codes(s.P_fit, p.first, p.second)}};
+  if (with_fit) {
+    c["P_fit"] = {{"lo", p.first}, {"hi", p.second}, {"codes", codes(s.P_fit, p.first, p.second)}};
+    c["delta0"] = number(full.model_delta0());
+  } else {
+    c["P_fit"] = nullptr;
+    c["delta0"] = nullptr;
+  }
   json spans = json::array();
   for (std::size_t i = 0; i < s.excluded.size(); ++i)
     if (s.excluded[i] && (i == 0 || !s.excluded[i - 1])) {
@@ -258,7 +258,7 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
     names.push_back(name_of(p));
     names.push_back(name_of(p) + "_stderr");
   }
-  for (const char* extra : {"quality", "warnings", "unidentifiable", "termination", "points", "points_in_contact",
+  for (const char* extra : {"quality", "warnings", "notices", "unidentifiable", "termination", "points", "points_in_contact",
                             "excluded_count", "pull_off_force", "baseline_slope"})
     names.emplace_back(extra);
   for (const std::string& n : names) columns[n] = json::array();
@@ -293,10 +293,13 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
       columns[name_of(p)].push_back(has ? number(e->value) : json(nullptr));
       columns[name_of(p) + "_stderr"].push_back(has ? number(e->standard_error) : json(nullptr));
     }
-    columns["quality"].push_back(quality(it));
+    columns["quality"].push_back(batch_quality(it));
     json warnings = json::array();
     for (const std::string& w : ok ? s.warnings : std::vector<std::string>{}) warnings.push_back(printable(w));
     columns["warnings"].push_back(warnings);
+    json notices = json::array();
+    for (const std::string& n : ok ? s.notices : std::vector<std::string>{}) notices.push_back(printable(n));
+    columns["notices"].push_back(notices);
     columns["unidentifiable"].push_back(ok ? json(s.unidentifiable) : json::array());
     columns["termination"].push_back(ok ? json(s.termination) : json(nullptr));
     columns["points"].push_back(ok ? json(s.points) : json(nullptr));
@@ -308,7 +311,7 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
     any_slope = any_slope || (ok && s.baseline_slope != 0.0);
     any_contact = any_contact || (ok && std::isfinite(s.contact_point.value));
     if (curves.size() > 1) curves += ',';
-    curves += ok ? curve_of(s, options.display_points).dump() : "null";  // numbers and ASCII only
+    curves += curve_of(s, options.display_points, ok).dump();  // numbers and ASCII only
   }
   json fields = json::array();
   for (FitParameter p : options.free) {

@@ -36,6 +36,19 @@
     return unit ? s + ' ' + unit : s;
   }
 
+  // Values in SI units scaled to a prefix chosen from their largest magnitude: {factor, label}
+  // with label e.g. 'µm'; the axis then shows plain numbers (no 'u' or 'm' beside '[N]').
+  var PREFIXES = [[1e-15, 'f'], [1e-12, 'p'], [1e-9, 'n'], [1e-6, '\u00b5'], [1e-3, 'm'], [1, ''], [1e3, 'k'],
+                  [1e6, 'M'], [1e9, 'G']];
+  function siScale(arrays, unit) {
+    var big = 0;
+    arrays.forEach(function (a) { a.forEach(function (x) { if (isFinite(x)) big = Math.max(big, Math.abs(x)); }); });
+    var chosen = PREFIXES[5];
+    if (big > 0) PREFIXES.forEach(function (p) { if (big >= p[0] * 0.999) chosen = p; });
+    return {factor: 1 / chosen[0], label: chosen[1] + unit};
+  }
+  function scaled(a, s) { return a.map(function (x) { return x * s.factor; }); }
+
   // Plotly renders hover text as HTML: names and errors are shown as text.
   function escapeHtml(s) {
     return String(s).replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;');
@@ -50,7 +63,8 @@
     return key === STATUS_FIELD.key ? QUALITIES.indexOf(C.quality[i]) : C[key][i];
   }
 
-  function visible(i) { return state.show[C.quality[i]]; }
+  // Every pixel keeps its value; the status boxes only toggle the markers drawn over it.
+  function visible(i) { return i >= 0; }
 
   // The cell's x (column) and y (row) in view v.
   function xy(v, cell) { return {x: cell % v.nx, y: Math.floor(cell / v.nx)}; }
@@ -63,7 +77,7 @@
       var zr = [], tr = [];
       for (var c = 0; c < v.nx; ++c) {
         var i = v.cells[r * v.nx + c];
-        var val = i >= 0 && visible(i) ? value(f.key, i) : null;
+        var val = visible(i) ? value(f.key, i) : null;
         if (val !== null && val !== undefined && f.key !== STATUS_FIELD.key) values.push(val);
         zr.push(val === undefined ? null : val);
         tr.push(i >= 0 ? '#' + i + ' ' + escapeHtml(C.file[i]) + '<br>' + C.quality[i] +
@@ -102,7 +116,8 @@
       if (!xs.length) return;
       traces.push({type: 'scatter', mode: 'markers', x: xs, y: ys, name: q + ' (' + xs.length + ')', hoverinfo: 'skip',
                    marker: {symbol: SYMBOL[q], color: f.key === STATUS_FIELD.key ? '#fff' : COLOUR[q],
-                            size: Math.max(4, Math.min(12, 380 / Math.max(v.nx, v.ny))), line: {width: 1.5}}});
+                            size: Math.max(3, Math.min(9, 0.55 * 380 / Math.max(v.nx, v.ny))), line: {width: 1}},
+                   opacity: 0.9});
     });
     var sel = selectedXY();
     traces.push({type: 'scatter', mode: 'markers', x: sel ? [sel.x] : [], y: sel ? [sel.y] : [], name: 'selected',
@@ -130,7 +145,7 @@
 
   function countOf(v, q) {
     var n = 0;
-    v.cells.forEach(function (i) { if (i >= 0 && C.quality[i] === q && state.show[q]) ++n; });
+    v.cells.forEach(function (i) { if (i >= 0 && C.quality[i] === q) ++n; });
     return n;
   }
 
@@ -160,7 +175,7 @@
     if (!D.curves[i]) return null;
     if (!decoded[i]) {
       var c = D.curves[i];
-      var s = {n: c.n, delta: decode(c.delta), P: decode(c.P), P_fit: decode(c.P_fit)};
+      var s = {n: c.n, delta: decode(c.delta), P: decode(c.P), P_fit: c.P_fit ? decode(c.P_fit) : null, delta0: c.delta0};
       var ex = s.delta.map(function () { return false; });
       c.excluded.forEach(function (span) { for (var k = span[0]; k <= span[1]; ++k) ex[k] = true; });
       s.excluded = ex;
@@ -170,36 +185,58 @@
   }
 
   function drawCurve(i) {
-    var s = samplesOf(i);
+    var s = samplesOf(i), failed = C.status[i] === 'error';
     var layout = {margin: {l: 60, r: 10, t: 40, b: 45}, title: {text: '#' + i + ' ' + escapeHtml(C.file[i]), font: {size: 13}},
-                  xaxis: {title: {text: '\u03b4 [m]'}, exponentformat: 'SI', anchor: 'y2'},
-                  yaxis: {title: {text: 'P [N]'}, exponentformat: 'SI', domain: [0.36, 1]},
-                  yaxis2: {title: {text: 'residual [N]'}, exponentformat: 'SI', domain: [0, 0.27]},
+                  xaxis: {anchor: 'y2'}, yaxis: {domain: [0.36, 1]}, yaxis2: {domain: [0, 0.27]},
                   legend: {orientation: 'h', y: 1.0, yanchor: 'bottom', x: 1, xanchor: 'right'}, showlegend: true,
                   annotations: []};
     var traces = [];
+    if (failed)
+      layout.annotations.push({text: 'not fitted: ' + escapeHtml(C.error[i].slice(0, 160)), xref: 'paper', yref: 'paper',
+                               x: 0.5, y: 0.97, showarrow: false, font: {color: '#b00'}});
     if (!s) {
-      layout.annotations.push({text: C.status[i] === 'error' ? 'not fitted: ' + escapeHtml(C.error[i]) : 'no samples kept for display',
-                               xref: 'paper', yref: 'paper', x: 0.5, y: 0.7, showarrow: false, font: {color: '#b00'}});
+      if (!failed)
+        layout.annotations.push({text: 'no samples kept for display', xref: 'paper', yref: 'paper', x: 0.5, y: 0.7,
+                                 showarrow: false, font: {color: '#b00'}});
+    } else if (!s.P_fit) {
+      // A curve that failed: its samples as read, against the data's own displacement.
+      var xs = siScale([s.delta], 'm'), ys = siScale([s.P], 'N');
+      layout.xaxis.title = {text: 'displacement \u03b4 as read [' + xs.label + ']'};
+      layout.yaxis.title = {text: 'force [' + ys.label + ']'};
+      layout.yaxis.domain = [0, 1];
+      delete layout.yaxis2;
+      layout.xaxis.anchor = 'y';
+      traces.push({type: 'scatter', mode: 'markers', x: scaled(s.delta, xs), y: scaled(s.P, ys), name: 'data (not fitted)',
+                   marker: {size: 4, color: '#3b6ea8'}});
     } else {
+      // Force against indentation from the model's contact point (the fitted or fixed delta0).
+      var d0 = s.delta0 === null || s.delta0 === undefined ? 0 : s.delta0;
+      var ind = s.delta.map(function (d) { return d - d0; });
+      var res = s.P.map(function (p, k) { return p - s.P_fit[k]; });
+      var xsc = siScale([ind], 'm'), ysc = siScale([s.P, s.P_fit], 'N'), rsc = siScale([res], 'N');
+      layout.xaxis.title = {text: 'indentation \u03b4 \u2212 \u03b4\u2080 [' + xsc.label + ']'};
+      layout.yaxis.title = {text: 'force [' + ysc.label + ']'};
+      layout.yaxis2.title = {text: 'residual [' + rsc.label + ']'};
       var inD = [], inP = [], inR = [], exD = [], exP = [], exR = [];
-      for (var k = 0; k < s.delta.length; ++k) {
-        var r = s.P[k] - s.P_fit[k];
-        if (s.excluded[k]) { exD.push(s.delta[k]); exP.push(s.P[k]); exR.push(r); }
-        else { inD.push(s.delta[k]); inP.push(s.P[k]); inR.push(r); }
+      for (var k = 0; k < ind.length; ++k) {
+        var x = ind[k] * xsc.factor, p = s.P[k] * ysc.factor, r = res[k] * rsc.factor;
+        if (s.excluded[k]) { exD.push(x); exP.push(p); exR.push(r); }
+        else { inD.push(x); inP.push(p); inR.push(r); }
       }
       traces.push({type: 'scatter', mode: 'markers', x: inD, y: inP, name: 'data', marker: {size: 4, color: '#3b6ea8'}});
       if (exD.length)
         traces.push({type: 'scatter', mode: 'markers', x: exD, y: exP, name: 'excluded', marker: {size: 6, symbol: 'x-thin-open', color: '#d62728'}});
-      traces.push({type: 'scatter', mode: 'lines', x: s.delta, y: s.P_fit, name: 'fit', line: {color: '#ff7f0e', width: 2}});
+      traces.push({type: 'scatter', mode: 'lines', x: scaled(ind, xsc), y: scaled(s.P_fit, ysc), name: 'fit',
+                   line: {color: '#ff7f0e', width: 2}});
       traces.push({type: 'scatter', mode: 'markers', x: inD, y: inR, name: 'residual', yaxis: 'y2', showlegend: false,
                    marker: {size: 3, color: '#3b6ea8'}});
       if (exD.length)
         traces.push({type: 'scatter', mode: 'markers', x: exD, y: exR, name: 'excluded residual', yaxis: 'y2',
                      showlegend: false, marker: {size: 5, symbol: 'x-thin-open', color: '#d62728'}});
+    }
+    if (s)
       layout.annotations.push({text: s.delta.length + ' of ' + s.n + ' samples shown', xref: 'paper', yref: 'paper',
                                x: 0, y: 1.0, yanchor: 'bottom', xanchor: 'left', showarrow: false, font: {size: 11, color: '#666'}});
-    }
     Plotly.react(curveDiv, traces, layout, CONFIG);
   }
 
@@ -239,6 +276,7 @@
     if (C.pull_off_force[i] !== null) row('pull-off force', fmt(C.pull_off_force[i], 'N'));
     if (C.baseline_slope[i] !== null && C.baseline_slope[i] !== 0) row('baseline slope', fmt(C.baseline_slope[i], 'N/m'));
     C.warnings[i].forEach(function (w) { row('warning', w, true); });
+    C.notices[i].forEach(function (n) { row('note', n, false); });
   }
 
   // The item's values, keyed as the fit-map CSV's columns (plus the report's own: quality ...).
@@ -315,6 +353,7 @@
     var counts = {};
     C.quality.forEach(function (q) { counts[q] = (counts[q] || 0) + 1; });
     QUALITIES.forEach(function (q) {
+      if (!SYMBOL[q]) return;  // 'ok' has no marker
       var label = document.createElement('label'), box = document.createElement('input'), sw = document.createElement('span');
       box.type = 'checkbox';
       box.checked = true;
@@ -355,8 +394,8 @@
 
   window.layerjkr = {
     select: select,
-    // What the page shows now: view, field, selected item, which statuses are shown and how
-    // many pixels of the current view are drawn.
+    // What the page shows now: view, field, selected item, which statuses are marked and how
+    // many pixels of the current view are drawn (every pixel with a curve: marks never hide one).
     state: function () {
       var v = D.views[state.view], shown = 0;
       v.cells.forEach(function (i) { if (i >= 0 && visible(i)) ++shown; });

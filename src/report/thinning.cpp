@@ -60,14 +60,16 @@ std::vector<std::size_t> display_samples(const std::vector<double>& P, const std
 void thin_for_display(FitSummary& s, std::size_t max_points) {
   const std::size_t n = s.delta.size();
   if (s.P.size() != n) throw InputError("thin_for_display: delta and P must have equal lengths");
-  const std::vector<std::size_t> keep = display_samples(s.P, s.P_fit, s.excluded, max_points);
+  // A curve without a fit (it failed) is thinned by its force alone: its residuals are zero.
+  const bool fitted = !s.P_fit.empty();
+  const std::vector<std::size_t> keep = display_samples(s.P, fitted ? s.P_fit : s.P, s.excluded, max_points);
   if (keep.size() == n) return;
-  std::vector<double> delta(keep.size()), P(keep.size()), P_fit(keep.size());
+  std::vector<double> delta(keep.size()), P(keep.size()), P_fit(fitted ? keep.size() : 0);
   std::vector<bool> excluded(s.excluded.empty() ? 0 : keep.size());
   for (std::size_t k = 0; k < keep.size(); ++k) {
     delta[k] = s.delta[keep[k]];
     P[k] = s.P[keep[k]];
-    P_fit[k] = s.P_fit[keep[k]];
+    if (fitted) P_fit[k] = s.P_fit[keep[k]];
     if (!excluded.empty()) excluded[k] = s.excluded[keep[k]];
   }
   // Moved in, so the capacity of the full vectors is released.

@@ -140,7 +140,7 @@ TEST_CASE("fit-map fits a directory in parallel and reports a bad curve without 
   REQUIRE(rows.size() == 8);
   CHECK(rows[0] == "file,curve,x,y,grid_x,grid_y,status,error,model,converged,iterations,rms_residual,identifiable,"
                    "identifiability,contact_point,contact_point_err,range_samples,E,E_stderr,w,w_stderr,delta0,"
-                   "delta0_stderr,P0,P0_stderr");
+                   "delta0_stderr,P0,P0_stderr,quality,warnings,notices");
   CHECK(rows[1].find("broken.csv,,,,,,error,") != std::string::npos);
   CHECK(rows[1].find("abc") != std::string::npos);
   for (std::size_t k = 2; k < rows.size(); ++k) CHECK(rows[k].find(",ok,,two_term,1,") != std::string::npos);

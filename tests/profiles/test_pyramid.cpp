@@ -2,6 +2,7 @@
 // from that law (not from the library) returns its modulus, and the approximation is stated.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -169,4 +170,13 @@ TEST_CASE("an approach curve fits with a ratio-of-variances point, a pyramid and
   CHECK(std::abs(e.value - E) < 4.0 * e.standard_error);
   CHECK(std::abs(refined[FitParameter::delta0].value - delta0) < 4.0 * refined[FitParameter::delta0].standard_error);
   CHECK(mentions_pyramid(s.notices));
+  // The report says that the rov point and the model's delta0 differ, and which E comes from.
+  const auto says_apart = [](const FitSummary& f) {
+    return std::any_of(f.notices.begin(), f.notices.end(), [](const std::string& n) {
+      return n.find("the contact point (rov)") != std::string::npos && n.find("fitted delta0") != std::string::npos;
+    });
+  };
+  CHECK(says_apart(refined));
+  CHECK_FALSE(says_apart(s));  // delta0 fixed at the rov point: one contact point
+  CHECK(refined.brief_report().find("note: the contact point (rov)") != std::string::npos);
 }

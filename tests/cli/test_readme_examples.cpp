@@ -1,0 +1,82 @@
+// README runs as written: every `$ build/bin/layerjkr ...` example and the main job's fit run
+// from the source tree with the files the repository ships, exit 0, and print what README shows
+// (each shown line, up to a "...", appears in the output).
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+#include "support/cli_support.hpp"
+
+using namespace test::cli;
+
+namespace {
+
+struct Example {
+  std::string args;                 // after build/bin/layerjkr
+  std::vector<std::string> shown;   // the output README prints for it, trimmed
+};
+
+std::string trimmed(const std::string& s) {
+  const auto b = s.find_first_not_of(' ');
+  const auto e = s.find_last_not_of(' ');
+  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+}
+
+// The indented lines from `from` on, up to the first that is not indented or is another example.
+std::vector<std::string> block(const std::vector<std::string>& lines, std::size_t from) {
+  std::vector<std::string> out;
+  for (std::size_t k = from; k < lines.size(); ++k) {
+    if (lines[k].rfind("    ", 0) != 0 || lines[k].rfind("    $", 0) == 0) break;
+    out.push_back(trimmed(lines[k]));
+  }
+  return out;
+}
+
+std::vector<Example> readme_examples() {
+  const std::vector<std::string> lines = test::cli::lines(slurp(std::string(LAYERJKR_SOURCE_DIR) + "/README.md"));
+  const std::string prompt = "    $ build/bin/layerjkr ", main_job = "&& build/bin/layerjkr ";
+  std::vector<Example> out;
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    if (lines[k].rfind(prompt, 0) == 0) {
+      out.push_back({lines[k].substr(prompt.size()), block(lines, k + 1)});
+    } else if (const auto at = lines[k].find(main_job); at != std::string::npos && lines[k].rfind("    ", 0) == 0) {
+      // The main job: its output is the block after "It prints".
+      std::size_t j = k + 1;
+      while (j < lines.size() && lines[j].rfind("It prints", 0) != 0) ++j;
+      out.push_back({lines[k].substr(at + main_job.size()), j + 2 < lines.size() ? block(lines, j + 2) : std::vector<std::string>{}});
+    }
+  }
+  return out;
+}
+
+// `args` with the file after --out moved to the test's scratch directory.
+std::string outputs_to_scratch(std::string args) {
+  const std::string flag = "--out ";
+  const auto at = args.find(flag);
+  if (at == std::string::npos) return args;
+  const auto end = args.find(' ', at + flag.size());
+  const std::string name = args.substr(at + flag.size(), end == std::string::npos ? std::string::npos : end - at - flag.size());
+  return args.replace(at + flag.size(), name.size(), unique(name));
+}
+
+}  // namespace
+
+TEST_CASE("README's examples run from the source tree and print what README shows", "[cli][readme]") {
+  const std::vector<Example> examples = readme_examples();
+  REQUIRE(examples.size() >= 5);  // the main job, summary, curve and the two JPK fits at least
+  for (const Example& e : examples) {
+    const std::string args = outputs_to_scratch(e.args);
+    INFO("layerjkr " << args);
+    const Run r = run("cd " + std::string(LAYERJKR_SOURCE_DIR) + " && " + cli_path() + " " + args, true);
+    INFO(r.err);
+    CHECK(r.code == 0);
+    const std::string printed = r.out + r.err;
+    for (const std::string& line : e.shown) {
+      const std::string expected = trimmed(line.substr(0, line.find("...")));
+      if (expected.empty()) continue;
+      INFO("README shows: " << line << "\nprinted:\n" << printed);
+      CHECK(printed.find(expected) != std::string::npos);
+    }
+  }
+}
