@@ -56,9 +56,9 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs, s
   std::vector<std::string> files;
   for (const auto& in : inputs) {
     std::error_code ec;
-    if (is_asylum_map_export(in)) {  // a directory or a pattern of per-channel waves: one map
-      files.push_back(in);
-    } else if (fs::is_directory(in, ec)) {
+    // A directory or a pattern of Asylum per-channel waves is one map: one input, not expanded.
+    const bool one_map = is_asylum_map_export(in);
+    if (!one_map && fs::is_directory(in, ec)) {
       // By name only: the entry's type is the batch's to check and report (a loop, a FIFO).
       std::vector<std::string> found, folders, others;
       fs::directory_iterator it(in, ec), end;
@@ -81,15 +81,15 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs, s
                          (folders.empty() ? std::string() : " (" + skipped_line(in, folders, {}).substr(in.size() + 2) + ")"));
       if (skipped && (!folders.empty() || !others.empty())) skipped->push_back(skipped_line(in, folders, others));
       files.insert(files.end(), found.begin(), found.end());
-    } else if (in.find_first_of("*?[") != std::string::npos) {
+    } else if (!one_map && in.find_first_of("*?[") != std::string::npos) {
       glob_t g{};
       const int rc = glob(in.c_str(), 0, nullptr, &g);
       std::vector<std::string> found(g.gl_pathv, g.gl_pathv + (rc == 0 ? g.gl_pathc : 0));
       globfree(&g);
       if (found.empty()) throw InputError(in + ": the pattern matches no files");
       files.insert(files.end(), found.begin(), found.end());
-    } else if (fs::exists(fs::symlink_status(in, ec))) {
-      files.push_back(in);  // a FIFO or a broken link named on purpose still gets its row
+    } else if (one_map || fs::exists(fs::symlink_status(in, ec))) {
+      files.push_back(in);  // also a FIFO or a broken link named on purpose: it still gets its row
     } else {
       throw InputError(in + ": no such file or directory");
     }

@@ -47,13 +47,19 @@ CurveData parse_afm_workshop(std::string_view text, const std::string& source, c
     fail("states its units (Z-Sense in nm, Force in nN); give no units option");
   std::map<std::string, std::string, std::less<>> meta;
   std::size_t pos = 0, line = 0;
-  std::string_view header;
-  while (pos < text.size()) {
+  // The next line, trimmed, counted in `line`; nullopt at the end of the text.
+  const auto next_line = [&]() -> std::optional<std::string_view> {
+    if (pos >= text.size()) return std::nullopt;
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
     const std::string_view t = trim(text.substr(pos, end - pos));
     pos = end + 1;
     ++line;
+    return t;
+  };
+  std::string_view header;
+  while (const auto next = next_line()) {
+    const std::string_view t = *next;
     if (t.find("Z-Sense(nm)") != std::string_view::npos) {
       header = t;
       break;
@@ -93,12 +99,8 @@ CurveData parse_afm_workshop(std::string_view text, const std::string& source, c
   d.source = source;
   d.spring_constant = k;
   std::vector<double> rows[2][2];  // [side][z, force]
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view t = trim(text.substr(pos, end - pos));
-    pos = end + 1;
-    ++line;
+  while (const auto next = next_line()) {
+    const std::string_view t = *next;
     if (t.empty()) continue;
     split(t, cells);
     for (int side = 0; side < 2; ++side) {

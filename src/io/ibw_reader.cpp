@@ -87,7 +87,7 @@ std::vector<InstrumentSegment> asylum_segments(const IgorNote& note, std::size_t
 
 InstrumentFile read_ibw(const std::string& path) { return read_ibw_bytes(read_file(path, "the file"), path); }
 
-InstrumentFile read_ibw_bytes(std::string bytes, const std::string& path) {
+InstrumentFile read_ibw_bytes(const std::string& bytes, const std::string& path) {
   const IgorWave w = parse_igor_wave(bytes, path);
   const auto fail = [&](const std::string& what) -> void { throw InputError(path + ": " + what); };
   if (w.is_image())

@@ -25,7 +25,11 @@ std::unique_ptr<CurveSource> source_of(InstrumentFile file);
 /// Igor binary wave v5 (Asylum force curve), read whole.
 InstrumentFile read_ibw(const std::string& path);
 /// The same from the file's bytes; `path` names it in errors.
-InstrumentFile read_ibw_bytes(std::string bytes, const std::string& path);
+InstrumentFile read_ibw_bytes(const std::string& bytes, const std::string& path);
+/// Why a file of a known vendor format that layerjkr does not read is refused, with what to export
+/// instead (Asylum ARDF and HDF5 maps, by the name's extension in any case); empty for any other.
+std::string unread_format_reason(const std::string& path);
+
 /// An Asylum map curve's name split: `LineLLLLPointPPPP<channel>` (1-6 digits each; the channel,
 /// `Defl`, `ZSnsr`, ..., letters and digits, possibly empty).
 struct AsylumPointName {
