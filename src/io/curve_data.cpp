@@ -12,6 +12,7 @@
 
 #include "io/afm_workshop.hpp"
 #include "io/csv_rows.hpp"
+#include "io/instrument_readers.hpp"
 #include "layerjkr/instrument.hpp"
 #include "io/read_file.hpp"
 #include "layerjkr/error.hpp"
@@ -250,9 +251,11 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
   options.validate();
   const Fail fail{source};
   // A binary file: say which formats are known rather than only that it is not text.
-  if (text.find('\0') != std::string::npos)
+  if (text.find('\0') != std::string::npos) {
+    if (const std::string why = detail::unread_format_reason(source); !why.empty()) fail(why);
     fail("is not a text file (it contains NUL bytes): not CSV, and its name is not of a known instrument format "
          "(known: " + known_instrument_formats() + ")");
+  }
   if (detail::is_afm_workshop(text)) return detail::parse_afm_workshop(text, source, options);
   detail::CsvRows rows(text);
   std::size_t line_no = 0;

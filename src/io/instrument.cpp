@@ -2,6 +2,7 @@
 #include "layerjkr/instrument.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -53,6 +54,7 @@ InstrumentFormat format_by_content(const std::string& path) {
   if (ends_with(path, ".pfc"))
     throw InputError(path + ": Bruker PeakForce Capture (.pfc) files are not supported: their layout is not "
                             "documented publicly" + known);
+  if (const std::string why = detail::unread_format_reason(path); !why.empty()) throw InputError(path + ": " + why + known);
   const std::string head = first_bytes(path, 32);
   if (head.rfind("\\*Force file list", 0) == 0) return InstrumentFormat::nanoscope;
   if (head.rfind("\\*File list", 0) == 0)
@@ -103,6 +105,21 @@ std::optional<InstrumentFormat> instrument_format(const std::string& path) {
 bool is_instrument_file(const std::string& path) { return instrument_format(path).has_value(); }
 
 bool is_asylum_map_export(const std::string& path) { return !detail::asylum_channel_files(path).empty(); }
+
+namespace detail {
+
+std::string unread_format_reason(const std::string& path) {
+  std::string lower = path;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string per_point = "export the map from AR's software as one .ibw wave per channel per point "
+                                "(LineLLLLPointPPPP<Channel>.ibw) and give their folder, which layerjkr reads as one map";
+  if (ends_with(lower, ".ardf")) return "Asylum Research ARDF force maps are not read yet: " + per_point;
+  if (ends_with(lower, ".h5") || ends_with(lower, ".hdf5"))
+    return "HDF5 files (such as Asylum's HDF5 force maps) are not read: for an Asylum map, " + per_point;
+  return "";
+}
+
+}  // namespace detail
 
 std::string known_instrument_formats() {
   return ".jpk-force, .jpk-force-map, .jpk-qi-data (JPK), .ibw (Asylum / Igor), .spm or .000-.999 (Bruker NanoScope)";

@@ -10,6 +10,7 @@
 
 #include "io/instrument_readers.hpp"
 #include "io/jpk_builder.hpp"
+#include "layerjkr/curve_data.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/instrument.hpp"
 #include "support/temp_dir.hpp"
@@ -118,4 +119,18 @@ TEST_CASE("Asylum point names: LineLLLLPointPPPP<channel>, from the end of a wav
   REQUIRE(later);
   CHECK(later->line == 3);
   CHECK(later->channel == "Raw");
+}
+
+TEST_CASE("Asylum ARDF and HDF5 maps are refused saying what to export instead", "[io][asylum]") {
+  for (const std::string name : {"map.ARDF", "map.ardf", "map.h5"}) {
+    const fs::path path = test::scratch().path() / name;
+    std::ofstream(path, std::ios::binary) << std::string("ARDF\0\0\0\0binary", 14);
+    // (Catch2's combined matchers hold references to their parts: written out in each check.)
+    CHECK_THROWS_WITH(InstrumentReader(path.string()),  // export, fit-map's instrument path
+                      Catch::Contains("not read") && Catch::Contains("LineLLLLPointPPPP<Channel>.ibw") &&
+                          Catch::Contains(name));
+    CHECK_THROWS_WITH(read_curve_csv(path.string()),  // fit's fallback for unknown names
+                      Catch::Contains("not read") && Catch::Contains("LineLLLLPointPPPP<Channel>.ibw") &&
+                          Catch::Contains(name));
+  }
 }
