@@ -1,0 +1,112 @@
+// Relaxation laws and the Lee-Radok loading response against closed forms and a second method:
+// a paraboloid pressed at constant speed into a half-space relaxing as a power law (Efremov et
+// al. 2017's loading integral, in closed form with the Beta function) and as a standard linear
+// solid (the hereditary integral by Gauss-Kronrod quadrature of the exact dP_H/ds, not by the
+// library's piecewise-linear recursion); the elastic limits; bad input.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <boost/math/special_functions/beta.hpp>
+
+#include "layerjkr/error.hpp"
+#include "layerjkr/viscoelastic.hpp"
+
+using namespace layerjkr;
+
+namespace {
+
+// P_H of a paraboloid R on a half-space at instantaneous E* = E/(1-nu^2), indented at speed v.
+constexpr double kEstar = 1000.0 / 0.75, kR = 5e-6, kV = 2e-6;  // Pa, m, m/s
+double hertz(double t) { return 4.0 / 3.0 * kEstar * std::sqrt(kR) * std::pow(kV * t, 1.5); }
+double hertz_rate(double t) { return 2.0 * kEstar * std::sqrt(kR) * std::pow(kV, 1.5) * std::sqrt(t); }
+
+struct Ramp {
+  std::vector<double> t, P_H;
+};
+Ramp ramp(double t_end, int n) {
+  Ramp r;
+  for (int i = 1; i <= n; ++i) {
+    r.t.push_back(t_end * i / n);
+    r.P_H.push_back(hertz(r.t.back()));
+  }
+  return r;
+}
+
+double rel_err(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
+}  // namespace
+
+TEST_CASE("power-law Lee-Radok loading matches Efremov's closed form and converges", "[viscoelastic]") {
+  const double beta = 0.2, t0 = 1.0, t_end = 0.5;
+  const RelaxationLaw law = RelaxationLaw::power_law(beta, t0);
+  // P(t) = 2 E* sqrt(R) v^1.5 t0^beta B(3/2, 1 - beta) t^(3/2 - beta)
+  const auto exact = [&](double t) {
+    return 2.0 * kEstar * std::sqrt(kR) * std::pow(kV, 1.5) * std::pow(t0, beta) * boost::math::beta(1.5, 1.0 - beta) *
+           std::pow(t, 1.5 - beta);
+  };
+  double previous = 0.0;
+  for (int n : {250, 1000, 4000}) {
+    const Ramp r = ramp(t_end, n);
+    const std::vector<double> P = lee_radok_loading(r.t, r.P_H, law);
+    double worst = 0.0;
+    for (std::size_t i = r.t.size() / 10; i < r.t.size(); ++i) worst = std::max(worst, rel_err(P[i], exact(r.t[i])));
+    INFO("n = " << n << ": largest relative error " << worst);
+    // Measured: 1.96e-4, 1.81e-5, 1.57e-6 - order 1.75 in the spacing (linear pieces of P_H ~ t^1.5).
+    if (previous > 0.0) CHECK(worst < previous / 8.0);
+    previous = worst;
+  }
+  CHECK(previous < 2e-6);
+  // Before t0 the power law's modulus exceeds E (E is the modulus at t0): the force lies above
+  // the elastic one at the same indentation.
+  const Ramp r = ramp(t_end, 100);
+  CHECK(lee_radok_loading(r.t, r.P_H, law).back() > r.P_H.back());
+}
+
+TEST_CASE("standard linear solid: the recursion against quadrature of the exact hereditary integral", "[viscoelastic]") {
+  const double ratio = 0.3, tau = 0.05, t_end = 0.4;
+  const RelaxationLaw law = RelaxationLaw::standard_linear_solid(ratio, tau);
+  const Ramp r = ramp(t_end, 4000);
+  const std::vector<double> P = lee_radok_loading(r.t, r.P_H, law);
+  for (std::size_t i = 399; i < r.t.size(); i += 400) {
+    const double t = r.t[i];
+    const double reference = boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
+        [&](double s) { return law.relative_modulus(t - s) * hertz_rate(s); }, 0.0, t, 15, 1e-13);
+    INFO("t = " << t);
+    CHECK(rel_err(P[i], reference) < 1e-6);
+  }
+  // Relaxed: long after tau the force approaches E_inf/E of the elastic one from above.
+  CHECK(P.back() < r.P_H.back());
+  CHECK(P.back() > ratio * r.P_H.back());
+}
+
+TEST_CASE("the elastic limits: beta = 0, tau to infinity, and the relaxed modulus", "[viscoelastic]") {
+  const Ramp r = ramp(1.0, 200);
+  const std::vector<double> none = lee_radok_loading(r.t, r.P_H, RelaxationLaw::power_law(0.0, 2.0));
+  const std::vector<double> slow = lee_radok_loading(r.t, r.P_H, RelaxationLaw::standard_linear_solid(0.2, 1e12));
+  const std::vector<double> fast = lee_radok_loading(r.t, r.P_H, RelaxationLaw::standard_linear_solid(0.2, 1e-9));
+  const std::vector<double> same = lee_radok_loading(r.t, r.P_H, RelaxationLaw{});
+  for (std::size_t i = 0; i < r.t.size(); ++i) {
+    CHECK(rel_err(none[i], r.P_H[i]) < 1e-12);
+    CHECK(rel_err(slow[i], r.P_H[i]) < 1e-9);
+    CHECK(rel_err(fast[i], 0.2 * r.P_H[i]) < 1e-6);
+    CHECK(same[i] == r.P_H[i]);
+  }
+}
+
+TEST_CASE("relaxation laws and loading histories: bad input names the field, its value and the range", "[viscoelastic]") {
+  CHECK_THROWS_WITH(RelaxationLaw::power_law(1.0, 1.0), Catch::Contains("beta = 1") && Catch::Contains("[0, 1)"));
+  CHECK_THROWS_WITH(RelaxationLaw::power_law(0.1, 0.0), Catch::Contains("t0 = 0"));
+  CHECK_THROWS_WITH(RelaxationLaw::prony({0.7, 0.5}, {1.0, 2.0}), Catch::Contains("sum of g = 1.2"));
+  CHECK_THROWS_WITH(RelaxationLaw::prony({0.5}, {1.0, 2.0}), Catch::Contains("as many weights g as times tau"));
+  CHECK_THROWS_WITH(RelaxationLaw::prony({0.5}, {-1.0}), Catch::Contains("tau[0] = -1"));
+  CHECK_THROWS_WITH(RelaxationLaw::standard_linear_solid(1.5, 1.0), Catch::Contains("E_inf/E = 1.5"));
+  const RelaxationLaw law = RelaxationLaw::standard_linear_solid(0.5, 1.0);
+  CHECK_THROWS_WITH(lee_radok_loading({0.1, 0.1}, {1.0, 2.0}, law), Catch::Contains("t[1] = 0.1 does not increase"));
+  CHECK_THROWS_WITH(lee_radok_loading({0.1, 0.2}, {2.0, 1.0}, law), Catch::Contains("P_H[1] = 1") && Catch::Contains("recedes"));
+  CHECK_THROWS_WITH(lee_radok_loading({0.1}, {1.0, 2.0}, law), Catch::Contains("different lengths"));
+  CHECK_THROWS_WITH(lee_radok_loading({0.0}, {1.0}, law), Catch::Contains("not 0 at t = 0"));
+  CHECK(law.describe() == "prony(g = [0.5], tau = [1] s)");
+}
