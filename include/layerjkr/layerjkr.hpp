@@ -25,3 +25,4 @@
 #include "layerjkr/simulate.hpp"
 #include "layerjkr/text.hpp"
 #include "layerjkr/types.hpp"
+#include "layerjkr/viscoelastic.hpp"

@@ -37,6 +37,7 @@
 #include "layerjkr/model_spec.hpp"
 #include "layerjkr/profile.hpp"
 #include "layerjkr/types.hpp"
+#include "layerjkr/viscoelastic.hpp"
 
 namespace layerjkr {
 
@@ -47,6 +48,10 @@ struct MediumSpec {
   double E = 0.0, nu = 0.0, h = 0.0;  ///< layer / half-space [Pa], [-], [m]; layers: the top layer's
   Base base = Base::bonded;
   LayeredMedium stack;  ///< layers: the stack (top first)
+  /// How E relaxes in time (half_space, layer, layers; elastic by default): E is then the
+  /// instantaneous modulus (a power law's modulus at t0), nu constant, and a stack's layers all
+  /// relax by the same normalised law (viscoelastic.hpp).
+  RelaxationLaw relaxation;
 };
 
 /// Where a scene came from, for provenance (provenance.hpp): set by parse_scene and load_scene,

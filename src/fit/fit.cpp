@@ -191,6 +191,7 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
     out.warnings.push_back("solver 'ode' verifies the closed forms; the fit evaluates the same "
                            "foundation in closed form");
   out.warnings.insert(out.warnings.end(), fixed.warnings.begin(), fixed.warnings.end());
+  out.warnings.insert(out.warnings.end(), resolved.warnings.begin(), resolved.warnings.end());
   out.notices.insert(out.notices.end(), curve.notes.begin(), curve.notes.end());
   out.notices.insert(out.notices.end(), resolved.notices.begin(), resolved.notices.end());
 

@@ -212,6 +212,7 @@ json describe(const Scene& s) {
                                    {"T", s.medium.T}, {"E", s.medium.E}, {"nu", s.medium.nu}, {"h", s.medium.h}})
     m[key] = to_value(value);
   m["base"] = to_string(s.medium.base);
+  if (s.medium.relaxation.kind != RelaxationLaw::Kind::elastic) m["viscoelastic"] = s.medium.relaxation.describe();
   if (s.medium.type == MediumType::layers) {  // every layer and the substrate: a changed stack is stale
     json layers = json::array();
     for (const StackLayer& l : s.medium.stack.layers)

@@ -221,9 +221,41 @@ void check_elastic(const Reader& in, const std::string& path, double E, double n
   if (!(nu > -1.0 && nu <= 0.5)) in.fail(path + ".nu", "= " + format_double(nu) + " is invalid; valid range: (-1, 0.5]");
 }
 
+// medium.viscoelastic: {"law": "sls", "E_inf", "tau"} | {"law": "prony", "g", "tau"} |
+// {"law": "power_law", "beta", "t0"}; E is the medium's instantaneous modulus (a stack's top
+// layer's: every layer relaxes by the same ratio).
+RelaxationLaw read_relaxation(const Reader& in, const json& med, double E) {
+  const std::string path = "medium.viscoelastic";
+  const json& v = in.object(med, "viscoelastic", path);
+  const std::string law = in.string(v, "law", path);
+  if (law == "sls") {
+    in.only_keys(v, path, {"law", "E_inf", "tau"});
+    const double E_inf = in.number(v, "E_inf", path), tau = in.number(v, "tau", path);
+    if (!(E_inf >= 0.0 && E_inf <= E))
+      in.fail(path + ".E_inf", "= " + format_double(E_inf) + " is invalid; valid range: [0, E] with E = " + format_double(E) +
+                                   " Pa, the instantaneous modulus");
+    return in.checked(path, [&] { return RelaxationLaw::standard_linear_solid(E_inf / E, tau); });
+  }
+  if (law == "prony") {
+    in.only_keys(v, path, {"law", "g", "tau"});
+    std::vector<double> g = in.numbers(v, "g", path), tau = in.numbers(v, "tau", path);
+    try {
+      return RelaxationLaw::prony(std::move(g), std::move(tau));
+    } catch (const Error& e) {
+      in.fail(path, std::string("is invalid: ") + e.what());
+    }
+  }
+  if (law == "power_law") {
+    in.only_keys(v, path, {"law", "beta", "t0"});
+    const double beta = in.number(v, "beta", path), t0 = in.number(v, "t0", path);
+    return in.checked(path, [&] { return RelaxationLaw::power_law(beta, t0); });
+  }
+  in.fail(path + ".law", "= \"" + law + "\" is unknown (known: sls, prony, power_law)");
+}
+
 // {"type": "layers", "layers": [{"E", "nu", "h"}, ...], "base": "bonded" | "frictionless" | {"E", "nu"}}
 void read_stack(const Reader& in, const json& med, MediumSpec& m) {
-  in.only_keys(med, "medium", {"type", "layers", "base"});
+  in.only_keys(med, "medium", {"type", "layers", "base", "viscoelastic"});
   if (!med.contains("layers")) in.fail("medium.layers", "is missing; give the layers top first, each {E, nu, h}");
   const json& layers = med.at("layers");
   if (!layers.is_array() || layers.empty())
@@ -235,6 +267,10 @@ void read_stack(const Reader& in, const json& med, MediumSpec& m) {
   for (std::size_t i = 0; i < layers.size(); ++i) {
     const std::string path = "medium.layers[" + std::to_string(i) + "]";
     if (!layers[i].is_object()) in.fail(path, "must be a JSON object {E, nu, h}, got " + show(layers[i]));
+    if (layers[i].contains("viscoelastic"))
+      in.fail(path + ".viscoelastic", "is not allowed: a stack relaxes by one normalised law for all its layers (the "
+                                      "correspondence principle needs every modulus to follow the same psi(t)); give "
+                                      "medium.viscoelastic, each layer keeping its own E and nu");
     in.only_keys(layers[i], path, {"E", "nu", "h"});
     StackLayer l{in.number(layers[i], "E", path), in.number(layers[i], "nu", path), in.number(layers[i], "h", path)};
     check_elastic(in, path, l.E, l.nu);
@@ -265,6 +301,11 @@ MediumSpec read_medium(const Reader& in, const json& root) {
   const json& med = in.object(root, "medium", "medium");
   MediumSpec m;
   m.type = read_enum<MediumType>(in, in.string(med, "type", "medium"), "medium.type");
+  const bool foundation =
+      m.type == MediumType::winkler || m.type == MediumType::pasternak || m.type == MediumType::filonenko_borodich;
+  if (foundation && med.contains("viscoelastic"))
+    in.fail("medium.viscoelastic", "is for media with a Young's modulus (half_space, layer, layers); a foundation's "
+                                   "constants do not relax by a modulus law");
   switch (m.type) {
     case MediumType::winkler:
       in.only_keys(med, "medium", {"type", "K"});
@@ -281,19 +322,20 @@ MediumSpec read_medium(const Reader& in, const json& root) {
       m.T = in.number(med, "T", "medium");
       break;
     case MediumType::layer:
-      in.only_keys(med, "medium", {"type", "E", "nu", "h", "base"});
+      in.only_keys(med, "medium", {"type", "E", "nu", "h", "base", "viscoelastic"});
       m.E = in.number(med, "E", "medium");
       m.nu = in.number(med, "nu", "medium");
       m.h = in.number(med, "h", "medium");
       if (med.contains("base")) m.base = read_enum<Base>(in, in.string(med, "base", "medium"), "medium.base");
       break;
     case MediumType::half_space:
-      in.only_keys(med, "medium", {"type", "E", "nu"});
+      in.only_keys(med, "medium", {"type", "E", "nu", "viscoelastic"});
       m.E = in.number(med, "E", "medium");
       m.nu = in.number(med, "nu", "medium");
       break;
     case MediumType::layers: read_stack(in, med, m); break;
   }
+  if (med.contains("viscoelastic")) m.relaxation = read_relaxation(in, med, m.E);
   return m;
 }
 

@@ -155,6 +155,13 @@ ResolvedModel resolve_model(const Scene& s) {
   // approximation, a notice rather than a warning.
   if (s.profile)
     if (std::optional<std::string> note = s.profile->approximation()) r.notices.push_back(*note);
+  // A relaxing medium answered as an elastic one would be a silent substitution: said, as the
+  // numbers are the instantaneous (or, for a power law, the t0) response only.
+  if (s.medium.relaxation.kind != RelaxationLaw::Kind::elastic)
+    r.warnings.push_back("the medium relaxes (" + s.medium.relaxation.describe() +
+                         "); this answer is its elastic response at E, the instantaneous modulus (a power law's "
+                         "modulus at t0): the time-dependent response is lee_radok_loading's (viscoelastic.hpp), "
+                         "not yet an answer or a fit of its own");
   return r;
 }
 

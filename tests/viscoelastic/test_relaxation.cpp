@@ -5,6 +5,7 @@
 // library's piecewise-linear recursion); the elastic limits; bad input.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -12,6 +13,10 @@
 #include <boost/math/special_functions/beta.hpp>
 
 #include "layerjkr/error.hpp"
+#include "layerjkr/answer.hpp"
+#include "layerjkr/fit.hpp"
+#include "layerjkr/simulate.hpp"
+#include "layerjkr/scene.hpp"
 #include "layerjkr/viscoelastic.hpp"
 
 using namespace layerjkr;
@@ -109,4 +114,73 @@ TEST_CASE("relaxation laws and loading histories: bad input names the field, its
   CHECK_THROWS_WITH(lee_radok_loading({0.1}, {1.0, 2.0}, law), Catch::Contains("different lengths"));
   CHECK_THROWS_WITH(lee_radok_loading({0.0}, {1.0}, law), Catch::Contains("not 0 at t = 0"));
   CHECK(law.describe() == "prony(g = [0.5], tau = [1] s)");
+}
+
+TEST_CASE("scenes carry one relaxation law for the medium, checked and named", "[viscoelastic][scene]") {
+  const std::string sphere = R"("indenter": {"shape": "paraboloid", "R": 5e-6})";
+  const Scene sls = parse_scene("{" + sphere + R"(, "medium": {"type": "half_space", "E": 2000, "nu": 0.5,
+      "viscoelastic": {"law": "sls", "E_inf": 500, "tau": 0.2}}})");
+  REQUIRE(sls.medium.relaxation.kind == RelaxationLaw::Kind::prony);
+  CHECK(sls.medium.relaxation.g == std::vector<double>{0.75});
+  CHECK(sls.medium.relaxation.relative_modulus(1e9) == Approx(0.25));
+  const Scene power = parse_scene("{" + sphere + R"(, "medium": {"type": "layer", "E": 2000, "nu": 0.49, "h": 5e-6,
+      "viscoelastic": {"law": "power_law", "beta": 0.15, "t0": 1}}, "model": "exact"})");
+  CHECK(power.medium.relaxation.kind == RelaxationLaw::Kind::power_law);
+  CHECK(power.medium.relaxation.beta == 0.15);
+  const Scene stack = parse_scene("{" + sphere + R"(, "medium": {"type": "layers", "layers": [{"E": 2000, "nu": 0.49,
+      "h": 5e-6}, {"E": 20000, "nu": 0.45, "h": 1e-5}], "viscoelastic": {"law": "prony", "g": [0.3, 0.2],
+      "tau": [0.1, 10]}}, "model": "exact"})");
+  CHECK(stack.medium.relaxation.tau == std::vector<double>{0.1, 10.0});
+  CHECK(parse_scene("{" + sphere + R"(, "medium": {"type": "half_space", "E": 2000, "nu": 0.5}})").medium.relaxation.kind ==
+        RelaxationLaw::Kind::elastic);
+  const auto refused = [&](const std::string& medium) {
+    try {
+      parse_scene("{" + sphere + R"(, "medium": )" + medium + R"(, "model": "exact"})");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  CHECK_THAT(refused(R"({"type": "layers", "layers": [{"E": 2000, "nu": 0.49, "h": 5e-6,
+                 "viscoelastic": {"law": "sls", "E_inf": 1, "tau": 1}}]})"),
+             Catch::Contains("medium.layers[0].viscoelastic") && Catch::Contains("one normalised law"));
+  CHECK_THAT(refused(R"({"type": "winkler", "K": 1e9, "viscoelastic": {"law": "sls", "E_inf": 1, "tau": 1}})"),
+             Catch::Contains("medium.viscoelastic") && Catch::Contains("Young's modulus"));
+  CHECK_THAT(refused(R"({"type": "half_space", "E": 2000, "nu": 0.5, "viscoelastic": {"law": "maxwell"}})"),
+             Catch::Contains("medium.viscoelastic.law = \"maxwell\" is unknown") && Catch::Contains("power_law"));
+  CHECK_THAT(refused(R"({"type": "half_space", "E": 2000, "nu": 0.5, "viscoelastic": {"law": "sls", "E_inf": 3000, "tau": 1}})"),
+             Catch::Contains("medium.viscoelastic.E_inf = 3000") && Catch::Contains("[0, E]"));
+  CHECK_THAT(refused(R"({"type": "half_space", "E": 2000, "nu": 0.5, "viscoelastic": {"law": "power_law", "beta": 1.2, "t0": 1}})"),
+             Catch::Contains("medium.viscoelastic") && Catch::Contains("beta = 1.2"));
+  CHECK_THAT(refused(R"({"type": "half_space", "E": 2000, "nu": 0.5, "viscoelastic": {"law": "prony", "g": [0.6, 0.6], "tau": [1, 2]}})"),
+             Catch::Contains("medium.viscoelastic") && Catch::Contains("sum of g = 1.2"));
+  CHECK_THAT(refused(R"({"type": "half_space", "E": 2000, "nu": 0.5, "viscoelastic": {"law": "sls", "E_inf": 1, "tau": 1, "eta": 3}})"),
+             Catch::Contains("medium.viscoelastic.eta is not a known key"));
+}
+
+TEST_CASE("an answer for a relaxing medium says it is the elastic response, never silently", "[viscoelastic][scene]") {
+  const Scene s = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "half_space",
+      "E": 2000, "nu": 0.5, "viscoelastic": {"law": "sls", "E_inf": 500, "tau": 0.2}}, "w": 1e-5})");
+  const SummaryAnswer a = solve_summary(s);
+  REQUIRE(a.warnings.size() == 1);
+  CHECK_THAT(a.warnings[0], Catch::Contains("the medium relaxes (prony(g = [0.75], tau = [0.2] s))") &&
+                                Catch::Contains("elastic response at E"));
+}
+
+TEST_CASE("a fit with a relaxing medium says it fitted the elastic response", "[viscoelastic][fit]") {
+  const std::string medium = R"("medium": {"type": "half_space", "E": 2000, "nu": 0.5)";
+  const Scene elastic = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, )" + medium + "}}");
+  SimulationOptions o;
+  o.branch = Branch::approach;
+  o.max_indentation = 1e-6;
+  const CurveData c = simulate_curve(elastic, o);
+  const Scene relaxing = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, )" + medium +
+                                     R"(, "viscoelastic": {"law": "power_law", "beta": 0.1, "t0": 1}}})");
+  FitOptions f;
+  f.free = {FitParameter::E};
+  f.branch = Branch::approach;
+  const FitSummary s = fit(c, relaxing, f);
+  REQUIRE(s.converged);
+  CHECK(std::any_of(s.warnings.begin(), s.warnings.end(),
+                    [](const std::string& w) { return w.find("the medium relaxes (power_law") != std::string::npos; }));
 }
