@@ -273,7 +273,7 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
                           "(--keep-offset) to keep the forces as they are");
   detail::diagnose_residuals(data, force_span, &out);
   detail::diagnose_indentation(data, &out);
-  detail::record_model_notes(*model, data, &out);  // after the fit: a grid may refine
+  detail::record_model_notes(*model, data, force_span, &out);  // after the fit: a grid may refine
   for (const auto& note : model->notes_at(physical_at_x())) out.warnings.push_back(note);
   const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;
   for (std::size_t i = 0; i < data.P.size(); ++i)

@@ -252,10 +252,6 @@ std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Sc
   return done;
 }
 
-}  // namespace layerjkr
-
-namespace layerjkr {
-
 std::string batch_quality(const BatchItem& item) {
   if (!item.ok) return "failed";
   if (!item.summary.converged) return "not converged";

@@ -76,13 +76,12 @@ void diagnose_residuals(const FitData& data, double force_span, FitSummary* out)
   }
 }
 
-void record_model_notes(const CurveModel& model, const FitData& data, FitSummary* out) {
+void record_model_notes(const CurveModel& model, const FitData& data, double force_span, FitSummary* out) {
   // 1e-4: 500 times below the answers' default warning threshold (5 %), and below what any
   // measured force curve resolves.
   constexpr double kNegligibleModelError = 1e-4;
   const double error = model.measured_error();
-  const auto [lo, hi] = std::minmax_element(data.P.begin(), data.P.end());
-  const double force_error = data.P.empty() ? 0.0 : error * (*hi - *lo);
+  const double force_error = error * force_span;
   const bool negligible = error <= kNegligibleModelError || force_error < 0.1 * data.noise;
   for (const std::string& note : model.notes()) {
     if (negligible) {

@@ -49,7 +49,7 @@ void diagnose_indentation(const FitData& data, FitSummary* out);
 /// is far below what the data resolve - at most kNegligibleModelError, or a force error
 /// (error x the data's force span) under a tenth of their noise - else warnings that give the
 /// force error against the noise.
-void record_model_notes(const CurveModel& model, const FitData& data, FitSummary* out);
+void record_model_notes(const CurveModel& model, const FitData& data, double force_span, FitSummary* out);
 
 /// With measured contact radii (not (P, a) data): each column's noise, given or estimated from
 /// its second differences, into out->force_noise / radius_noise, and data.a_scale set so that

@@ -37,6 +37,11 @@ constexpr std::string_view kPageStart = "<!DOCTYPE html>\n<!-- layerjkr force-ma
 std::string name_of(FitParameter p) { return to_string(p); }
 
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+json printable_list(const std::vector<std::string>& messages) {
+  json out = json::array();
+  for (const std::string& m : messages) out.push_back(printable(m));
+  return out;
+}
 json index_or_null(int v) { return v >= 0 ? json(v) : json(nullptr); }
 
 const char* unit(FitParameter p) {
@@ -294,12 +299,8 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
       columns[name_of(p) + "_stderr"].push_back(has ? number(e->standard_error) : json(nullptr));
     }
     columns["quality"].push_back(batch_quality(it));
-    json warnings = json::array();
-    for (const std::string& w : ok ? s.warnings : std::vector<std::string>{}) warnings.push_back(printable(w));
-    columns["warnings"].push_back(warnings);
-    json notices = json::array();
-    for (const std::string& n : ok ? s.notices : std::vector<std::string>{}) notices.push_back(printable(n));
-    columns["notices"].push_back(notices);
+    columns["warnings"].push_back(ok ? printable_list(s.warnings) : json::array());
+    columns["notices"].push_back(ok ? printable_list(s.notices) : json::array());
     columns["unidentifiable"].push_back(ok ? json(s.unidentifiable) : json::array());
     columns["termination"].push_back(ok ? json(s.termination) : json(nullptr));
     columns["points"].push_back(ok ? json(s.points) : json(nullptr));
