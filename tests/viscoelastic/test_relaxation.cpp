@@ -109,7 +109,7 @@ TEST_CASE("relaxation laws and loading histories: bad input names the field, its
   CHECK_THROWS_WITH(RelaxationLaw::prony({0.5}, {-1.0}), Catch::Contains("tau[0] = -1"));
   CHECK_THROWS_WITH(RelaxationLaw::standard_linear_solid(1.5, 1.0), Catch::Contains("E_inf/E = 1.5"));
   const RelaxationLaw law = RelaxationLaw::standard_linear_solid(0.5, 1.0);
-  CHECK_THROWS_WITH(lee_radok_loading({0.1, 0.1}, {1.0, 2.0}, law), Catch::Contains("t[1] = 0.1 does not increase"));
+  CHECK_THROWS_WITH(lee_radok_loading({0.1, 0.1}, {1.0, 2.0}, law), Catch::Contains("t[1] = 0.1 s does not increase"));
   CHECK_THROWS_WITH(lee_radok_loading({0.1, 0.2}, {2.0, 1.0}, law), Catch::Contains("P_H[1] = 1") && Catch::Contains("recedes"));
   CHECK_THROWS_WITH(lee_radok_loading({0.1}, {1.0, 2.0}, law), Catch::Contains("different lengths"));
   CHECK_THROWS_WITH(lee_radok_loading({0.0}, {1.0}, law), Catch::Contains("not 0 at t = 0"));
