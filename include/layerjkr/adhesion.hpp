@@ -21,7 +21,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <string>
 #include <vector>
 
 #include "layerjkr/jkr.hpp"
@@ -30,6 +29,22 @@
 #include "layerjkr/types.hpp"
 
 namespace layerjkr {
+
+/// Rate-dependent adhesion of the JKR edge crack (Maugis & Barquins 1978): while the contact
+/// recedes at speed v = -da/dt the energy release rate is G = w0 (1 + (v / v_star)^n), w0 the
+/// scene's w (the work of adhesion at vanishing speed), so v = v_star (G/w0 - 1)^(1/n) where
+/// G > w0; a contact that G would close (G < w0) does not advance on the retract (it is held: the
+/// approach is at equilibrium, G = w0). kinetics.hpp follows the retract it gives.
+struct CrackKinetics {
+  double v_star = 0.0;  ///< [m/s] > 0, finite: the speed at which G = 2 w0
+  double n = 0.0;       ///< the exponent, > 0 and at most 10 (0.6 for Maugis-Barquins' polyurethane)
+  /// Throws DomainError naming the first invalid field.
+  void validate() const;
+  /// -da/dt [m/s] at energy release rate G [J/m^2] for w0 > 0: 0 where G <= w0.
+  double crack_speed(double G, double w0) const;
+  /// One line: "maugis_barquins(v_star = 1e-06 m/s, n = 0.6)".
+  std::string describe() const;
+};
 
 /// The adhesion model of a scene and its Dugdale stress.
 struct AdhesionSpec {
@@ -45,6 +60,8 @@ struct AdhesionSpec {
   /// interatomic distance (Tabor 1977 and Johnson & Greenwood 1997 take 0.3-0.5 nm; a
   /// larger z0 lowers sigma0 and lambda and moves the contact towards DMT).
   static constexpr double kAssumedSpacing = 0.3e-9;
+  /// JKR only: the edge crack's kinetics (rate-dependent adhesion); none: at equilibrium, G = w.
+  std::optional<CrackKinetics> kinetics;
 
   /// Throws DomainError naming the first invalid field.
   void validate() const;

@@ -24,6 +24,7 @@
 #include "layerjkr/contact.hpp"
 #include "layerjkr/adhesion_check.hpp"
 #include "layerjkr/jkr.hpp"
+#include "layerjkr/kinetics.hpp"
 #include "layerjkr/model_error.hpp"
 #include "layerjkr/scene.hpp"
 
@@ -32,6 +33,13 @@ namespace layerjkr {
 struct AnswerOptions {
   /// An answer whose estimated relative model error exceeds this carries a warning; in (0, 1).
   double warning_threshold = 0.05;
+  /// A summary of a scene whose adhesion has kinetics (adhesion.hpp): the retract whose
+  /// rate-dependent pull-off it reports (SummaryAnswer::kinetic), from equilibrium at
+  /// retract_start_force [N] (default zero load). Without it such a summary reports the
+  /// equilibrium (slow-retract) values and a notice says so; with it a scene without kinetics is
+  /// an InputError (the rate would change nothing).
+  std::optional<RetractDrive> retract;
+  double retract_start_force = 0.0;
   /// Throws DomainError naming the first invalid field.
   void validate() const;
 };
@@ -49,6 +57,9 @@ struct SummaryAnswer {
   /// Whether the scene's adhesion model applies (adhesion_check.hpp); none for w = 0 or
   /// without a JKR pull-off.
   std::optional<AdhesionCheck> adhesion;
+  /// With kinetics and AnswerOptions::retract: the rate-dependent pull-off (kinetics.hpp). The
+  /// critical points in `contact` are the equilibrium ones, the slow-retract limit.
+  std::optional<KineticSummary> kinetic;
   std::vector<std::string> warnings;  ///< validity of constants, model and adhesion error above threshold
   std::vector<std::string> notices;   ///< recorded, not warned about (ResolvedModel::notices)
   double seconds = 0.0;               ///< wall time of the answer [s]

@@ -13,6 +13,7 @@
 #include "layerjkr/fit.hpp"
 #include "layerjkr/instrument.hpp"
 #include "layerjkr/jkr.hpp"
+#include "layerjkr/kinetics.hpp"
 #include "layerjkr/map_report.hpp"
 #include "layerjkr/maugis_dugdale.hpp"
 #include "layerjkr/model.hpp"

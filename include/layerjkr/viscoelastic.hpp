@@ -35,6 +35,9 @@ struct RelaxationLaw {
   std::vector<double> g, tau;  ///< prony: weights in (0, 1] summing to <= 1, times [s] > 0
   double beta = 0.0;           ///< power_law: exponent in [0, 1)
   double t0 = 1.0;             ///< power_law: the time [s] at which E(t0) = E, > 0
+  /// Made by standard_linear_solid (a scene's "sls"): one Prony term whose relaxed modulus E_inf
+  /// was given in Pa, so a fit that frees E holds E_inf (not the ratio) where it is not free.
+  bool standard_linear_solid_form = false;
 
   /// The standard linear solid: E(t) = E_inf + (E - E_inf) exp(-t/tau), as a one-term Prony law
   /// (`E_inf_ratio` = E_inf/E in [0, 1], `tau` [s] > 0).
@@ -46,7 +49,7 @@ struct RelaxationLaw {
   double relative_modulus(double t) const;
   /// Throws DomainError naming the first invalid field, its value and the valid range.
   void validate() const;
-  /// One line: e.g. "prony(g = [0.6], tau = [0.5] s)".
+  /// One line: e.g. "prony(g = [0.6], tau = [0.5] s)", "sls(E_inf/E = 0.4, tau = 0.5 s)".
   std::string describe() const;
 };
 

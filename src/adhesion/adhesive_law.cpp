@@ -121,7 +121,27 @@ double detail::dmt_tip_radius(const Profile& p, const std::string& who, const st
   return 1.0 / curvature;
 }
 
+void CrackKinetics::validate() const {
+  if (!(v_star > 0.0 && std::isfinite(v_star))) throw DomainError("CrackKinetics", "v_star", v_star, "finite and > 0 [m/s]");
+  if (!(n > 0.0 && n <= 10.0)) throw DomainError("CrackKinetics", "n", n, "(0, 10]");
+}
+
+double CrackKinetics::crack_speed(double G, double w0) const {
+  const double excess = G / w0 - 1.0;
+  return excess > 0.0 ? v_star * std::pow(excess, 1.0 / n) : 0.0;
+}
+
+std::string CrackKinetics::describe() const {
+  return "maugis_barquins(v_star = " + format_double(v_star) + " m/s, n = " + format_double(n) + ")";
+}
+
 void AdhesionSpec::validate() const {
+  if (kinetics) {
+    kinetics->validate();
+    if (model != AdhesionModel::jkr)
+      throw DomainError("AdhesionSpec", std::string("kinetics with adhesion model ") + to_string(model), kinetics->v_star,
+                        "kinetics only with model jkr (they act on JKR's edge crack)");
+  }
   if (sigma0) detail::require_positive("AdhesionSpec", "sigma0", *sigma0);
   if (z0) detail::require_positive("AdhesionSpec", "z0", *z0);
   if (sigma0 && z0)

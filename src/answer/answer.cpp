@@ -81,10 +81,31 @@ std::optional<AdhesionCheck> checked_adhesion(const Scene& scene, const BuiltSce
   return c;
 }
 
+// The retract of options.retract with the scene's kinetics, and the sweep of rates around it.
+KineticSummary kinetic_summary(const Scene& scene, const BuiltScene& built, const AnswerOptions& options) {
+  KineticRetractOptions o;
+  o.drive = *options.retract;
+  o.start_force = options.retract_start_force;
+  const KineticRetract r = kinetic_retract(built.model, scene.w, *scene.adhesion.kinetics, o);
+  KineticSummary k;
+  k.drive = o.drive;
+  k.start_force = o.start_force;
+  k.pull_off = r.pull_off;
+  k.pull_off_time = r.pull_off_time;
+  k.separation_time = r.separation_time;
+  k.equilibrium_pull_off = r.equilibrium_pull_off;
+  k.equilibrium_separation = r.equilibrium_separation;
+  for (double f : {0.01, 0.1, 1.0, 10.0, 100.0}) k.rates.push_back(f * o.drive.rate);
+  k.pull_off_forces = kinetic_pull_off_forces(built.model, scene.w, *scene.adhesion.kinetics, o, k.rates);
+  return k;
+}
+
 }  // namespace
 
 void AnswerOptions::validate() const {
   detail::require_in_open_interval("AnswerOptions", "warning_threshold", warning_threshold, 0.0, 1.0);
+  if (retract) retract->validate();
+  detail::require_finite("AnswerOptions", "retract_start_force", retract_start_force);
 }
 
 SummaryAnswer solve_summary(const Scene& scene, const AnswerOptions& options) {
@@ -114,6 +135,16 @@ SummaryAnswer solve_summary(const Scene& scene, const AnswerOptions& options) {
                          " off its reference model '" + s.error.reference + "' in the pull-off force and " +
                          percent(s.error.zero_load_radius) + " in the zero-load radius");
   s.adhesion = checked_adhesion(scene, built, jkr, solution, options, &s.warnings);
+  if (options.retract && !scene.adhesion.kinetics)
+    throw InputError("summary: a retract rate (" + options.retract->describe() + ") changes nothing without "
+                     "adhesion.kinetics in the scene: its adhesion is at equilibrium");
+  if (scene.adhesion.kinetics && options.retract) {
+    s.kinetic = kinetic_summary(scene, built, options);
+    require_finite("rate-dependent pull-off", s.kinetic->pull_off);
+  } else if (scene.adhesion.kinetics) {
+    s.notices.push_back("the adhesion has kinetics (" + scene.adhesion.kinetics->describe() + "): the critical points "
+                        "are at equilibrium, the slow-retract limit; give a retract rate for the rate-dependent pull-off");
+  }
   require_finite(s.contact);
   require_not_nan("pull-off force error estimate", s.error.pull_off_force);
   require_not_nan("zero-load radius error estimate", s.error.zero_load_radius);

@@ -77,8 +77,39 @@ int run_curve(const std::string& path, const std::string& at, double a_max, int 
   return 0;
 }
 
-int run_summary(const std::string& path) {
-  const layerjkr::SummaryAnswer answer = layerjkr::solve_summary(layerjkr::load_scene(path));
+// summary's retract, for a scene with adhesion kinetics: a speed (fixed grips, or a cantilever with
+// --stiffness) or a load rate.
+struct RetractArguments {
+  double speed = 0.0, load_rate = 0.0, stiffness = 0.0, start_force = 0.0;
+  CLI::Option *speed_opt = nullptr, *load_rate_opt = nullptr, *stiffness_opt = nullptr;
+};
+
+layerjkr::AnswerOptions summary_options(const RetractArguments& r) {
+  layerjkr::AnswerOptions o;
+  o.retract_start_force = r.start_force;
+  if (r.speed_opt->count() > 0) {
+    layerjkr::RetractDrive d;
+    d.control = r.stiffness_opt->count() > 0 ? layerjkr::RetractControl::cantilever : layerjkr::RetractControl::fixed_grips;
+    d.rate = r.speed;
+    d.stiffness = r.stiffness;
+    o.retract = d;
+  } else if (r.load_rate_opt->count() > 0) {
+    o.retract = layerjkr::RetractDrive{layerjkr::RetractControl::load, r.load_rate, 0.0};
+  }
+  if (o.retract) {
+    try {
+      o.retract->validate();
+    } catch (const layerjkr::DomainError& e) {
+      const std::string flag = e.parameter() == "stiffness" ? "--stiffness" : o.retract->control == layerjkr::RetractControl::load ? "--load-rate" : "--retract-speed";
+      throw layerjkr::InputError(flag + " = " + format_double(e.value()) + " must be finite and > 0 (" +
+                                 (flag == "--load-rate" ? "N/s)" : flag == "--stiffness" ? "N/m)" : "m/s)"));
+    }
+  }
+  return o;
+}
+
+int run_summary(const std::string& path, const RetractArguments& retract) {
+  const layerjkr::SummaryAnswer answer = layerjkr::solve_summary(layerjkr::load_scene(path), summary_options(retract));
   print_warnings(answer.warnings, answer.notices);
   print_choice(answer.choice);
   std::cout << layerjkr::cli::summary_json(answer).dump(2) << "\n";
@@ -112,6 +143,17 @@ static int run_main(int argc, char** argv) {
   CLI::App* summary = app.add_subcommand(
       "summary", "JSON summary: pull-off, zero-load radius, fixed-grips critical point, model error estimate, K, G");
   summary->add_option("scene", scene_path, "Scene JSON file")->required();
+  RetractArguments retract;
+  retract.speed_opt = summary->add_option("--retract-speed", retract.speed,
+                                          "With adhesion kinetics: the retract's speed [m/s] (fixed grips, or the "
+                                          "cantilever's base with --stiffness): its rate-dependent pull-off and a sweep of speeds");
+  retract.load_rate_opt = summary->add_option("--load-rate", retract.load_rate,
+                                              "With adhesion kinetics: a load-controlled retract at this rate [N/s]");
+  retract.stiffness_opt = summary->add_option("--stiffness", retract.stiffness, "The cantilever's stiffness [N/m]");
+  summary->add_option("--start-force", retract.start_force,
+                      "The retract starts from the equilibrium contact at this force [N] (default 0)");
+  retract.speed_opt->excludes(retract.load_rate_opt);
+  retract.stiffness_opt->needs(retract.speed_opt);
 
   layerjkr::cli::FitArguments fit_args;
   std::string data_path, report_path, plot_path;
@@ -233,7 +275,7 @@ static int run_main(int argc, char** argv) {
     if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, map_curves, map, command_line);
     if (*export_cmd) return layerjkr::cli::run_export(export_path, export_out, export_curves);
     if (*discrete) return layerjkr::cli::run_discrete(discrete_args);
-    return run_summary(scene_path);
+    return run_summary(scene_path, retract);
   } catch (const layerjkr::NumericalError& e) {
     return fail(1, std::string("numerical failure: ") + e.what());
   } catch (const layerjkr::Error& e) {

@@ -144,6 +144,24 @@ json summary_json(const SummaryAnswer& a) {
   }
   if (a.E_star) j["E_star"] = *a.E_star;
   j["adhesion_check"] = adhesion_json(a.adhesion);
+  if (a.kinetic) {
+    const KineticSummary& k = *a.kinetic;
+    const auto point = [](const CriticalPoint& p) { return json{{"a", p.a}, {"P", p.P}, {"delta", p.delta}}; };
+    json sweep = json::array();
+    for (std::size_t i = 0; i < k.rates.size(); ++i) sweep.push_back({{"rate", k.rates[i]}, {"pull_off_force", k.pull_off_forces[i]}});
+    j["kinetic_pull_off"] = {{"drive", k.drive.describe()},
+                             {"control", to_string(k.drive.control)},
+                             {"rate", k.drive.rate},
+                             {"rate_unit", k.drive.control == RetractControl::load ? "N/s" : "m/s"},
+                             {"start_force", k.start_force},
+                             {"pull_off_force", k.pull_off.P},
+                             {"pull_off", point(k.pull_off)},
+                             {"pull_off_time", k.pull_off_time},
+                             {"separation_time", k.separation_time},
+                             {"equilibrium_pull_off_force", k.equilibrium_pull_off.P},
+                             {"equilibrium_separation", point(k.equilibrium_separation)},
+                             {"rate_dependence", sweep}};
+  }
   if (a.choice)
     j["model_choice"] = {{"model", to_string(a.choice->model)},
                          {"estimated_error", a.choice->estimated_error},

@@ -231,6 +231,7 @@ json describe(const Scene& s) {
   d["adhesion"] = {{"model", to_string(s.adhesion.model)},
                    {"sigma0", s.adhesion.sigma0 ? to_value(*s.adhesion.sigma0) : json(nullptr)},
                    {"z0", s.adhesion.z0 ? to_value(*s.adhesion.z0) : json(nullptr)}};
+  if (s.adhesion.kinetics) d["adhesion"]["kinetics"] = s.adhesion.kinetics->describe();
   return d;
 }
 

@@ -385,10 +385,24 @@ SceneModel read_model(const Reader& in, const json& root, MediumType medium) {
                        "' (available: " + list + ")");
 }
 
-// {"model": ..., "sigma0": ... | "z0": ...}; every value checked here, by key.
+// {"law": "maugis_barquins", "v_star": V, "n": N}
+CrackKinetics read_kinetics(const Reader& in, const json& obj) {
+  const std::string path = "adhesion.kinetics";
+  const json& k = in.object(obj, "kinetics", path);
+  const std::string law = in.string(k, "law", path);
+  if (law != "maugis_barquins") in.fail(path + ".law", "= \"" + law + "\" is unknown (known: maugis_barquins)");
+  in.only_keys(k, path, {"law", "v_star", "n"});
+  CrackKinetics c;
+  c.v_star = in.number(k, "v_star", path);
+  c.n = in.number(k, "n", path);
+  in.checked(path, [&] { c.validate(); });
+  return c;
+}
+
+// {"model": ..., "sigma0": ... | "z0": ..., "kinetics": {...}}; every value checked here, by key.
 AdhesionSpec read_adhesion(const Reader& in, const json& root) {
   const json& obj = in.object(root, "adhesion", "adhesion");
-  in.only_keys(obj, "adhesion", {"model", "sigma0", "z0"});
+  in.only_keys(obj, "adhesion", {"model", "sigma0", "z0", "kinetics"});
   AdhesionSpec a;
   if (obj.contains("model")) a.model = read_enum<AdhesionModel>(in, in.string(obj, "model", "adhesion"), "adhesion.model");
   for (const char* key : {"sigma0", "z0"}) {
@@ -402,6 +416,12 @@ AdhesionSpec read_adhesion(const Reader& in, const json& root) {
   if (a.sigma0 && a.z0) in.fail("adhesion", "gives both sigma0 and z0; give one (z0 sets sigma0 = 16 w / (9 sqrt(3) z0))");
   if (a.model == AdhesionModel::maugis_dugdale && !a.sigma0 && !a.z0)
     in.fail("adhesion", "model \"maugis_dugdale\" needs sigma0 [Pa] (the Dugdale stress) or z0 [m]");
+  if (obj.contains("kinetics")) {
+    if (a.model != AdhesionModel::jkr)
+      in.fail("adhesion.kinetics", std::string("act on JKR's edge crack; adhesion.model is \"") + to_string(a.model) +
+                                       "\" (use \"jkr\")");
+    a.kinetics = read_kinetics(in, obj);
+  }
   return a;
 }
 
@@ -453,6 +473,11 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     if (s.w < 0.0) in.fail("w", "= " + format_double(s.w) + " is invalid; valid range: >= 0");
   }
   if (root.contains("adhesion")) s.adhesion = read_adhesion(in, root);
+  if (s.adhesion.kinetics && !(s.w > 0.0))
+    in.fail("adhesion.kinetics", "need a work of adhesion w > 0 (w0 in G = w0 (1 + (v/v_star)^n)); w is " + format_double(s.w));
+  if (s.adhesion.kinetics && s.medium.relaxation.kind != RelaxationLaw::Kind::elastic)
+    in.fail("adhesion.kinetics", "on a relaxing medium (medium.viscoelastic) are not modelled: Maugis-Barquins kinetics "
+                                 "are the edge crack's dissipation on an elastic body; give one or the other");
   if (s.model == SceneModel::automatic) {
     if (!root.contains("tolerance"))
       in.fail("tolerance", "is missing; model \"auto\" needs a relative error target in (0, 1)");

@@ -20,7 +20,9 @@ std::string list(const std::vector<double>& v) {
 RelaxationLaw RelaxationLaw::standard_linear_solid(double E_inf_ratio, double tau) {
   if (!(E_inf_ratio >= 0.0 && E_inf_ratio <= 1.0))
     throw DomainError("RelaxationLaw::standard_linear_solid", "E_inf/E", E_inf_ratio, "[0, 1]");
-  return prony({1.0 - E_inf_ratio}, {tau});
+  RelaxationLaw law = prony({1.0 - E_inf_ratio}, {tau});
+  law.standard_linear_solid_form = true;
+  return law;
 }
 
 RelaxationLaw RelaxationLaw::prony(std::vector<double> g, std::vector<double> tau) {
@@ -88,6 +90,8 @@ std::string RelaxationLaw::describe() const {
     case Kind::elastic:
       return "elastic";
     case Kind::prony:
+      if (standard_linear_solid_form && g.size() == 1)
+        return "sls(E_inf/E = " + format_double(1.0 - g[0]) + ", tau = " + format_double(tau[0]) + " s)";
       return "prony(g = " + list(g) + ", tau = " + list(tau) + " s)";
     case Kind::power_law:
       return "power_law(beta = " + format_double(beta) + ", t0 = " + format_double(t0) + " s)";

@@ -113,7 +113,8 @@ TEST_CASE("relaxation laws and loading histories: bad input names the field, its
   CHECK_THROWS_WITH(lee_radok_loading({0.1, 0.2}, {2.0, 1.0}, law), Catch::Contains("P_H[1] = 1") && Catch::Contains("recedes"));
   CHECK_THROWS_WITH(lee_radok_loading({0.1}, {1.0, 2.0}, law), Catch::Contains("different lengths"));
   CHECK_THROWS_WITH(lee_radok_loading({0.0}, {1.0}, law), Catch::Contains("not 0 at t = 0"));
-  CHECK(law.describe() == "prony(g = [0.5], tau = [1] s)");
+  CHECK(law.describe() == "sls(E_inf/E = 0.5, tau = 1 s)");
+  CHECK(RelaxationLaw::prony({0.5}, {1.0}).describe() == "prony(g = [0.5], tau = [1] s)");
 }
 
 TEST_CASE("scenes carry one relaxation law for the medium, checked and named", "[viscoelastic][scene]") {
@@ -163,7 +164,7 @@ TEST_CASE("an answer for a relaxing medium says it is the elastic response, neve
       "E": 2000, "nu": 0.5, "viscoelastic": {"law": "sls", "E_inf": 500, "tau": 0.2}}, "w": 1e-5})");
   const SummaryAnswer a = solve_summary(s);
   REQUIRE(a.warnings.size() == 1);
-  CHECK_THAT(a.warnings[0], Catch::Contains("the medium relaxes (prony(g = [0.75], tau = [0.2] s))") &&
+  CHECK_THAT(a.warnings[0], Catch::Contains("the medium relaxes (sls(E_inf/E = 0.25, tau = 0.2 s))") &&
                                 Catch::Contains("elastic response at E"));
 }
 
