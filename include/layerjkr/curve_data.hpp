@@ -1,12 +1,14 @@
 // layerjkr: measured force curves - the data a fit consumes - and their CSV reader.
 //
 // A curve is a sequence of samples (delta_i [m], P_i [N]) in acquisition order, with
-// optional contact radii a_i [m] (JKR rigs measure them), weights and a segment label
-// (0 = approach/loading, 1 = retract/unloading). delta is the approach of the indenter
+// optional times t_i [s], contact radii a_i [m] (JKR rigs measure them), weights and a segment
+// label (0 = approach/loading, 1 = retract/unloading, 2 = dwell: a pause, the indenter at rest,
+// which the elastic fits leave out and a relaxation law fits). delta is the approach of the indenter
 // in any fixed frame: the fit's contact-point offset delta0 maps it to the model's
 // approach, delta_model = delta - delta0. P is positive when repulsive.
 //
-// CSV forms (header row; columns in any order; extra columns are an error):
+// CSV forms (header row; columns in any order; extra columns are an error; each form also
+// takes a time column t [s], strictly increasing - aliases time, t_s):
 //   delta,P[,a][,weight][,segment]        the model's own variables
 //   tip_position,force[,weight][,segment] JPK / nanite export: delta = -tip_position
 //                                         (the tip moves to more negative values on approach)
@@ -16,7 +18,7 @@
 //                                         delta = z_sign*z - P/k, P = force (needs spring_constant)
 //   P,a[,weight][,segment]                a JKR rig's load and contact radius, no displacement
 //                                         (delta stays empty: a fit of P against a)
-//   curve,segment,force,height,tip_position  `layerjkr export` of an instrument file: height is
+//   curve,segment[,t],force,height,tip_position  `layerjkr export` of an instrument file: height is
 //                                         informational; a file of several curves needs
 //                                         CsvOptions::curve
 // Aliases: P <-> force; a unit suffix _m / _N (delta_m, force_N, tip_position_m, ...) is
@@ -40,7 +42,12 @@ struct CurveData {
   std::vector<double> P;       ///< force [N], positive = repulsive
   std::vector<double> a;       ///< contact radius [m] (empty = not measured)
   std::vector<double> weight;  ///< relative weights > 0 (empty = all 1); a fit divides them by the largest, so only their ratios matter
-  std::vector<int> segment;    ///< 0 approach, 1 retract (empty = split at the largest delta)
+  /// 0 approach, 1 retract, 2 dwell (empty = split at the largest delta). No approach sample
+  /// follows a retract one; dwells may come anywhere (before the approach, between, after).
+  std::vector<int> segment;
+  /// Time of each sample [s], strictly increasing (empty = unknown): what a relaxation law or
+  /// rate-dependent adhesion is fitted against (CSV column t, or read from the instrument file).
+  std::vector<double> t;
   std::string source = "curve";  ///< names the curve in error messages
   /// Stiffness [N/m] of the cantilever that measured it, when known (instrument files); 0 if not.
   double spring_constant = 0.0;
@@ -53,16 +60,21 @@ struct CurveData {
   bool radius_only() const { return delta.empty() && !a.empty(); }
 
   /// Throws InputError naming the source, the column and the row unless all columns
-  /// have equal length, values are finite, a >= 0, weight > 0 and segment in {0, 1}.
+  /// have equal length, values are finite, a >= 0, weight > 0, segment in {0, 1, 2} with no
+  /// approach after a retract, and t strictly increasing.
   void validate() const;
 
-  /// Indices of the samples on `branch`, in acquisition order. Without a segment
-  /// column the curve is split at its largest delta (approach up to and including it); (P, a)
-  /// data without one are all loading (approach).
+  /// Indices of the samples on `branch`, in acquisition order; dwell samples are on no branch
+  /// (Branch::all is approach and retract). Without a segment column the curve is split at its
+  /// largest delta (approach up to and including it); (P, a) data without one are all loading.
   std::vector<std::size_t> select(Branch branch) const;
 
   /// Per sample: true on the retract branch (the rule select() uses). One pass.
   std::vector<bool> retract_mask() const;
+  /// How many samples are dwell (segment 2).
+  std::size_t dwell_count() const;
+  /// The curve without its dwell samples (the elastic fits' data); itself if it has none.
+  CurveData without_dwell() const;
 };
 
 /// Units and the raw-AFM conversion for CSV input.

@@ -170,7 +170,9 @@ InstrumentFile read_instrument_file(const std::string& path, const ReadLimits& l
 InstrumentFile read_instrument_file(const std::string& path);
 
 /// One curve as the fit consumes it: delta = -tip_position, P = force, segment 0 for the
-/// extend segments (and pauses before the first retract), 1 for the rest, the reader's notes.
+/// extend segments, 2 for pauses before the first retract (dwells), 1 for the rest, the reader's
+/// notes, and each sample's time t = (the earlier segments' durations) + i duration / n (none
+/// where a segment has no duration).
 /// `source` names it in error messages. spring_constant > 0 [N/m] replaces the file's: the deflection is kept,
 /// so force scales by k / k_file and the tip position is height + deflection. A curve whose
 /// file gives no spring constant (NaN) needs one here (InputError naming `source` otherwise).

@@ -46,17 +46,26 @@ int run_export(const std::string& path, const std::string& out, const std::strin
   const InstrumentReader reader(path);
   range.require_any(reader.size(), path);
   const std::size_t end = range.end_in(reader.size());
-  csv.write("curve,segment,force,height,tip_position\n");
-  // One curve at a time: a map is never held whole, in samples or in text.
+  // One curve at a time: a map is never held whole, in samples or in text. The samples' time is a
+  // column where the file gives it (the first curve decides, and every curve must then have it).
+  bool timed = false;
   for (std::size_t k = range.begin; k < end; ++k) {
     const InstrumentCurve c = reader.curve(k);
     const CurveData d = to_curve_data(c, path);
+    if (k == range.begin) {
+      timed = !d.t.empty();
+      csv.write(timed ? "curve,segment,t,force,height,tip_position\n" : "curve,segment,force,height,tip_position\n");
+    } else if (timed && d.t.empty()) {
+      throw InputError(path + ": curve " + std::to_string(c.index) + " has no segment durations, so no time, while the "
+                       "first exported curve had them; export it on its own (--curves)");
+    }
     std::string text;
     std::size_t row = 0;
     for (const InstrumentSegment& seg : c.segments)
       for (std::size_t i = 0; i < seg.force.size(); ++i, ++row)
-        text += std::to_string(c.index) + "," + std::to_string(d.segment[row]) + "," + format_double(seg.force[i]) +
-                "," + format_double(seg.height[i]) + "," + format_double(-d.delta[row]) + "\n";
+        text += std::to_string(c.index) + "," + std::to_string(d.segment[row]) + "," +
+                (timed ? format_double(d.t[row]) + "," : std::string()) + format_double(seg.force[i]) + "," +
+                format_double(seg.height[i]) + "," + format_double(-d.delta[row]) + "\n";
     csv.write(text);
   }
   csv.commit();

@@ -214,7 +214,7 @@ static int run_main(int argc, char** argv) {
 
   std::string export_path, export_out;
   CLI::App* export_cmd = app.add_subcommand(
-      "export", "Write every curve of an instrument file (JPK, Igor, Bruker) as CSV: curve,segment,force,height,tip_position");
+      "export", "Write every curve of an instrument file (JPK, Igor, Bruker) as CSV: curve,segment,t,force,height,tip_position (t where the file gives segment durations; segment 0 approach, 1 retract, 2 dwell)");
   export_cmd->add_option("file", export_path, "Instrument file (" + layerjkr::known_instrument_formats() + ")")
       ->required();
   export_cmd->add_option("--curves", export_curves, "Only the curves at positions A to B - 1 (A:B, A: or :B)");

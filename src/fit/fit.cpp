@@ -146,10 +146,12 @@ FitSummary fit_automatic(const CurveData& curve, const Scene& scene, const FitOp
 
 }  // namespace
 
-FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& options) {
+FitSummary fit(const CurveData& given, const Scene& scene, const FitOptions& options) {
   const auto t_begin = std::chrono::steady_clock::now();
   options.validate();
-  curve.validate();
+  given.validate();
+  // An elastic model holds the force while the indenter rests: dwell samples are not its to fit.
+  const CurveData curve = given.without_dwell();
   if (!scene.profile) throw InputError("fit: the scene has no indenter profile");
   if (curve.radius_only() && detail::steered_contact(options))
     throw InputError(curve.source + ": (P, a) data have no displacement: no contact point to find and no indentation "
@@ -161,6 +163,9 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   FitSummary out = options.retract_control == RetractControl::automatic && !stiffness_known && retract_fitted
                        ? fit_automatic(curve, scene, options)
                        : fit_once(curve, scene, options);
+  if (const std::size_t dwell = given.dwell_count(); dwell > 0)
+    out.notices.push_back(std::to_string(dwell) + " dwell samples (segment 2: the indenter at rest) are not fitted: an "
+                          "elastic model holds the force constant there; a relaxation law (medium.viscoelastic) fits them");
   out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   return out;
 }

@@ -21,7 +21,7 @@
 namespace layerjkr {
 namespace {
 
-enum class Column { delta, force, a, weight, segment, tip_position, z, deflection, curve, height };
+enum class Column { delta, force, a, weight, segment, tip_position, z, deflection, curve, height, time };
 
 struct ColumnName {
   Column column;
@@ -42,7 +42,8 @@ const std::map<std::string, ColumnName>& known_columns() {
       {"deflection", {Column::deflection, false}},
       {"deflection_m", {Column::deflection, true}},
       {"curve", {Column::curve, false}},     {"height", {Column::height, false}},
-      {"height_m", {Column::height, true}}};
+      {"height_m", {Column::height, true}},  {"t", {Column::time, false}},
+      {"time", {Column::time, false}},       {"t_s", {Column::time, false}}};
   return names;
 }
 
@@ -60,6 +61,7 @@ void CurveData::validate() const {
   if (!a.empty() && a.size() != n) fail("column a has " + std::to_string(a.size()) + " rows, not " + std::to_string(n));
   if (!weight.empty() && weight.size() != n) fail("column weight has the wrong length");
   if (!segment.empty() && segment.size() != n) fail("column segment has the wrong length");
+  if (!t.empty() && t.size() != n) fail("column t has " + std::to_string(t.size()) + " rows, not " + std::to_string(n));
   if (n == 0) fail("has no data rows");
   for (std::size_t i = 0; i < n; ++i) {
     const std::string row = " in row " + std::to_string(i + 1);
@@ -69,9 +71,41 @@ void CurveData::validate() const {
       fail("a = " + format_double(a[i]) + row + " is invalid; valid range: finite and >= 0");
     if (!weight.empty() && !(weight[i] > 0.0 && std::isfinite(weight[i])))
       fail("weight = " + format_double(weight[i]) + row + " is invalid; valid range: finite and > 0");
-    if (!segment.empty() && segment[i] != 0 && segment[i] != 1)
-      fail("segment = " + std::to_string(segment[i]) + row + " is invalid; valid values: 0 (approach), 1 (retract)");
+    if (!segment.empty() && segment[i] != 0 && segment[i] != 1 && segment[i] != 2)
+      fail("segment = " + std::to_string(segment[i]) + row + " is invalid; valid values: 0 (approach), 1 (retract), 2 (dwell)");
+    if (!t.empty() && !std::isfinite(t[i])) fail("t = " + format_double(t[i]) + row + " is not finite");
+    if (!t.empty() && i > 0 && !(t[i] > t[i - 1]))
+      fail("t = " + format_double(t[i]) + " s" + row + " does not increase (the row before: " + format_double(t[i - 1]) +
+           " s); times must increase strictly, in acquisition order");
   }
+  bool retracted = false;
+  for (std::size_t i = 0; i < segment.size(); ++i) {
+    if (segment[i] == 0 && retracted)
+      fail("data row " + std::to_string(i + 1) + " returns to segment 0 after retract rows; rows must be in "
+           "acquisition order (approach, then retract; dwells anywhere)");
+    retracted = retracted || segment[i] == 1;
+  }
+}
+
+std::size_t CurveData::dwell_count() const {
+  return static_cast<std::size_t>(std::count(segment.begin(), segment.end(), 2));
+}
+
+CurveData CurveData::without_dwell() const {
+  if (dwell_count() == 0) return *this;
+  CurveData d = *this;
+  for (auto* v : {&d.delta, &d.P, &d.a, &d.weight, &d.t}) v->clear();
+  d.segment.clear();
+  for (std::size_t i = 0; i < size(); ++i) {
+    if (segment[i] == 2) continue;
+    if (!delta.empty()) d.delta.push_back(delta[i]);
+    d.P.push_back(P[i]);
+    if (!a.empty()) d.a.push_back(a[i]);
+    if (!weight.empty()) d.weight.push_back(weight[i]);
+    if (!t.empty()) d.t.push_back(t[i]);
+    d.segment.push_back(segment[i]);
+  }
+  return d;
 }
 
 std::vector<bool> CurveData::retract_mask() const {
@@ -88,7 +122,8 @@ std::vector<std::size_t> CurveData::select(Branch branch) const {
   std::vector<std::size_t> idx;
   const std::vector<bool> retract = retract_mask();
   for (std::size_t i = 0; i < size(); ++i)
-    if (branch == Branch::all || retract[i] == (branch == Branch::retract)) idx.push_back(i);
+    if ((segment.empty() || segment[i] != 2) && (branch == Branch::all || retract[i] == (branch == Branch::retract)))
+      idx.push_back(i);
   return idx;
 }
 
@@ -145,8 +180,8 @@ Layout read_layout(std::vector<std::string> header, const CsvOptions& options, c
     const auto it = known_columns().find(header[c]);
     if (it == known_columns().end())
       fail("header column " + std::to_string(c + 1) + " '" + shorten(header[c]) +
-           "' is unknown (known: delta, P, force, a, weight, segment, tip_position, z, "
-           "deflection, curve, height; optional _m/_N suffix)");
+           "' is unknown (known: delta, P, force, a, weight, segment, t, tip_position, z, "
+           "deflection, curve, height; optional _m/_N/_s suffix)");
     if (l.has(it->second.column)) fail("header names the same quantity twice ('" + header[c] + "')");
     l.where[it->second.column] = c;
     si_labelled = si_labelled || it->second.si_labelled;
@@ -227,21 +262,12 @@ void append_row(const std::vector<double>& v, const Layout& l, const CsvOptions&
   if (l.has(Column::weight)) d.weight.push_back(col(Column::weight));
   if (l.has(Column::segment)) {
     const double s = col(Column::segment);
-    if (s != 0.0 && s != 1.0)
+    if (s != 0.0 && s != 1.0 && s != 2.0)
       fail("line " + std::to_string(line_no) + ", column 'segment': " + format_double(s) +
-           " is invalid; valid values: 0 (approach), 1 (retract)");
+           " is invalid; valid values: 0 (approach), 1 (retract), 2 (dwell)");
     d.segment.push_back(static_cast<int>(s));
   }
-}
-
-// Order matters for the branch split: approach rows first, then retract rows. Rows
-// repeating their predecessor are kept: real exports contain them (jpk_spot3_0192 rows
-// 127-128 are identical; the instrument's height signal is quantised).
-void require_acquisition_order(const CurveData& d, const Fail& fail) {
-  for (std::size_t i = 1; i < d.segment.size(); ++i)
-    if (d.segment[i] < d.segment[i - 1])
-      fail("data row " + std::to_string(i + 1) + " returns to segment 0 after retract rows; "
-           "rows must be in acquisition order (approach, then retract)");
+  if (l.has(Column::time)) d.t.push_back(col(Column::time));
 }
 
 }  // namespace
@@ -289,8 +315,10 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
   if (options.curve >= 0 && d.P.empty())
     fail("has no rows of curve " + std::to_string(options.curve));
   if (d.P.empty()) fail("has a header but no data rows");
+  // Order matters for the branch split (approach rows, then retract rows; CurveData::validate).
+  // Rows repeating their predecessor are kept: real exports contain them (jpk_spot3_0192 rows
+  // 127-128 are identical; the instrument's height signal is quantised).
   d.validate();
-  require_acquisition_order(d, fail);
   return d;
 }
 

@@ -250,15 +250,29 @@ CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source,
   d.source = source;
   d.spring_constant = k;
   d.notes = curve.notes;
+  // Time runs on through every segment, each sample at start + i duration / n (afmformats'
+  // convention for JPK; the Igor wave's own row scaling; Bruker's ramp over its velocity).
+  bool timed = !curve.segments.empty();
+  for (const InstrumentSegment& seg : curve.segments)
+    timed = timed && (seg.force.empty() || (seg.duration > 0.0 && std::isfinite(seg.duration)));
+  double t0 = 0.0;
   bool retracting = false;
   for (const InstrumentSegment& seg : curve.segments) {
     retracting = retracting || seg.style == SegmentStyle::retract;
-    for (std::size_t i = 0; i < seg.force.size(); ++i) {
+    // A pause before the retract is a dwell (2); one after it rests away from the surface, the
+    // retract's own baseline (1).
+    const int label = seg.style == SegmentStyle::extend ? (retracting ? 1 : 0)
+                      : seg.style == SegmentStyle::retract || retracting ? 1
+                                                                          : 2;
+    const std::size_t n = seg.force.size();
+    for (std::size_t i = 0; i < n; ++i) {
       const double force = seg.force[i] * scale;
       d.delta.push_back(-(seg.height[i] + force / k));
       d.P.push_back(force);
-      d.segment.push_back(retracting ? 1 : 0);
+      d.segment.push_back(label);
+      if (timed) d.t.push_back(t0 + seg.duration * static_cast<double>(i) / static_cast<double>(n));
     }
+    t0 += seg.duration;
   }
   d.validate();
   return d;

@@ -42,7 +42,7 @@ TEST_CASE("fit reads a JPK archive directly and reproduces JPK's E = 233.1 kPa w
   // Exported and read back, the same curve gives the same fit.
   const std::string csv = unique("spot3.csv");
   REQUIRE(run("export " + kSpot3 + " --out " + csv).code == 0);
-  CHECK(lines(slurp(csv))[0] == "curve,segment,force,height,tip_position");
+  CHECK(lines(slurp(csv))[0] == "curve,segment,t,force,height,tip_position");
   CHECK(lines(slurp(csv)).size() == 4001);
   const Run back = run("fit " + csv + " --scene " + hertz_scene() + " --free E,delta0,P0");
   REQUIRE(back.code == 0);

@@ -54,7 +54,7 @@ TEST_CASE("outputs: - and /dev/stdout are standard output, the summary then on s
   const Run csv = run("export " + archive + " --out -");
   INFO(csv.err);
   CHECK(csv.code == 0);
-  CHECK(csv.out.rfind("curve,segment,force,height,tip_position\n", 0) == 0);
+  CHECK(csv.out.rfind("curve,segment,t,force,height,tip_position\n", 0) == 0);
   CHECK(lines(csv.out).size() == 9);
   const Run map = run("bash -c 'cd " + dir.string() + " && exec " + kCli + " fit-map " + kCurve + kFree + " --out -'", true);
   INFO(map.err);

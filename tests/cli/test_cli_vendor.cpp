@@ -33,8 +33,11 @@ TEST_CASE("vendor files: fit-map reads an Asylum map exported per channel from i
   const Run e = run("export " + root + " --curves 0:1 --out " + unique("one.csv"));
   INFO(e.err);
   REQUIRE(e.code == 0);
-  const std::string first = lines(slurp(unique("one.csv"))).at(1);  // curve,segment,force,...
-  const double force = std::stod(first.substr(4, first.find(',', 4) - 4));
+  const std::vector<std::string> exported = lines(slurp(unique("one.csv")));
+  CHECK(exported.at(0) == "curve,segment,t,force,height,tip_position");
+  const std::string& first = exported.at(1);
+  const std::size_t t_end = first.find(',', 4);  // after "0,0,": t, then force
+  const double force = std::stod(first.substr(t_end + 1, first.find(',', t_end + 1) - t_end - 1));
   CHECK(force == Approx(0.5 * 1e-9).epsilon(1e-6));  // Defl 1 nm (float32) x k
 }
 

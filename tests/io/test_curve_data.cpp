@@ -108,7 +108,10 @@ TEST_CASE("every defect names the line and the column", "[csv][errors]") {
   CHECK_THAT(err("delta,P\n1,2,3\n"), Catch::Contains("line 2 has 3 cells"));
   CHECK_THAT(err("delta,P\n1\n"), Catch::Contains("line 2 has 1 cells"));
   CHECK_THAT(err("delta,P,weight\n1,2,0\n"), Catch::Contains("weight = 0"));
-  CHECK_THAT(err("delta,P,segment\n1,2,2\n"), Catch::Contains("segment"));
+  CHECK_THAT(err("delta,P,segment\n1,2,3\n"), Catch::Contains("segment") && Catch::Contains("2 (dwell)"));
+  CHECK_THAT(err("delta,P,segment\n1,2,1\n2,3,0\n"), Catch::Contains("returns to segment 0 after retract rows"));
+  CHECK_THAT(err("delta,P,t\n1,2,0.5\n2,3,0.5\n"), Catch::Contains("t = 0.5 s in row 2 does not increase"));
+  CHECK_THAT(err("delta,P,t\n1,2,inf\n"), Catch::Contains("not a finite number"));
   CHECK_THAT(err("delta,P,a\n1,2,-1\n"), Catch::Contains("a = -1"));
   CHECK_THAT(err("delta,P,P\n1,2,3\n"), Catch::Contains("twice"));
   CHECK_THAT(err("P\n1\n"), Catch::Contains("delta, tip_position, z"));
