@@ -5,6 +5,12 @@
 // down to pull-off and is free after it. The adhesion is the scene's (JKR, DMT or
 // Maugis-Dugdale: adhesion.hpp). Radii come from the library's own inverse lookups
 // (AdhesiveSolution::force_at_delta), not from the fit's Newton solver.
+//
+// In time (SimulationOptions::speed > 0) the indenter approaches at `speed`, may rest for
+// `dwell`, and withdraws at `retract_speed`; every sample has its time. A relaxing medium
+// (medium.viscoelastic) answers by Lee-Radok and Ting's rule (viscoelastic.hpp), the indentation
+// following the ramp; crack kinetics (adhesion.kinetics) by the retract's ODE (kinetics.hpp) under
+// fixed grips or a cantilever, the approach at equilibrium. Both need a speed.
 #pragma once
 
 #include <cstdint>
@@ -28,13 +34,27 @@ struct SimulationOptions {
   double noise = 0.0;   ///< standard deviation of Gaussian force noise [N], >= 0
   std::uint64_t seed = 1;
   bool with_radius = false;  ///< also return the contact radius (a JKR rig's a column)
+  /// The indenter's approach speed [m/s], finite and >= 0: > 0 samples the curve in time (t from 0
+  /// at the first sample; needed by a relaxing medium and by crack kinetics); 0: no time.
+  double speed = 0.0;
+  double retract_speed = 0.0;  ///< [m/s], >= 0 (0: the approach's speed)
+  /// A rest at the deepest point [s], >= 0 (needs speed): dwell samples (segment 2) at the
+  /// approach's sampling interval.
+  double dwell = 0.0;
+  /// What drives a retract with crack kinetics: fixed_grips (the indenter follows the ramp) or
+  /// cantilever (the base of a lever of cantilever_stiffness [N/m] follows it; the tip is at
+  /// delta = z - P/k). Other scenes' retracts follow the fixed-grips branch to the pull-off.
+  RetractControl control = RetractControl::fixed_grips;
+  double cantilever_stiffness = 0.0;
   /// Throws DomainError naming the first invalid field.
   void validate() const;
 };
 
 /// Samples the adhesive curve of `scene` (model "auto" chooses for radii down to a tenth
-/// of the turning point's). Throws DomainError for invalid options and NumericalError if
-/// the scene has no stable branch in the requested range.
+/// of the turning point's). Throws DomainError for invalid options, InputError for a relaxing
+/// medium or crack kinetics without a speed, and for adhesion (w > 0) on a relaxing medium (not
+/// modelled: the bulk's relaxation and the edge's adhesion together), and NumericalError if the
+/// scene has no stable branch in the requested range.
 CurveData simulate_curve(const Scene& scene, const SimulationOptions& options);
 
 }  // namespace layerjkr

@@ -6,6 +6,7 @@
 //   layerjkr fit-map DIR_OR_GLOB... --scene S.json --free ... --jobs N --out RESULTS.csv [--report DIR] [--resume]
 //   layerjkr fit-map --from-report RESULTS.json --out AGAIN.csv [--jobs N] [--report DIR]
 //   layerjkr export FILE.jpk-force|.jpk-force-map|.jpk-qi-data|.ibw|.spm|.000 --out OUT.csv [--curves A:B]
+//   layerjkr simulate SCENE.json --max-indentation D [--speed V ...] [--out CURVE.csv]
 // Exit codes (kExitCodes below, printed by --help): 0 success, 1 internal or numerical failure, 2
 // invalid scene, data or arguments (nothing written), 3 / 4 fit-map wrote its table but some / all of
 // its curves failed, 130 / 143 fit-map stopped by SIGINT / SIGTERM. Every error is one line on stderr,
@@ -28,6 +29,7 @@
 #include "fit_commands.hpp"
 #include "limits.hpp"
 #include "reports.hpp"
+#include "simulate_command.hpp"
 #include "layerjkr/layerjkr.hpp"
 
 namespace {
@@ -225,11 +227,17 @@ static int run_main(int argc, char** argv) {
       "discrete", "JKR from discrete data (paper s.5): flat-punch steps + convex-indenter curve -> curve CSV or summary");
   layerjkr::cli::add_discrete_options(*discrete, discrete_args);
 
-  const std::vector<std::string> commands = {"curve", "summary", "fit", "fit-map", "export", "discrete"};
+  layerjkr::cli::SimulateArguments simulate_args;
+  CLI::App* simulate = app.add_subcommand(
+      "simulate", "A synthetic curve of a scene as CSV t,delta,P[,a],segment (t with --speed): at equilibrium, or in time "
+                  "for a relaxing medium (Lee-Radok, Ting) and crack kinetics");
+  layerjkr::cli::add_simulate_options(*simulate, simulate_args);
+
+  const std::vector<std::string> commands = {"curve", "summary", "fit", "fit-map", "export", "discrete", "simulate"};
   if (argc > 1 && argv[1][0] != '-' &&
       std::find(commands.begin(), commands.end(), std::string(argv[1])) == commands.end()) {
     return fail(2, "unknown command '" + std::string(argv[1]) +
-                       "' (known: curve, summary, fit, fit-map, export, discrete; see --help)");
+                       "' (known: curve, summary, fit, fit-map, export, discrete, simulate; see --help)");
   }
   try {
     app.parse(argc, argv);
@@ -275,6 +283,11 @@ static int run_main(int argc, char** argv) {
     if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, map_curves, map, command_line);
     if (*export_cmd) return layerjkr::cli::run_export(export_path, export_out, export_curves);
     if (*discrete) return layerjkr::cli::run_discrete(discrete_args);
+    if (*simulate) {
+      std::string line = "layerjkr";  // what made the file, in its first line
+      for (std::size_t i = 1; i < command_line.size(); ++i) line += " " + command_line[i];
+      return layerjkr::cli::run_simulate(simulate_args, line);
+    }
     return run_summary(scene_path, retract);
   } catch (const layerjkr::NumericalError& e) {
     return fail(1, std::string("numerical failure: ") + e.what());

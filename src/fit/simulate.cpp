@@ -1,13 +1,17 @@
-// Synthetic curves: the fit's forward model, evaluated with the contact module's lookups.
+// Synthetic curves: the fit's forward model, evaluated with the contact module's lookups - at
+// equilibrium, or in time for a relaxing medium (Lee-Radok, Ting) and for crack kinetics.
 #include "layerjkr/simulate.hpp"
 
 #include <cmath>
+#include <limits>
 #include <random>
 
+#include "adhesion/crack_kinetics.hpp"
 #include "layerjkr/adhesion.hpp"
 #include "layerjkr/built_scene.hpp"
 #include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
+#include "layerjkr/viscoelastic.hpp"
 
 namespace layerjkr {
 
@@ -20,14 +24,161 @@ void SimulationOptions::validate() const {
   detail::require_finite(fn, "delta0", delta0);
   detail::require_finite(fn, "P0", P0);
   detail::require_non_negative(fn, "noise", noise);
+  for (const auto& [name, v] : {std::pair{"speed", speed}, {"retract_speed", retract_speed}, {"dwell", dwell}})
+    if (!(v >= 0.0 && std::isfinite(v))) throw DomainError(fn, name, v, std::string("finite and >= 0 [") + (name[0] == 'd' ? "s]" : "m/s]"));
+  if ((retract_speed > 0.0 || dwell > 0.0) && !(speed > 0.0))
+    throw DomainError(fn, retract_speed > 0.0 ? "retract_speed" : "dwell", retract_speed > 0.0 ? retract_speed : dwell,
+                      "used only with a speed > 0 (the curve in time)");
+  if (control != RetractControl::fixed_grips && control != RetractControl::cantilever)
+    throw DomainError(fn, std::string("control (") + to_string(control) + ")", 0.0, "grips or cantilever");
+  if (control == RetractControl::cantilever && !(cantilever_stiffness > 0.0 && std::isfinite(cantilever_stiffness)))
+    throw DomainError(fn, "cantilever_stiffness", cantilever_stiffness, "finite and > 0 [N/m] with control cantilever");
 }
+
+namespace {
+
+// One sample of the ramp before the physics answers it.
+struct Sample {
+  double t = 0.0, delta = 0.0;
+  int segment = 0;
+};
+
+// The approach from `lo` to `d_max`, the dwell there and the retract to `lo_r`: evenly in delta,
+// the retract starting at d_max again (without time, as before time existed); in time, at the
+// speeds, the retract one step after the turn (or the dwell).
+std::vector<Sample> ramp(double lo, double d_max, double lo_r, const SimulationOptions& o) {
+  const std::size_t n = o.points_per_branch;
+  std::vector<Sample> out;
+  const bool timed = o.speed > 0.0;
+  const double dt = timed ? (d_max - lo) / (o.speed * static_cast<double>(n - 1)) : 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    out.push_back({static_cast<double>(i) * dt,
+                   i + 1 == n ? d_max : lo + (d_max - lo) * static_cast<double>(i) / static_cast<double>(n - 1), 0});
+  const double t_turn = out.back().t;
+  const auto dwells = timed ? static_cast<std::size_t>(std::llround(o.dwell / dt)) : 0;
+  for (std::size_t k = 1; k <= dwells; ++k) out.push_back({t_turn + static_cast<double>(k) * dt, d_max, 2});
+  const double v_r = o.retract_speed > 0.0 ? o.retract_speed : o.speed;
+  const double t_back = out.back().t, span = d_max - lo_r;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (timed) {
+      const double f = static_cast<double>(k + 1) / static_cast<double>(n);
+      out.push_back({t_back + f * span / v_r, d_max - f * span, 1});
+    } else {
+      out.push_back({0.0, d_max - span * static_cast<double>(k) / static_cast<double>(n - 1), 1});
+    }
+  }
+  return out;
+}
+
+// What a sample answers: force and contact radius (the ramp's delta may change: a cantilever's tip).
+struct Answer {
+  double P = 0.0, a = 0.0, delta = 0.0;
+};
+
+// At equilibrium: the stable branch from zero load on approach and at rest, to the pull-off on
+// retract.
+std::vector<Answer> equilibrium(const std::vector<Sample>& ramp, const AdhesiveSolution& sol, double d_contact,
+                                double d_release, bool with_radius) {
+  std::vector<Answer> out;
+  for (const Sample& s : ramp) {
+    Answer a{0.0, 0.0, s.delta};
+    if (s.delta >= (s.segment == 1 ? d_release : d_contact)) {
+      a.P = sol.force_at_delta(s.delta);
+      if (with_radius) a.a = sol.contact_radius_at_delta(s.delta);
+    }
+    out.push_back(a);
+  }
+  return out;
+}
+
+// A relaxing medium without adhesion: Lee-Radok and Ting over the ramp's indentation history.
+std::vector<Answer> relaxing(const std::vector<Sample>& ramp, const AdhesiveSolution& sol, const RelaxationLaw& law,
+                             bool with_radius) {
+  std::vector<double> t, d;
+  for (const Sample& s : ramp) {
+    t.push_back(s.t);
+    d.push_back(s.delta);
+  }
+  const HereditaryResponse r = hereditary_response(t, d, [&](double x) { return sol.force_at_delta(x); }, law);
+  std::vector<Answer> out;
+  for (std::size_t i = 0; i < ramp.size(); ++i)
+    out.push_back({r.P[i], with_radius && r.delta1[i] > 0.0 ? sol.contact_radius_at_delta(r.delta1[i]) : 0.0, ramp[i].delta});
+  return out;
+}
+
+// The retract's control value at the deepest point: the indenter, or a cantilever's base.
+double control_at_turn(const SimulationOptions& o, double d_max, double P_max) {
+  return o.control == RetractControl::cantilever ? d_max + P_max / o.cantilever_stiffness : d_max;
+}
+
+// Crack kinetics: the retract from the equilibrium contact at d_max by the ODE, sample by sample;
+// the rest at equilibrium. The ramp's retract samples are the control's (grips: the tip; a
+// cantilever: its base), turned into the tip's position.
+std::vector<Answer> kinetic(const std::vector<Sample>& ramp, const AdhesiveSolution& sol, const Scene& scene,
+                            const SimulationOptions& o, double d_contact, double d_max, bool with_radius) {
+  // The approach and the dwell at equilibrium; every retract sample is the ODE's (free until then).
+  std::vector<Answer> out = equilibrium(ramp, sol, d_contact, std::numeric_limits<double>::infinity(), with_radius);
+  const double a_max = sol.contact_radius_at_delta(d_max), P_max = sol.force_at_delta(d_max);
+  const ContactModelPtr model = sol.law().contact();
+  detail::KineticStepper stepper([&](double a) { return model->state(a); }, scene.w, *scene.adhesion.kinetics,
+                                 o.control, o.cantilever_stiffness);
+  const double c_turn = control_at_turn(o, d_max, P_max);
+  bool started = false;
+  for (std::size_t i = 0; i < ramp.size(); ++i) {
+    if (ramp[i].segment != 1) continue;
+    const double c = c_turn - (d_max - ramp[i].delta);  // the control withdraws as the ramp does
+    if (!started) {
+      stepper.start(ramp[i - 1].t, a_max, c_turn);
+      started = true;
+    }
+    if (!stepper.advance(ramp[i].t, c))
+      throw NumericalError("simulate: the crack's kinetics could not be integrated at t = " + format_double(ramp[i].t) + " s");
+    const detail::CrackPoint p = stepper.point();
+    out[i] = {p.P, with_radius ? stepper.a() : 0.0, o.control == RetractControl::cantilever ? p.delta : c};
+  }
+  return out;
+}
+
+// Where the kinetic retract lets go: the control's value at separation, from a run stepped finely.
+double kinetic_release(const AdhesiveSolution& sol, const Scene& scene, const SimulationOptions& o, double d_max,
+                       double d_release) {
+  const double a_max = sol.contact_radius_at_delta(d_max), P_max = sol.force_at_delta(d_max);
+  const ContactModelPtr model = sol.law().contact();
+  detail::KineticStepper stepper([&](double a) { return model->state(a); }, scene.w, *scene.adhesion.kinetics,
+                                 o.control, o.cantilever_stiffness);
+  const double c0 = control_at_turn(o, d_max, P_max);
+  const double v = o.retract_speed > 0.0 ? o.retract_speed : o.speed;
+  const double T = (d_max - d_release) / v, h = 1e-3 * T;
+  stepper.start(0.0, a_max, c0);
+  for (int k = 0; k < 1000000 && !stepper.separated(); ++k)
+    if (!stepper.step(stepper.t() + 1e3 * T, c0 - v * (stepper.t() + 1e3 * T), h))
+      throw NumericalError("simulate: the crack's kinetics could not be integrated (" + scene.adhesion.kinetics->describe() + ")");
+  if (!stepper.separated()) throw NumericalError("simulate: the kinetic retract did not let go");
+  return stepper.control();  // free: the tip sits where the grips or the unbent lever hold it
+}
+
+}  // namespace
 
 CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
   o.validate();
+  const bool relaxes = scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic;
+  const bool kinetics = scene.adhesion.kinetics.has_value();
+  if ((relaxes || kinetics) && !(o.speed > 0.0))
+    throw InputError(std::string("simulate: ") + (relaxes ? "a relaxing medium (" + scene.medium.relaxation.describe() + ")"
+                                                           : "crack kinetics (" + scene.adhesion.kinetics->describe() + ")") +
+                     " answers in time: give the indenter's speed [m/s] (--speed)");
+  if (relaxes && scene.w > 0.0)
+    throw InputError("simulate: adhesion (w = " + format_double(scene.w) + " J/m^2) on a relaxing medium is not modelled: "
+                     "Lee-Radok and Ting describe the contact without adhesion; set w = 0, or fit rate-dependent "
+                     "adhesion with an elastic medium and adhesion.kinetics");
+  if (o.control == RetractControl::cantilever && !kinetics)
+    throw InputError("simulate: a cantilever-controlled retract is modelled with crack kinetics (adhesion.kinetics) only; "
+                     "the other scenes follow the fixed-grips branch to the pull-off");
   // Where contact starts without adhesion sets the radius scale for "auto".
   const double a_scale = std::sqrt(o.max_indentation * scene.profile->length_scale());
   const BuiltScene built = build_scene(scene, 0.1 * a_scale);
-  // The scene's adhesion model (JKR unless its "adhesion" key says otherwise), as the fit's.
+  // The scene's adhesion model (JKR unless its "adhesion" key says otherwise), as the fit's; a
+  // relaxing medium's elastic force at the instantaneous modulus.
   const AdhesiveSolution sol(make_adhesive_law(built.model, built.resolved.spec, scene.w, scene.adhesion));
   const double a_floor = 1e-9 * a_scale;
   const double a_zero = scene.w > 0.0 ? sol.zero_load_radius().value_or(a_floor) : a_floor;
@@ -36,27 +187,26 @@ CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
   if (scene.w > 0.0)
     if (const auto po = sol.pull_off()) d_release = po->delta;
   const double d_max = d_contact + o.max_indentation;
+  if (kinetics) d_release = kinetic_release(sol, scene, o, d_max, d_release);
+  const double lo = d_contact - o.free_fraction * o.max_indentation;
+  const double lo_r = d_release - o.free_fraction * (d_max - d_release);
+  const std::vector<Sample> samples = ramp(lo, d_max, lo_r, o);
+  const std::vector<Answer> answers = relaxes    ? relaxing(samples, sol, scene.medium.relaxation, o.with_radius)
+                                      : kinetics ? kinetic(samples, sol, scene, o, d_contact, d_max, o.with_radius)
+                                                 : equilibrium(samples, sol, d_contact, d_release, o.with_radius);
 
   CurveData c;
   c.source = "simulated(" + built.model->name() + ")";
   std::mt19937_64 rng(o.seed);
   std::normal_distribution<double> gauss(0.0, 1.0);
-  auto add = [&](double delta, double start, int segment) {
-    const bool contact = delta >= start;
-    const double P = contact ? sol.force_at_delta(delta) : 0.0;
-    c.delta.push_back(delta + o.delta0);
-    c.P.push_back(P + o.P0 + (o.noise > 0.0 ? o.noise * gauss(rng) : 0.0));
-    c.segment.push_back(segment);
-    if (o.with_radius) c.a.push_back(contact ? sol.contact_radius_at_delta(delta) : 0.0);
-  };
-  const std::size_t n = o.points_per_branch;
-  if (o.branch != Branch::retract) {
-    const double lo = d_contact - o.free_fraction * o.max_indentation;
-    for (std::size_t i = 0; i < n; ++i) add(lo + (d_max - lo) * i / (n - 1.0), d_contact, 0);
-  }
-  if (o.branch != Branch::approach) {
-    const double lo = d_release - o.free_fraction * (d_max - d_release);
-    for (std::size_t i = 0; i < n; ++i) add(d_max - (d_max - lo) * i / (n - 1.0), d_release, 1);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const Sample& s = samples[i];
+    if ((o.branch == Branch::approach && s.segment != 0) || (o.branch == Branch::retract && s.segment != 1)) continue;
+    c.delta.push_back(answers[i].delta + o.delta0);
+    c.P.push_back(answers[i].P + o.P0 + (o.noise > 0.0 ? o.noise * gauss(rng) : 0.0));
+    c.segment.push_back(s.segment);
+    if (o.speed > 0.0) c.t.push_back(s.t);
+    if (o.with_radius) c.a.push_back(answers[i].a);
   }
   return c;
 }

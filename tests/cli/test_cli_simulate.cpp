@@ -1,0 +1,117 @@
+// layerjkr simulate (a synthetic curve as CSV the fit reads back) and summary's rate-dependent
+// pull-off (--retract-speed, --load-rate): what they write, and their input errors (exit 2, one
+// line, nothing written).
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "layerjkr/curve_data.hpp"
+#include "layerjkr/scene.hpp"
+#include "layerjkr/simulate.hpp"
+#include "support/cli_support.hpp"
+
+using namespace test::cli;
+
+namespace {
+
+const char* kCell = R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "layer", "E": 2000, "nu": 0.49,
+    "h": 3e-6, "base": "bonded", "viscoelastic": {"law": "sls", "E_inf": 800, "tau": 0.2}}, "model": "exact"})";
+const char* kElastomer = R"({"indenter": {"shape": "paraboloid", "R": 1e-3}, "medium": {"type": "half_space", "E": 1e6,
+    "nu": 0.5}, "w": 0.05, "adhesion": {"kinetics": {"law": "maugis_barquins", "v_star": 1e-6, "n": 0.6}}})";
+
+}  // namespace
+
+TEST_CASE("simulate writes t,delta,P[,a],segment that fit reads back, the library's own curve", "[cli][simulate]") {
+  const std::string scene = write_file("cell.json", kCell), out = unique("cell.csv");
+  const Run r = run("simulate " + scene + " --max-indentation 2e-6 --speed 2e-6 --dwell 0.3 --points 150 --with-radius "
+                    "--noise 1e-11 --seed 7 --out " + out);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.empty());
+  const std::vector<std::string> rows = lines(slurp(out));
+  CHECK(rows[0].rfind("# layerjkr simulate ", 0) == 0);
+  CHECK(rows[1] == "t,delta,P,a,segment");
+  const layerjkr::CurveData c = layerjkr::read_curve_csv(out);
+  layerjkr::SimulationOptions o;
+  o.max_indentation = 2e-6;
+  o.speed = 2e-6;
+  o.dwell = 0.3;
+  o.points_per_branch = 150;
+  o.with_radius = true;
+  o.noise = 1e-11;
+  o.seed = 7;
+  const layerjkr::CurveData lib = layerjkr::simulate_curve(layerjkr::parse_scene(kCell), o);
+  REQUIRE(c.size() == lib.size());
+  for (std::size_t i = 0; i < c.size(); ++i) {  // written in round-trip precision
+    REQUIRE(c.t[i] == lib.t[i]);
+    REQUIRE(c.P[i] == lib.P[i]);
+    REQUIRE(c.a[i] == lib.a[i]);
+    REQUIRE(c.segment[i] == lib.segment[i]);
+  }
+  CHECK(c.dwell_count() > 0);
+  // To standard output without a file, and without time when no speed is given.
+  const Run plain = run("simulate " + write_file("hertz.json", R"({"indenter": {"shape": "paraboloid", "R": 5e-6},
+      "medium": {"type": "half_space", "E": 2000, "nu": 0.5}})") + " --max-indentation 1e-6 --points 10 --branch approach");
+  REQUIRE(plain.code == 0);
+  CHECK(lines(plain.out).at(1) == "delta,P,segment");
+  CHECK(lines(plain.out).size() == 12);
+}
+
+TEST_CASE("simulate: bad input exits 2 with one line and writes nothing", "[cli][simulate]") {
+  const std::string cell = write_file("cell2.json", kCell), out = unique("never.csv");
+  const auto refused = [&](const std::string& args, const std::string& says) {
+    const Run r = run("simulate " + args + " --out " + out);
+    INFO(args << "\n" << r.err);
+    CHECK(r.code == 2);
+    CHECK(count_lines(r.err) == 1);
+    CHECK(r.err.find(says) != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(out));
+  };
+  refused(cell + " --max-indentation 2e-6", "give the indenter's speed");
+  refused(cell + " --max-indentation 2e-6 --speed -1", "--speed = -1");
+  refused(cell + " --max-indentation 0 --speed 1e-6", "--max-indentation = 0");
+  refused(cell + " --max-indentation 2e-6 --dwell 1", "--dwell = 1");
+  refused(cell + " --max-indentation 2e-6 --speed 1e-6 --branch sideways", "--branch = \"sideways\" is unknown");
+  refused(cell + " --max-indentation 2e-6 --speed 1e-6 --points 1", "--points");
+  refused(write_file("k.json", kElastomer) + " --max-indentation 1e-6 --speed 1e-6 --control cantilever",
+          "--control cantilever needs the lever's --stiffness");
+  refused(cell + " --max-indentation 2e-6 --speed 1e-6 --control cantilever --stiffness 1",
+          "cantilever-controlled retract is modelled with crack kinetics");
+  refused(unique("missing.json") + " --max-indentation 2e-6 --speed 1e-6", "missing.json");
+}
+
+TEST_CASE("summary --retract-speed: the rate-dependent pull-off and its sweep; refused without kinetics", "[cli][simulate]") {
+  const std::string scene = write_file("elastomer.json", kElastomer);
+  const Run r = run("summary " + scene + " --retract-speed 1e-6");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const nlohmann::json& k = j.at("kinetic_pull_off");
+  CHECK(k.at("drive") == "fixed grips at 1e-06 m/s");
+  CHECK(k.at("pull_off_force").get<double>() < j.at("pull_off_force").get<double>());
+  CHECK(k.at("equilibrium_pull_off_force").get<double>() == Approx(j.at("pull_off_force").get<double>()));
+  REQUIRE(k.at("rate_dependence").size() == 5);
+  for (std::size_t i = 1; i < 5; ++i)
+    CHECK(k["rate_dependence"][i]["pull_off_force"].get<double>() < k["rate_dependence"][i - 1]["pull_off_force"].get<double>());
+  const Run lever = run("summary " + scene + " --retract-speed 1e-6 --stiffness 20");
+  REQUIRE(lever.code == 0);
+  CHECK(nlohmann::json::parse(lever.out)["kinetic_pull_off"]["control"] == "cantilever");
+  const Run load = run("summary " + scene + " --load-rate 1e-3");
+  REQUIRE(load.code == 0);
+  CHECK(nlohmann::json::parse(load.out)["kinetic_pull_off"]["rate_unit"] == "N/s");
+  const Run none = run("summary " + scene);
+  REQUIRE(none.code == 0);
+  CHECK(none.err.find("note: the adhesion has kinetics") != std::string::npos);
+  CHECK_FALSE(nlohmann::json::parse(none.out).contains("kinetic_pull_off"));
+  const Run elastic = run("summary " + write_file("plain.json", R"({"indenter": {"shape": "paraboloid", "R": 1e-3},
+      "medium": {"type": "half_space", "E": 1e6, "nu": 0.5}, "w": 0.05})") + " --retract-speed 1e-6");
+  CHECK(elastic.code == 2);
+  CHECK(elastic.err.find("changes nothing without adhesion.kinetics") != std::string::npos);
+  const Run bad = run("summary " + scene + " --retract-speed 0");
+  CHECK(bad.code == 2);
+  CHECK(bad.err.find("--retract-speed = 0") != std::string::npos);
+  const Run both = run("summary " + scene + " --retract-speed 1e-6 --load-rate 1");
+  CHECK(both.code == 2);
+}

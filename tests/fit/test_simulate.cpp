@@ -1,0 +1,137 @@
+// simulate_curve in time: the ramp's times, dwell and speeds; a relaxing layer is the hereditary
+// response of the same indentation history (no other physics); crack kinetics tend to the
+// equilibrium curve as v_star grows and pull off deeper than it at a finite speed; the curve
+// without time is what it was; refusals.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "layerjkr/contact.hpp"
+#include "layerjkr/error.hpp"
+#include "layerjkr/scene.hpp"
+#include "layerjkr/simulate.hpp"
+#include "layerjkr/viscoelastic.hpp"
+
+using namespace layerjkr;
+
+namespace {
+
+const std::string kSphere = R"("indenter": {"shape": "paraboloid", "R": 5e-6})";
+Scene cell(const std::string& law) {
+  return parse_scene("{" + kSphere + R"(, "medium": {"type": "layer", "E": 2000, "nu": 0.49, "h": 3e-6, "base": "bonded",
+      "viscoelastic": )" + law + R"(}, "model": "exact"})");
+}
+Scene elastomer(double v_star) {
+  return parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 1e-3}, "medium": {"type": "half_space", "E": 1e6,
+      "nu": 0.5}, "w": 0.05, "adhesion": {"kinetics": {"law": "maugis_barquins", "v_star": )" +
+                     format_double(v_star) + R"(, "n": 0.6}}})");
+}
+
+}  // namespace
+
+TEST_CASE("simulate in time: approach, dwell and retract at their speeds", "[fit][simulate]") {
+  const Scene s = parse_scene("{" + kSphere + R"(, "medium": {"type": "half_space", "E": 2000, "nu": 0.5}})");
+  SimulationOptions o;
+  o.max_indentation = 1e-6;
+  o.points_per_branch = 101;
+  o.free_fraction = 0.5;
+  o.speed = 2e-6;
+  o.retract_speed = 5e-6;
+  o.dwell = 0.25;
+  const CurveData c = simulate_curve(s, o);
+  REQUIRE(c.t.size() == c.size());
+  CHECK(c.size() == 101 + 33 + 101);  // 0.25 s at the approach's 7.5 ms per sample
+  const double dt = 1.5e-6 / (2e-6 * 100);
+  CHECK(c.t[1] - c.t[0] == Approx(dt));
+  CHECK(c.segment[101] == 2);
+  CHECK(c.delta[120] == c.delta[100]);          // at rest
+  CHECK(c.P[120] == Approx(c.P[100]).epsilon(1e-12));  // an elastic medium holds its force
+  CHECK(c.t[151] - c.t[150] == Approx(1.5e-6 / (5e-6 * 101)));  // the retract at its own speed
+  CHECK(c.delta[151] < c.delta[150]);
+  CHECK(std::is_sorted(c.t.begin(), c.t.end()));
+  CHECK_NOTHROW(c.validate());
+  // Without a speed: the curve as before time, evenly in delta, no t.
+  o.speed = o.retract_speed = o.dwell = 0.0;
+  const CurveData plain = simulate_curve(s, o);
+  CHECK(plain.t.empty());
+  CHECK(plain.size() == 202);
+  CHECK(plain.delta[101] == Approx(plain.delta[100]).epsilon(1e-15));  // the retract starts at the turning point
+}
+
+TEST_CASE("simulate a relaxing layer: the hereditary response of the same history", "[fit][simulate]") {
+  const Scene s = cell(R"({"law": "sls", "E_inf": 800, "tau": 0.2})");
+  SimulationOptions o;
+  o.max_indentation = 2e-6;
+  o.points_per_branch = 200;
+  o.speed = 2e-6;
+  o.dwell = 0.5;
+  o.with_radius = true;
+  const CurveData c = simulate_curve(s, o);
+  const AdhesiveSolution elastic(make_contact_model(s.profile, resolve_model(s).spec), 0.0);
+  const HereditaryResponse r =
+      hereditary_response(c.t, c.delta, [&](double d) { return elastic.force_at_delta(d); }, s.medium.relaxation);
+  for (std::size_t i = 0; i < c.size(); ++i) CHECK(c.P[i] == r.P[i]);
+  // The dwell (0.5 s, 2.5 tau) relaxes towards E_inf / E of the force at the turn, the radius held.
+  const auto turn = static_cast<std::size_t>(std::find(c.segment.begin(), c.segment.end(), 2) - c.segment.begin()) - 1;
+  const auto rest = static_cast<std::size_t>(std::find(c.segment.begin(), c.segment.end(), 1) - c.segment.begin()) - 1;
+  REQUIRE(c.segment[rest] == 2);
+  for (std::size_t i = turn + 1; i <= rest; ++i) CHECK(c.P[i] < c.P[i - 1]);
+  const double relaxed = 0.4 * elastic.force_at_delta(c.delta[turn]);
+  CHECK(c.P[rest] - relaxed < 0.25 * (c.P[turn] - relaxed));  // most of the way there
+  CHECK(c.P[rest] > relaxed);
+  CHECK(c.a[rest] == Approx(c.a[turn]));
+  // The surface lags the withdrawal: contact is lost above delta = 0.
+  std::size_t lost = c.size();
+  for (std::size_t i = turn + 1; i < c.size(); ++i)
+    if (c.segment[i] == 1 && c.P[i] == 0.0) {
+      lost = i;
+      break;
+    }
+  REQUIRE(lost < c.size());
+  CHECK(c.delta[lost] > 0.0);
+}
+
+TEST_CASE("simulate with crack kinetics: deeper pull-off than equilibrium, equilibrium as v_star grows", "[fit][simulate]") {
+  SimulationOptions o;
+  o.max_indentation = 1e-6;
+  o.points_per_branch = 400;
+  o.speed = 1e-6;
+  const auto lowest = [](const CurveData& c) { return *std::min_element(c.P.begin(), c.P.end()); };
+  const double jkr = -1.5 * 3.14159265358979323846 * 0.05 * 1e-3;
+  const double slow = lowest(simulate_curve(elastomer(1e-6), o));
+  const double fast = lowest(simulate_curve(elastomer(10.0), o));
+  INFO("v_star 1e-6: " << slow << " N, v_star 10: " << fast << " N, JKR " << jkr << " N");
+  CHECK(slow < 2.0 * jkr);
+  CHECK(std::abs(fast / jkr - 1.0) < 0.01);  // sampled: the lowest sample, within a percent
+  // A cantilever softens the drive: the tip withdraws slower than the base, a shallower pull-off.
+  o.control = RetractControl::cantilever;
+  o.cantilever_stiffness = 5.0;
+  CHECK(lowest(simulate_curve(elastomer(1e-6), o)) > slow);
+}
+
+TEST_CASE("simulate refuses what it cannot model, naming why", "[fit][simulate]") {
+  SimulationOptions o;
+  o.max_indentation = 1e-6;
+  CHECK_THROWS_WITH(simulate_curve(cell(R"({"law": "power_law", "beta": 0.1, "t0": 1})"), o),
+                    Catch::Contains("answers in time") && Catch::Contains("--speed"));
+  CHECK_THROWS_WITH(simulate_curve(elastomer(1e-6), o), Catch::Contains("crack kinetics") && Catch::Contains("speed"));
+  o.speed = 1e-6;
+  const Scene sticky = parse_scene("{" + kSphere + R"(, "medium": {"type": "half_space", "E": 2000, "nu": 0.5,
+      "viscoelastic": {"law": "sls", "E_inf": 800, "tau": 0.2}}, "w": 1e-4})");
+  CHECK_THROWS_WITH(simulate_curve(sticky, o), Catch::Contains("adhesion") && Catch::Contains("relaxing medium is not modelled"));
+  o.control = RetractControl::cantilever;
+  o.cantilever_stiffness = 1.0;
+  CHECK_THROWS_WITH(simulate_curve(parse_scene("{" + kSphere + R"(, "medium": {"type": "half_space", "E": 2000,
+      "nu": 0.5}})"), o), Catch::Contains("cantilever-controlled retract is modelled with crack kinetics"));
+  o.control = RetractControl::fixed_grips;
+  o.speed = 0.0;
+  o.dwell = 1.0;
+  CHECK_THROWS_WITH(o.validate(), Catch::Contains("dwell = 1") && Catch::Contains("speed"));
+  o.dwell = 0.0;
+  o.speed = -1.0;
+  CHECK_THROWS_WITH(o.validate(), Catch::Contains("speed = -1"));
+  o.speed = 1e-6;
+  o.control = RetractControl::load;
+  CHECK_THROWS_WITH(o.validate(), Catch::Contains("grips or cantilever"));
+}
