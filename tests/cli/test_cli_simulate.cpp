@@ -82,7 +82,7 @@ TEST_CASE("simulate: bad input exits 2 with one line and writes nothing", "[cli]
   refused(unique("missing.json") + " --max-indentation 2e-6 --speed 1e-6", "missing.json");
 }
 
-TEST_CASE("summary --retract-speed: the rate-dependent pull-off and its sweep; refused without kinetics", "[cli][simulate]") {
+TEST_CASE("summary --retract-speed: the rate-dependent pull-off and its sweep, refused without kinetics", "[cli][simulate]") {
   const std::string scene = write_file("elastomer.json", kElastomer);
   const Run r = run("summary " + scene + " --retract-speed 1e-6");
   INFO(r.err);

@@ -134,7 +134,7 @@ TEST_CASE("instrument time: afmformats' creep-compliance file - a constant-force
   CHECK(d.t.back() == Approx(9.0 - 3.0 / 3000.0).epsilon(1e-12));
 }
 
-TEST_CASE("instrument time: a pause built here is a dwell with its own times; an Asylum dwell away stays retract",
+TEST_CASE("instrument time: a pause built here is a dwell with its own times, an Asylum dwell away stays retract",
           "[io][instrument]") {
   const test::TempDir dir;
   // extend 8 samples over 1 s, a pause of 4 over 2 s, a retract of 8 over 1 s.
