@@ -158,6 +158,9 @@ struct FitOptions {
 /// or whether that is unknown (the covariance could not be computed or was not asked for), and why.
 struct ParameterEstimate {
   FitParameter parameter = FitParameter::K;
+  /// A joint fit's per-curve parameter (delta0, P0): the curve's position in the input (0-based);
+  /// -1 for a parameter every curve shares, and in a fit of one curve.
+  int curve = -1;
   double value = 0.0;
   /// Standard error scaled by the residual variance (as lmfit / nanite do); NaN when not
   /// identifiable, at its bound, or not computed (`reason` says which).
@@ -215,6 +218,8 @@ struct FitSummary {
   std::vector<std::string> notices;
   /// The data used and the fitted model at the same samples (for plots and residuals).
   std::vector<double> delta, P, P_fit;
+  /// A fit in time: each sample's time [s] (aligned with delta, P); empty otherwise.
+  std::vector<double> t;
   /// Per sample (aligned with delta, P): excluded by the rule of FitOptions::exclusion_sigmas
   /// (the retract samples the model has let go of, up to the first back at the baseline: a
   /// necking tail, peeling, a viscoelastic tail after the observed pull-off).
@@ -274,6 +279,28 @@ struct FitSummary {
 /// samples. Then P0 starts at 0, and samples after the pull-off the model cannot describe are
 /// excluded by the rule of FitOptions::exclusion_sigmas (docs/fitting.md).
 FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& options);
+
+/// Several curves of one sample fitted together - a relaxing medium or crack kinetics measured at
+/// several speeds: every parameter but delta0 and P0 is shared, each curve keeps its own contact
+/// point and baseline where they are free.
+struct JointFitSummary {
+  /// The joint fit: its parameters are the shared ones (ParameterEstimate::curve = -1), then
+  /// delta0 and P0 of each curve in turn (curve = its position in the input), with one covariance
+  /// over them all; its samples are every curve's, one curve after another; its warnings name the
+  /// curve whose residuals are not noise.
+  FitSummary fit;
+  /// Curve k's samples in fit.delta, fit.P, ...: [curve_begin[k], curve_begin[k + 1]).
+  std::vector<std::size_t> curve_begin;
+  std::vector<std::string> sources;  ///< each curve's CurveData::source
+  /// Each curve fitted alone (the joint fit's start): what one speed says by itself.
+  std::vector<FitSummary> alone;
+};
+
+/// Fits `curves` (at least 2) jointly with the scene's law in time (the scene must relax or have
+/// crack kinetics: with an elastic scene each curve has its own answer - fit them one by one).
+/// Starts from each curve fitted alone; throws InputError naming the curve that cannot be fitted
+/// alone, and as fit() does otherwise.
+JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& scene, const FitOptions& options);
 
 }  // namespace layerjkr
 

@@ -53,9 +53,15 @@ enum class Solver { closed_form, ode };
 enum class Branch { approach, retract, all };
 
 /// A fitted quantity (fit.hpp): "K", "G", "w", "delta0", "P0", "E", "R", "sigma0" (the
-/// Dugdale stress of a Maugis-Dugdale fit). ("T", a Filonenko-Borodich tension, is read as G
-/// by from_string.)
-enum class FitParameter { K, G, w, delta0, P0, E, R, sigma0 };
+/// Dugdale stress of a Maugis-Dugdale fit), and in time "E_inf" and "tau" (a standard linear
+/// solid's relaxed modulus and time), "beta" (a power law's exponent), "v_star" and "n" (crack
+/// kinetics). from_string also reads "T" (a Filonenko-Borodich tension) as G, "w0" as w, "V" as
+/// v_star and "N" as n.
+enum class FitParameter { K, G, w, delta0, P0, E, R, sigma0, E_inf, tau, beta, v_star, n };
+/// How many FitParameter values there are.
+inline constexpr int kFitParameterCount = 13;
+/// The SI unit of a fitted quantity: "N/m^3", "N/m", "J/m^2", "m", "N", "Pa", "s", "m/s" or "" (beta, n).
+const char* unit_of(FitParameter p);
 
 /// Robust loss on force residuals (fit.hpp): "none", "huber", "cauchy".
 enum class LossType { none, huber, cauchy };
@@ -87,8 +93,9 @@ enum class ContactPointMethod { fit, threshold, rov, gof };
 /// How a fit evaluates its model (fit.hpp): "foundation" (closed forms in K, G or E),
 /// "hertz" (half-space with a paraboloid), "tabulated" (a spline of any other model),
 /// "dugdale" (a Dugdale law - Maugis-Dugdale, DMT with sigma0 - solved on the medium per
-/// parameter vector).
-enum class FitFamily { foundation, hertz, tabulated, dugdale };
+/// parameter vector), and in time "hereditary" (a relaxing medium: Lee-Radok and Ting over the
+/// measured indentation history) and "kinetic" (crack kinetics: the retract's ODE).
+enum class FitFamily { foundation, hertz, tabulated, dugdale, hereditary, kinetic };
 
 /// A segment of an instrument curve (instrument.hpp): "extend", "retract", "pause",
 /// "modulation" (JPK's oscillation segments).

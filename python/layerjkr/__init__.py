@@ -909,7 +909,8 @@ class FitResult:
         return {
             "converged": f["converged"], "termination": f["termination"], "iterations": f["iterations"],
             "model": f["model"], "family": f["family"], "branch": self._branch,
-            "parameters": {k: {"value": p.value, "stderr": _finite_or_none(p.standard_error), "initial": p.initial,
+            "parameters": {k: {"value": p.value, "unit": _core.unit_of(k), "stderr": _finite_or_none(p.standard_error),
+                               "initial": p.initial,
                                "at_bound": p.at_bound, "upper_bound": _finite_or_none(p.upper_bound),
                                "identifiable": p.identifiable, "reason": p.reason}
                            for k, p in self._params.items()},

@@ -287,6 +287,8 @@ PYBIND11_MODULE(_core, m) {
         return "layerjkr.Scene(model='" + std::string(to_string(s.model)) + "', profile='" + s.profile->describe() + "')";
       });
   m.def("parse_scene", &parse_scene, py::arg("json_text"), py::arg("source") = "scene");
+  m.def("unit_of", [](const std::string& name) { return std::string(unit_of(parse_enum<FitParameter>(name, "parameter"))); },
+        py::arg("name"), "The SI unit of a fitted parameter, as the reports write it.");
   m.def("with_table_profile", [](Scene s, std::vector<double> r, std::vector<double> z) {
         s.profile = make_table_profile(std::move(r), std::move(z));
         return s;

@@ -107,10 +107,63 @@ int fit_and_report(const Prepared& p, const std::string& data, const std::vector
 
 }  // namespace
 
-int run_fit(const FitArguments& args, const std::string& data, const std::string& report,
+namespace {
+
+// Curves of one sample at several speeds, fitted jointly: the joint summary on stdout, the report
+// with the joint fit, each curve fitted alone and the provenance of every input.
+int joint_fit_and_report(const Prepared& p, const std::vector<std::string>& data, std::vector<std::string> not_outputs,
+                         const std::string& report, const std::string& plot, const std::vector<std::string>& command_line,
+                         const nlohmann::ordered_json& extra = nlohmann::ordered_json::object()) {
+  check_not_input(report, "--out", not_outputs);
+  check_not_input(plot, "--plot", not_outputs);
+  std::optional<OutputFile> report_file, plot_file;
+  if (!report.empty()) report_file.emplace(report);
+  if (!plot.empty()) plot_file.emplace(plot);
+  if (report_file && plot_file && report_file->is_standard_output() && plot_file->is_standard_output())
+    throw InputError("--out " + report + " and --plot " + plot + " are both standard output; send one of them to a file");
+  std::vector<InputRecord> inputs;
+  std::vector<CurveData> curves;
+  for (const std::string& path : data) {
+    inputs.push_back(record_file(path));
+    curves.push_back(read_fit_data(path, p));
+  }
+  const JointFitSummary j = fit_joint(curves, p.scene, p.options);
+  if (plot_file) plot_joint(j, *plot_file);
+  if (report_file) {
+    nlohmann::ordered_json out;
+    out["joint"] = report_json(j.fit, p.options.branch);
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    for (std::size_t k = 0; k < j.sources.size(); ++k)
+      list.push_back({{"source", escape_bytes(j.sources[k])},
+                      {"first_sample", j.curve_begin[k]},
+                      {"samples", j.curve_begin[k + 1] - j.curve_begin[k]},
+                      {"alone", report_json(j.alone[k], p.options.branch)}});
+    out["curves"] = list;
+    out["provenance"] = provenance_record(p.scene, p.options, p.csv, inputs, command_line);
+    for (const auto& item : extra.items()) out["provenance"][item.key()] = item.value();
+    report_file->write(out.dump(2) + "\n");
+    report_file->commit();
+  }
+  const bool stdout_taken = (report_file && report_file->is_standard_output()) || (plot_file && plot_file->is_standard_output());
+  std::ostream& o = stdout_taken ? std::cerr : std::cout;
+  o << printable(j.fit.brief_report());
+  for (std::size_t k = 0; k < j.sources.size(); ++k) o << "  curve " << k + 1 << ": " << printable(j.sources[k]) << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int run_fit(const FitArguments& args, const std::vector<std::string>& data, bool joint, const std::string& report,
             const std::string& plot, const std::vector<std::string>& command_line) {
+  if (data.size() > 1 && !joint)
+    throw InputError("fit: " + std::to_string(data.size()) + " data files: give --joint to fit them together (one law "
+                     "in time across speeds), or fit-map to fit each alone");
+  if (joint && data.size() < 2) throw InputError("--joint fits at least 2 curves together; give more data files");
   const Prepared p = prepare(args);
-  return fit_and_report(p, data, {data, args.scene}, report, plot, command_line);
+  std::vector<std::string> not_outputs = data;
+  not_outputs.push_back(args.scene);
+  if (joint) return joint_fit_and_report(p, data, not_outputs, report, plot, command_line);
+  return fit_and_report(p, data[0], not_outputs, report, plot, command_line);
 }
 
 int run_fit_from_report(const std::string& from, const std::string& report, const std::string& plot,
@@ -129,12 +182,18 @@ int run_fit_from_report(const std::string& from, const std::string& report, cons
     std::cerr << "layerjkr: warning: " << from << " was written by layerjkr " << r.version << ", this is "
               << version() << ": the numbers may differ\n";
   if (!r.scene) throw InputError(from + ": cannot be rerun: its scene was " + r.scene_note);
-  if (r.inputs.size() != 1)
-    throw InputError(from + ": records " + std::to_string(r.inputs.size()) + " inputs; a fit report has one");
-  verify_input(r.inputs[0]);
+  if (r.inputs.empty()) throw InputError(from + ": records no input");
+  for (const InputRecord& in : r.inputs) verify_input(in);
   const Prepared p{*r.scene, r.options, r.csv.value_or(CsvOptions{})};
   nlohmann::ordered_json extra;
   extra["rerun_of"] = {{"report", record_file(from).path}, {"sha256", sha256_hex(text.data(), text.size())}};
+  if (j.contains("joint")) {  // a joint fit: every input again
+    std::vector<std::string> paths, not_outputs{from};
+    for (const InputRecord& in : r.inputs) paths.push_back(in.path), not_outputs.push_back(in.path);
+    return joint_fit_and_report(p, paths, not_outputs, report, plot, command_line, extra);
+  }
+  if (r.inputs.size() != 1)
+    throw InputError(from + ": records " + std::to_string(r.inputs.size()) + " inputs; a fit report has one");
   return fit_and_report(p, r.inputs[0].path, {r.inputs[0].path, from}, report, plot, command_line, extra);
 }
 

@@ -10,8 +10,10 @@
 namespace layerjkr::cli {
 
 /// `layerjkr fit DATA ...`: summary on stdout, optional JSON report (with its provenance: the
-/// version, scene, options, the input's SHA-256 and `command_line`) and plot.
-int run_fit(const FitArguments& args, const std::string& data, const std::string& report,
+/// version, scene, options, the input's SHA-256 and `command_line`) and plot. With `joint`, two or
+/// more DATA are fitted together (fit_joint): the report holds "joint" (the joint fit), "curves"
+/// (each curve's place in the joint samples and its fit alone) and the provenance of every input.
+int run_fit(const FitArguments& args, const std::vector<std::string>& data, bool joint, const std::string& report,
             const std::string& plot, const std::vector<std::string>& command_line);
 
 /// `layerjkr fit --from-report R.json [--out ...] [--plot ...]`: the fit R.json records, rerun

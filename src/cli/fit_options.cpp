@@ -25,7 +25,7 @@ std::vector<FitParameter> parse_free(const std::string& list) {
   std::string item;
   while (std::getline(in, item, ',')) {
     const std::optional<FitParameter> p = from_string<FitParameter>(item);
-    if (!p) throw InputError("--free: '" + item + "' is not a fit parameter (known: K, G or T, w, delta0, P0, E, R, sigma0)");
+    if (!p) throw InputError("--free: '" + item + "' is not a fit parameter (known: " + known_names<FitParameter>() + "; T reads as G, w0 as w, V as v_star, N as n)");
     if (!seen.insert(*p).second) throw InputError("--free: '" + item + "' is listed twice");
     out.push_back(*p);
   }
@@ -129,7 +129,8 @@ Prepared prepare(const FitArguments& a) {
 
 void add_fit_options(CLI::App& c, FitArguments& a) {
   c.add_option("--scene", a.scene, "Scene JSON: indenter, medium, model; starting values")->required();
-  c.add_option("--free", a.free, "Parameters to fit, comma-separated: K,G (or T),w,delta0,P0,E,R,sigma0")->required();
+  c.add_option("--free", a.free, "Parameters to fit, comma-separated: K,G (or T),w,delta0,P0,E,R,sigma0, and in time "
+                                 "E_inf,tau (a standard linear solid), beta (a power law), v_star,n (crack kinetics)")->required();
   c.add_option("--loss", a.loss, "Robust loss: none | huber:SCALE | cauchy:SCALE (SCALE in N)");
   c.add_option("--branch", a.branch, "approach | retract | all (default approach)");
   c.add_option("--units", a.units, "Units of the CSV: LENGTH,FORCE, e.g. nm,nN (default m,N)");

@@ -158,15 +158,21 @@ static int run_main(int argc, char** argv) {
   retract.stiffness_opt->needs(retract.speed_opt);
 
   layerjkr::cli::FitArguments fit_args;
-  std::string data_path, report_path, plot_path;
+  std::vector<std::string> data_paths;
+  bool joint = false;
+  std::string report_path, plot_path;
   std::vector<std::string> map_inputs;
   layerjkr::cli::MapOutputs map;
   map.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   CLI::App* fit = app.add_subcommand(
       "fit", "Fit a measured curve (CSV or instrument file) with a scene's model: estimates, errors, identifiability");
-  fit->add_option("data", data_path, "Curve CSV (delta,P[,a][,weight][,segment] | tip_position,force | z,deflection | "
-                                     "an export; columns, units and signs: docs/fitting.md) or an instrument file (JPK, Igor, Bruker NanoScope)")
+  fit->add_option("data", data_paths, "Curve CSV (delta,P[,a][,weight][,segment][,t] | tip_position,force | z,deflection | "
+                                      "an export; columns, units and signs: docs/fitting.md) or an instrument file (JPK, Igor, "
+                                      "Bruker NanoScope); several with --joint")
       ->required();
+  fit->add_flag("--joint", joint,
+                "Fit several curves of one sample together (a relaxing medium or crack kinetics at several speeds): "
+                "every parameter shared but each curve's delta0 and P0");
   layerjkr::cli::add_fit_options(*fit, fit_args);
   fit->add_option("--out", report_path, "Write the JSON report here (with its provenance: version, scene, options, "
                                         "the input's SHA-256, the command line); - for standard output (the summary "
@@ -277,7 +283,7 @@ static int run_main(int argc, char** argv) {
     const std::vector<std::string> command_line(argv, argv + argc);
     if (*fit && !from_report.empty())
       return layerjkr::cli::run_fit_from_report(from_report, report_path, plot_path, command_line);
-    if (*fit) return layerjkr::cli::run_fit(fit_args, data_path, report_path, plot_path, command_line);
+    if (*fit) return layerjkr::cli::run_fit(fit_args, data_paths, joint, report_path, plot_path, command_line);
     if (*fit_map && !map_from_report.empty())
       return layerjkr::cli::run_fit_map_from_report(map_from_report, map, command_line);
     if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, map_curves, map, command_line);

@@ -49,12 +49,13 @@ double largest_magnitude(const std::vector<double>& v) {
 // whether gnuplot succeeds or not.
 void plot_fit(const FitSummary& s, OutputFile& png) {
   const double d0 = s.model_delta0();
+  const bool in_time = !s.t.empty();
   std::vector<double> indentation(s.delta.size()), residual(s.delta.size());
   for (std::size_t i = 0; i < s.delta.size(); ++i) {
-    indentation[i] = s.delta[i] - d0;
+    indentation[i] = in_time ? s.t[i] : s.delta[i] - d0;
     residual[i] = s.P[i] - s.P_fit[i];
   }
-  const auto x = si_scale(largest_magnitude(indentation), "m");
+  const auto x = in_time ? std::pair<double, std::string>{1.0, "s"} : si_scale(largest_magnitude(indentation), "m");
   const auto y = si_scale(std::max(largest_magnitude(s.P), largest_magnitude(s.P_fit)), "N");
   const auto r = si_scale(largest_magnitude(residual), "N");
   ScratchFile data("plot-data");
@@ -77,14 +78,35 @@ void plot_fit(const FitSummary& s, OutputFile& png) {
     << "set grid\n"
     << "set ylabel 'force [" << y.second << "]'\nset key top left\n"
     << "plot " << dat << " using 1:($5 == 0 ? $2 : 1/0) with points pt 7 ps 0.4 lc rgb '#3b6ea8' title 'data', "
-    << "'' using 1:($5 == 1 ? $2 : 1/0) with points pt 7 ps 0.4 lc rgb '#e67e22' title 'excluded (not JKR)', "
+    << "'' using 1:($5 == 1 ? $2 : 1/0) with points pt 7 ps 0.4 lc rgb '#e67e22' title '"
+    << (in_time ? "not fitted (history only, or excluded)" : "excluded (not JKR)") << "', "
     << "'' using 1:3 with lines lw 2 lc rgb '#c0392b' title 'fit'\n"
-    << "set xlabel 'indentation delta - delta0 [" << x.second << "]'\nset ylabel 'residual [" << r.second
+    << "set xlabel '" << (in_time ? "time" : "indentation delta - delta0") << " [" << x.second
+    << "]'\nset ylabel 'residual [" << r.second
     << "]'\nunset key\n"
     << "plot " << dat << " using 1:4 with points pt 7 ps 0.3 lc rgb '#3b6ea8', 0 lc rgb '#c0392b'\n"
     << "unset multiplot\n";
   run_gnuplot(g.str(), png.temporary(), "--plot");
   png.commit();
+}
+
+void plot_joint(const JointFitSummary& j, OutputFile& png) {
+  // The curves in turn on one time axis: each shifted to start a tenth of the longest after the
+  // one before ends.
+  FitSummary s = j.fit;
+  double longest = 0.0;
+  for (std::size_t k = 0; k + 1 < j.curve_begin.size(); ++k)
+    if (j.curve_begin[k + 1] > j.curve_begin[k])
+      longest = std::max(longest, s.t[j.curve_begin[k + 1] - 1] - s.t[j.curve_begin[k]]);
+  double offset = 0.0;
+  for (std::size_t k = 0; k + 1 < j.curve_begin.size(); ++k) {
+    if (j.curve_begin[k + 1] == j.curve_begin[k]) continue;
+    const double start = s.t[j.curve_begin[k]], end = s.t[j.curve_begin[k + 1] - 1];
+    for (std::size_t i = j.curve_begin[k]; i < j.curve_begin[k + 1]; ++i) s.t[i] = s.t[i] - start + offset;
+    offset += end - start + 0.1 * longest;
+  }
+  s.model += ", " + std::to_string(j.sources.size()) + " curves in turn";
+  plot_fit(s, png);
 }
 
 std::vector<std::string> map_plot_names(const std::vector<FitParameter>& free) {
@@ -133,12 +155,9 @@ void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitP
   std::vector<Field> fields;
   for (FitParameter q : free) {
     const std::string n = to_string(q);
-    const std::string label = q == FitParameter::delta0 ? "contact point delta0 [m]"
-                              : q == FitParameter::E    ? "E [Pa]"
-                              : q == FitParameter::K    ? "K [N/m^3]"
-                              : q == FitParameter::w    ? "w [J/m^2]"
-                              : q == FitParameter::P0   ? "baseline P0 [N]"
-                                                        : n;
+    const std::string unit = unit_of(q);
+    const std::string label = (q == FitParameter::delta0 ? "contact point delta0" : q == FitParameter::P0 ? "baseline P0" : n) +
+                              (unit.empty() ? std::string() : " [" + unit + "]");
     fields.push_back({n, label, [q](const BatchItem& it) {
                         for (const auto& e : it.summary.parameters)
                           if (e.parameter == q) return e.value;

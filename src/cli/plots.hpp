@@ -9,8 +9,12 @@
 
 namespace layerjkr::cli {
 
-/// Data, fitted curve and residuals of one fit as a PNG, committed to `png`'s target.
+/// Data, fitted curve and residuals of one fit as a PNG, committed to `png`'s target: against the
+/// indentation, or against time for a fit in time (FitSummary::t).
 void plot_fit(const FitSummary& s, OutputFile& png);
+
+/// A joint fit's curves one after another in time, each with the joint model.
+void plot_joint(const JointFitSummary& j, OutputFile& png);
 
 /// One PNG per free parameter, the measured pull-off, the rms residual and the status over
 /// the map grid, in directory `dir` (prepare_plot_dir made it), named map_plot_names(free). A

@@ -28,9 +28,14 @@ json report_json(const FitSummary& s, Branch branch) {
   j["model"] = s.model;
   j["family"] = to_string(s.family);
   j["branch"] = to_string(branch);
+  // A joint fit's per-curve parameters are keyed "delta0[2]" (curve 2, counting from 1).
+  const auto key = [](const ParameterEstimate& e) {
+    return std::string(to_string(e.parameter)) + (e.curve >= 0 ? "[" + std::to_string(e.curve + 1) + "]" : "");
+  };
   json params = json::object();
   for (const auto& e : s.parameters)
-    params[to_string(e.parameter)] = {{"value", e.value},
+    params[key(e)] = {{"value", e.value},
+                                      {"unit", unit_of(e.parameter)},
                                       {"stderr", finite_or_null(e.standard_error)},
                                       {"initial", e.initial},
                                       {"at_bound", e.at_bound},
@@ -42,8 +47,8 @@ json report_json(const FitSummary& s, Branch branch) {
   for (std::size_t i = 0; i < s.parameters.size(); ++i) {
     json row = json::object();
     for (std::size_t k = 0; k < s.parameters.size(); ++k)
-      row[to_string(s.parameters[k].parameter)] = finite_or_null(s.correlation[i][k]);
-    corr[to_string(s.parameters[i].parameter)] = row;
+      row[key(s.parameters[k])] = finite_or_null(s.correlation[i][k]);
+    corr[key(s.parameters[i])] = row;
   }
   j["correlation"] = corr;
   j["rms_residual"] = s.rms_residual;

@@ -38,7 +38,9 @@ LAYERJKR_NAMES(Solver, {Solver::closed_form, "closed_form"}, {Solver::ode, "ode"
 LAYERJKR_NAMES(Branch, {Branch::approach, "approach"}, {Branch::retract, "retract"}, {Branch::all, "all"})
 LAYERJKR_NAMES(FitParameter, {FitParameter::K, "K"}, {FitParameter::G, "G"}, {FitParameter::w, "w"},
                {FitParameter::delta0, "delta0"}, {FitParameter::P0, "P0"}, {FitParameter::E, "E"},
-               {FitParameter::R, "R"}, {FitParameter::sigma0, "sigma0"})
+               {FitParameter::R, "R"}, {FitParameter::sigma0, "sigma0"}, {FitParameter::E_inf, "E_inf"},
+               {FitParameter::tau, "tau"}, {FitParameter::beta, "beta"}, {FitParameter::v_star, "v_star"},
+               {FitParameter::n, "n"})
 LAYERJKR_NAMES(LossType, {LossType::none, "none"}, {LossType::huber, "huber"}, {LossType::cauchy, "cauchy"})
 LAYERJKR_NAMES(RetractWindow, {RetractWindow::all, "all"}, {RetractWindow::to_pull_off, "pull_off"},
                {RetractWindow::force_fraction, "fraction"})
@@ -50,7 +52,8 @@ LAYERJKR_NAMES(ContactPointMethod, {ContactPointMethod::fit, "fit"}, {ContactPoi
 LAYERJKR_NAMES(AdhesionModel, {AdhesionModel::jkr, "jkr"}, {AdhesionModel::dmt, "dmt"},
                {AdhesionModel::maugis_dugdale, "maugis_dugdale"})
 LAYERJKR_NAMES(FitFamily, {FitFamily::foundation, "foundation"}, {FitFamily::hertz, "hertz"},
-               {FitFamily::tabulated, "tabulated"}, {FitFamily::dugdale, "dugdale"})
+               {FitFamily::tabulated, "tabulated"}, {FitFamily::dugdale, "dugdale"},
+               {FitFamily::hereditary, "hereditary"}, {FitFamily::kinetic, "kinetic"})
 LAYERJKR_NAMES(SegmentStyle, {SegmentStyle::extend, "extend"}, {SegmentStyle::retract, "retract"},
                {SegmentStyle::pause, "pause"}, {SegmentStyle::modulation, "modulation"})
 LAYERJKR_NAMES(InstrumentFormat, {InstrumentFormat::jpk_force, "jpk-force"},
@@ -64,6 +67,25 @@ LAYERJKR_NAMES(DiscreteApproach, {DiscreteApproach::two_models, "two_models"},
 
 }  // namespace
 
+const char* unit_of(FitParameter p) {
+  switch (p) {
+    case FitParameter::K: return "N/m^3";
+    case FitParameter::G: return "N/m";
+    case FitParameter::w: return "J/m^2";
+    case FitParameter::delta0:
+    case FitParameter::R: return "m";
+    case FitParameter::P0: return "N";
+    case FitParameter::E:
+    case FitParameter::sigma0:
+    case FitParameter::E_inf: return "Pa";
+    case FitParameter::tau: return "s";
+    case FitParameter::v_star: return "m/s";
+    case FitParameter::beta:
+    case FitParameter::n: return "";
+  }
+  return "";
+}
+
 template <class E, class>
 const char* to_string(E value) {
   for (const auto& [e, name] : Names<E>::table)
@@ -75,8 +97,12 @@ template <class E, class>
 std::optional<E> from_string(std::string_view name) {
   for (const auto& [e, spelling] : Names<E>::table)
     if (name == spelling) return e;
-  if constexpr (std::is_same_v<E, FitParameter>)
+  if constexpr (std::is_same_v<E, FitParameter>) {
     if (name == "T") return FitParameter::G;  // a Filonenko-Borodich tension plays G's role
+    if (name == "w0") return FitParameter::w;  // crack kinetics' name for the work of adhesion
+    if (name == "V") return FitParameter::v_star;
+    if (name == "N") return FitParameter::n;
+  }
   return std::nullopt;
 }
 

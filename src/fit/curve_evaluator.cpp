@@ -48,6 +48,14 @@ void ParameterMap::physical(const T* x, CurveParameters<T>* p, T* delta0, T* P0)
     else
       p->G = G_scale * *get(FitParameter::G);
   }
+  const auto logarithmic = [&](FitParameter q, double fixed_value) {
+    return get(q) ? ref[idx(q)] * exp(*get(q)) : T(fixed_value);
+  };
+  p->E_inf = logarithmic(FitParameter::E_inf, f.E_inf);
+  p->tau = logarithmic(FitParameter::tau, f.tau);
+  p->v_star = logarithmic(FitParameter::v_star, f.v_star);
+  p->n = logarithmic(FitParameter::n, f.n);
+  p->beta = get(FitParameter::beta) ? ref[idx(FitParameter::beta)] + beta_scale * *get(FitParameter::beta) : T(f.beta);
   *delta0 = get(FitParameter::delta0) ? ref[idx(FitParameter::delta0)] + L * *get(FitParameter::delta0)
                                       : T(0.0);
   *P0 = get(FitParameter::P0) ? ref[idx(FitParameter::P0)] + F * *get(FitParameter::P0) : T(0.0);
@@ -55,6 +63,10 @@ void ParameterMap::physical(const T* x, CurveParameters<T>* p, T* delta0, T* P0)
 
 template void ParameterMap::physical<double>(const double*, CurveParameters<double>*, double*,
                                              double*) const;
+template void ParameterMap::physical<Jet1>(const Jet1*, CurveParameters<Jet1>*, Jet1*, Jet1*) const;
+template void ParameterMap::physical<Jet2>(const Jet2*, CurveParameters<Jet2>*, Jet2*, Jet2*) const;
+template void ParameterMap::physical<Jet4>(const Jet4*, CurveParameters<Jet4>*, Jet4*, Jet4*) const;
+template void ParameterMap::physical<Jet8>(const Jet8*, CurveParameters<Jet8>*, Jet8*, Jet8*) const;
 
 double ParameterMap::value(FitParameter q, const double* x) const {
   CurveParameters<double> p;
@@ -69,6 +81,11 @@ double ParameterMap::value(FitParameter q, const double* x) const {
     case FitParameter::E: return p.E;
     case FitParameter::R: return p.R;
     case FitParameter::sigma0: return p.sigma0;
+    case FitParameter::E_inf: return p.E_inf;
+    case FitParameter::tau: return p.tau;
+    case FitParameter::beta: return p.beta;
+    case FitParameter::v_star: return p.v_star;
+    case FitParameter::n: return p.n;
   }
   return kNaN;
 }
@@ -79,7 +96,12 @@ double ParameterMap::derivative(FitParameter q, const double* x) const {
     case FitParameter::K:
     case FitParameter::E:
     case FitParameter::R:
-    case FitParameter::sigma0: return value(q, x);
+    case FitParameter::sigma0:
+    case FitParameter::E_inf:
+    case FitParameter::tau:
+    case FitParameter::v_star:
+    case FitParameter::n: return value(q, x);
+    case FitParameter::beta: return beta_scale;
     case FitParameter::G: return G_log ? value(q, x) : G_scale;
     case FitParameter::w: return 2.0 * s_scale * s_scale * xv;
     case FitParameter::delta0: return L;
@@ -88,10 +110,51 @@ double ParameterMap::derivative(FitParameter q, const double* x) const {
   return kNaN;
 }
 
+double ParameterMap::fixed_value(FitParameter q) const {
+  const CurveParameters<double>& f = fixed.values;
+  switch (q) {
+    case FitParameter::K: return f.K;
+    case FitParameter::G: return f.G;
+    case FitParameter::w: return f.s * f.s;
+    case FitParameter::delta0:
+    case FitParameter::P0: return 0.0;
+    case FitParameter::E: return f.E;
+    case FitParameter::R: return f.R;
+    case FitParameter::sigma0: return f.sigma0;
+    case FitParameter::E_inf: return f.E_inf;
+    case FitParameter::tau: return f.tau;
+    case FitParameter::beta: return f.beta;
+    case FitParameter::v_star: return f.v_star;
+    case FitParameter::n: return f.n;
+  }
+  return kNaN;
+}
+
+std::string ParameterMap::name_at(std::size_t j) const {
+  const std::string name = to_string(free[j]);
+  if (j < slot_curve.size() && slot_curve[j] >= 0) return name + " of curve " + std::to_string(slot_curve[j] + 1);
+  return name;
+}
+
+double ParameterMap::value_at(std::size_t j, const double* x) const {
+  if (j < slot_curve.size() && slot_curve[j] >= 0)
+    return slot_ref[j] + (free[j] == FitParameter::delta0 ? L : F) * x[j];
+  return value(free[j], x);
+}
+
+double ParameterMap::derivative_at(std::size_t j, const double* x) const {
+  if (j < slot_curve.size() && slot_curve[j] >= 0) return free[j] == FitParameter::delta0 ? L : F;
+  return derivative(free[j], x);
+}
+
 std::size_t FitData::residuals() const {
-  std::size_t m = delta.size();
+  // Samples of weight 0 (excluded, or history only in a fit in time) are not residuals: they
+  // would inflate the degrees of freedom and shrink every error bar.
+  const auto counts = [&](std::size_t i) { return sqrt_weight.empty() || sqrt_weight[i] > 0.0; };
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < delta.size(); ++i) m += counts(i) ? 1 : 0;
   if (radius_driven) return m;  // the radius is the given, not a residual
-  for (double v : a) m += std::isnan(v) ? 0 : 1;
+  for (std::size_t i = 0; i < a.size(); ++i) m += !std::isnan(a[i]) && counts(i) ? 1 : 0;
   return m;
 }
 

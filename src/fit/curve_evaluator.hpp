@@ -2,26 +2,41 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <memory>
 #include <vector>
 
 #include "fit_model.hpp"
+#include "residual_model.hpp"
 
 namespace layerjkr::detail {
 
 /// Maps the internal dimensionless vector x to physical parameters (see fit.hpp).
 struct ParameterMap {
   std::vector<FitParameter> free;
-  std::array<int, 8> slot{};        ///< index into x per FitParameter, -1 if fixed
-  std::array<double, 8> ref{};      ///< reference value per FitParameter
+  std::array<int, kFitParameterCount> slot{};    ///< index into x per FitParameter, -1 if fixed
+  std::array<double, kFitParameterCount> ref{};  ///< reference value per FitParameter
   SceneParameters fixed;
   double L = 1.0, F = 1.0;          ///< length and force scales [m], [N]
   double G_scale = 1.0;             ///< linear G: G = G_scale * x
   bool G_log = false;               ///< full foundation: G = ref * exp(x)
   double s_scale = 1.0;             ///< s = sqrt(w) = s_scale * x
+  double beta_scale = 0.1;          ///< beta = ref + beta_scale * x (E_inf, tau, v_star, n: ref * exp(x))
+
+  /// A joint fit's global map (joint_fit.cpp): per slot, the curve a delta0 or P0 belongs to (-1
+  /// shared) and its reference; empty for one curve, whose slot[] says everything.
+  std::vector<int> slot_curve;
+  std::vector<double> slot_ref;
 
   int index(FitParameter p) const { return slot[static_cast<int>(p)]; }
   bool is_free(FitParameter p) const { return index(p) >= 0; }
+  /// The scene's value of q (fixed.values; w for w), where q is not free.
+  double fixed_value(FitParameter q) const;
+  /// The name of slot j in messages: "E", or in a joint fit "delta0 of curve 2".
+  std::string name_at(std::size_t j) const;
+  /// The reported value of slot j at x, and its derivative with respect to x[j].
+  double value_at(std::size_t j, const double* x) const;
+  double derivative_at(std::size_t j, const double* x) const;
 
   /// Physical parameters and offsets from x (T = double or a Jet seeded in slots 0..n-1).
   template <class T>
@@ -66,6 +81,10 @@ struct FitData {
   /// bend); NaN without k or with fewer than 5 samples clearly in contact.
   double contact_slope = std::numeric_limits<double>::quiet_NaN();
   double spring_constant = 0.0;  ///< [N/m] the curve's or the options', 0 if unknown
+  /// A fit in time (time_fit.cpp): every sample's time [s] and segment (2: dwell); empty otherwise.
+  std::vector<double> t;
+  std::vector<int> segment;
+  /// The residuals the cost counts: every sample of weight > 0, with its measured radius.
   std::size_t residuals() const;
 };
 
@@ -78,7 +97,7 @@ struct BranchStart {
   double a = 0.0, delta = 0.0;
 };
 
-class CurveEvaluator {
+class CurveEvaluator final : public ResidualModel {
  public:
   /// cantilever_k [N/m]: 0 for a load-controlled retract, > 0 for one a cantilever of that
   /// stiffness controls (infinity: fixed grips).
@@ -86,21 +105,21 @@ class CurveEvaluator {
 
   /// Residuals (and the row-major Jacobian, residuals x free) at x. False if the
   /// model cannot be evaluated there (a radius outside the model's domain).
-  bool evaluate(const double* x, bool jacobian);
-  const std::vector<double>& residuals() const { return r_; }
-  const std::vector<double>& jacobian() const { return J_; }
+  bool evaluate(const double* x, bool jacobian) override;
+  const std::vector<double>& residuals() const override { return r_; }
+  const std::vector<double>& jacobian() const override { return J_; }
   /// Model force at each sample (P0 included) and contact flags of the last evaluation.
-  const std::vector<double>& predicted() const { return P_fit_; }
-  std::size_t in_contact() const { return contact_count_; }
+  const std::vector<double>& predicted() const override { return P_fit_; }
+  std::size_t in_contact() const override { return contact_count_; }
   /// Per sample of the last evaluation: a retract sample the model has already let go of.
-  const std::vector<char>& detached() const { return detached_; }
+  const std::vector<char>& detached() const override { return detached_; }
   /// Forget cached residuals (after the data's weights changed).
-  void invalidate() { have_cache_ = false; }
+  void invalidate() override { have_cache_ = false; }
   /// Number of samples (residual groups).
-  std::size_t points() const { return row_.size() - 1; }
+  std::size_t points() const override { return row_.size() - 1; }
   /// Row where sample i's residuals start, and how many rows it has.
-  std::size_t row(std::size_t i) const { return row_[i]; }
-  std::size_t rows(std::size_t i) const { return row_[i + 1] - row_[i]; }
+  std::size_t row(std::size_t i) const override { return row_[i]; }
+  std::size_t rows(std::size_t i) const override { return row_[i + 1] - row_[i]; }
 
   /// Stable-branch start for given physical parameters (double).
   bool branch_start(const CurveParameters<double>& p, StartKind kind, BranchStart* out) const;

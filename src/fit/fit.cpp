@@ -13,6 +13,7 @@
 #include "fit_run.hpp"
 #include "fit_steps.hpp"
 #include "layerjkr/error.hpp"
+#include "time_fit.hpp"
 
 namespace layerjkr {
 namespace {
@@ -33,6 +34,13 @@ void require_supported(const CurveModel& model, const FitOptions& options, const
                                    "the scene's adhesion is '") +
                        to_string(scene.adhesion.model) + "' on model '" + model.model_name() + "'");
   for (FitParameter q : options.free)
+    if (q == FitParameter::E_inf || q == FitParameter::tau || q == FitParameter::beta || q == FitParameter::v_star ||
+        q == FitParameter::n)
+      throw InputError(std::string("fit: free parameter ") + to_string(q) + " belongs to a law in time: " +
+                       (q == FitParameter::v_star || q == FitParameter::n ? "crack kinetics (adhesion.kinetics)"
+                                                                          : "a relaxing medium (medium.viscoelastic)") +
+                       ", which this scene has not");
+  for (FitParameter q : options.free)
     if (!model.supports(q)) {
       std::string why = q == FitParameter::R ? "R can vary only for a paraboloid indenter with a closed-form model"
                         : q == FitParameter::E ? "E can vary only for a layer or half-space medium"
@@ -42,31 +50,6 @@ void require_supported(const CurveModel& model, const FitOptions& options, const
     }
   if (has(options, FitParameter::E) && (has(options, FitParameter::K) || has(options, FitParameter::G)))
     throw InputError("fit: E and K/G cannot both be free (K and G follow from E, nu and h)");
-}
-
-// Where each free parameter sits in x, and the scales that make x dimensionless.
-ParameterMap make_parameter_map(const FitOptions& options, const ResolvedModel& resolved,
-                                detail::SceneParameters fixed, double span, double force_span) {
-  if (has(options, FitParameter::K) || has(options, FitParameter::G))
-    fixed.layer_foundation = false;  // K, G vary independently of E
-  ParameterMap map;
-  map.free = options.free;
-  map.fixed = fixed;
-  map.slot.fill(-1);
-  for (std::size_t j = 0; j < options.free.size(); ++j)
-    map.slot[static_cast<int>(options.free[j])] = static_cast<int>(j);
-  map.L = span;
-  map.F = force_span;
-  const CurveParameters<double>& f = fixed.values;
-  map.ref[static_cast<int>(FitParameter::K)] = f.K;
-  map.ref[static_cast<int>(FitParameter::E)] = f.E;
-  map.ref[static_cast<int>(FitParameter::R)] = f.R;
-  map.ref[static_cast<int>(FitParameter::G)] = f.G;
-  map.ref[static_cast<int>(FitParameter::sigma0)] = f.sigma0;
-  map.G_log = resolved.spec.kind == ModelKind::full_foundation && !resolved.automatic;
-  map.G_scale = f.G != 0.0 ? std::abs(f.G) : f.K * span * span;
-  map.s_scale = std::sqrt(force_span / span) * 0.1;
-  return map;
 }
 
 // The stiffness that lets the retract go, as the evaluator takes it: 0 for load control,
@@ -86,6 +69,28 @@ double control_stiffness(const FitOptions& options, const CurveData& curve) {
 }
 
 }  // namespace
+
+ParameterMap detail::make_parameter_map(const FitOptions& options, const ResolvedModel& resolved,
+                                        detail::SceneParameters fixed, double span, double force_span) {
+  if (has(options, FitParameter::K) || has(options, FitParameter::G))
+    fixed.layer_foundation = false;  // K, G vary independently of E
+  ParameterMap map;
+  map.free = options.free;
+  map.fixed = fixed;
+  map.slot.fill(-1);
+  for (std::size_t j = 0; j < options.free.size(); ++j)
+    map.slot[static_cast<int>(options.free[j])] = static_cast<int>(j);
+  map.L = span;
+  map.F = force_span;
+  for (FitParameter q : {FitParameter::K, FitParameter::E, FitParameter::R, FitParameter::G, FitParameter::sigma0,
+                         FitParameter::E_inf, FitParameter::tau, FitParameter::beta, FitParameter::v_star, FitParameter::n})
+    map.ref[static_cast<int>(q)] = map.fixed_value(q);
+  const CurveParameters<double>& f = fixed.values;
+  map.G_log = resolved.spec.kind == ModelKind::full_foundation && !resolved.automatic;
+  map.G_scale = f.G != 0.0 ? std::abs(f.G) : f.K * span * span;
+  map.s_scale = std::sqrt(force_span / span) * 0.1;
+  return map;
+}
 
 const ParameterEstimate& FitSummary::operator[](FitParameter p) const {
   for (const auto& e : parameters)
@@ -150,6 +155,12 @@ FitSummary fit(const CurveData& given, const Scene& scene, const FitOptions& opt
   const auto t_begin = std::chrono::steady_clock::now();
   options.validate();
   given.validate();
+  if (!scene.profile) throw InputError("fit: the scene has no indenter profile");
+  if (scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic || scene.adhesion.kinetics) {
+    FitSummary out = detail::fit_in_time(given, scene, options);
+    out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+    return out;
+  }
   // An elastic model holds the force while the indenter rests: dwell samples are not its to fit.
   const CurveData curve = given.without_dwell();
   if (!scene.profile) throw InputError("fit: the scene has no indenter profile");

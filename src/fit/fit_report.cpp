@@ -64,7 +64,9 @@ std::string FitSummary::brief_report() const {
   if (!no_move_reason.empty()) o << "  did not move from the start: " << no_move_reason << "\n";
   for (std::size_t j = 0; j < parameters.size(); ++j) {
     const ParameterEstimate& e = parameters[j];
-    o << "  " << to_string(e.parameter) << " = " << e.value;
+    o << "  " << to_string(e.parameter);
+    if (e.curve >= 0) o << " (curve " << e.curve + 1 << ")";
+    o << " = " << e.value;
     if (std::isfinite(e.standard_error))
       o << " +- " << e.standard_error;
     else if (e.at_bound && std::isfinite(e.upper_bound))

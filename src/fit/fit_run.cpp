@@ -26,7 +26,7 @@ constexpr double kExtraStartStiffnessFactor = 3.0;
 // Residual rows [row0, row1) of the shared evaluation, as one Ceres residual block.
 class BlockCost final : public ceres::CostFunction {
  public:
-  BlockCost(CurveEvaluator* eval, std::size_t row0, std::size_t row1, int n_free)
+  BlockCost(ResidualModel* eval, std::size_t row0, std::size_t row1, int n_free)
       : eval_(eval), row0_(row0), row1_(row1) {
     set_num_residuals(static_cast<int>(row1 - row0));
     mutable_parameter_block_sizes()->push_back(n_free);
@@ -43,7 +43,7 @@ class BlockCost final : public ceres::CostFunction {
   }
 
  private:
-  CurveEvaluator* eval_;
+  ResidualModel* eval_;
   std::size_t row0_, row1_;
 };
 
@@ -75,7 +75,7 @@ double constant_force_cost(const FitData& data, double F) {
 
 }  // namespace
 
-FitRun::FitRun(CurveEvaluator& ev, const ParameterMap& map, const FitOptions& options, FitData& data,
+FitRun::FitRun(ResidualModel& ev, const ParameterMap& map, const FitOptions& options, FitData& data,
                std::vector<double>& x)
     : ev_(ev), cost_scale_(constant_force_cost(data, map.F)), map_(map), options_(options), data_(data), x_(x) {}
 
@@ -323,7 +323,7 @@ void FitRun::record(FitSummary* out) {
     }
   out->rms_residual = std::sqrt(ss / static_cast<double>(std::max<std::size_t>(kept, 1)));
   for (std::size_t j = 0; j < x_.size(); ++j) {
-    out->parameters[j].value = map_.value(map_.free[j], x_.data());
+    out->parameters[j].value = map_.value_at(j, x_.data());
     out->parameters[j].standard_error = kNaN;
   }
   out->correlation.assign(x_.size(), std::vector<double>(x_.size(), kNaN));

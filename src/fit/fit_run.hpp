@@ -23,7 +23,7 @@ class FitRun {
  public:
   /// Borrows everything (ownership stays with the caller, which outlives the run); `x` is
   /// the start on entry and the solution after each step.
-  FitRun(CurveEvaluator& ev, const ParameterMap& map, const FitOptions& options, FitData& data,
+  FitRun(ResidualModel& ev, const ParameterMap& map, const FitOptions& options, FitData& data,
          std::vector<double>& x);
 
   /// The first trust-region solve from x. Throws NumericalError, saying where, if the cost or
@@ -72,7 +72,7 @@ class FitRun {
                                              int held) const;
   bool resolve_in_place();
 
-  CurveEvaluator& ev_;
+  ResidualModel& ev_;
   /// The problem's own scale: the cost of the best constant force (the weighted mean), from
   /// the data; Ceres' gradient tolerance is relative to it.
   double cost_scale_ = 0.0;

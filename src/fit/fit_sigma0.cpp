@@ -46,7 +46,7 @@ double maugis_lambda_at(const ParameterMap& map, const std::vector<double>& x) {
 // between: holding it where the contact is JKR (or DMT), with the other parameters refitted, must
 // raise the deviance beyond the one-sided 95 % point (as w's upper bound). Otherwise the error bar
 // is a local curvature of a cost that stays flat out to the limit, and sigma0 has only a bound.
-void check_sigma0_limits(FitRun& run, CurveEvaluator& ev, const ParameterMap& map, const std::vector<double>& x,
+void check_sigma0_limits(FitRun& run, ResidualModel& ev, const ParameterMap& map, const std::vector<double>& x,
                          std::size_t residuals, FitSummary* out) {
   if (!map.is_free(FitParameter::sigma0)) return;
   ParameterEstimate* e = estimate_of(out, FitParameter::sigma0);

@@ -15,6 +15,11 @@ namespace layerjkr::detail {
 
 double median(std::vector<double> v);
 
+/// Where each free parameter sits in x, and the scales that make x dimensionless (fit.cpp): the
+/// references are the scene's values (`fixed`), which the start then refines.
+ParameterMap make_parameter_map(const FitOptions& options, const ResolvedModel& resolved, SceneParameters fixed,
+                                double span, double force_span);
+
 /// Gaussian sigma from the median absolute deviation: 1 / Phi^-1(3/4).
 constexpr double kMadToSigma = 1.4826;
 /// A force feature (the contact region, an adhesive dip) is taken as real when it exceeds
@@ -106,7 +111,7 @@ class FitRun;
 /// summary already recorded). A w without adhesive signal (at 0, or indistinguishable from it
 /// when the covariance fails) is held at 0 and the fit redone and re-recorded; its upper bound
 /// comes from the profile likelihood (fit.hpp, ParameterEstimate).
-void assess_uncertainty(FitRun& run, CurveEvaluator& ev, const ParameterMap& map, std::vector<double>& x,
+void assess_uncertainty(FitRun& run, ResidualModel& ev, const ParameterMap& map, std::vector<double>& x,
                         const FitOptions& options, const FitData& data, FitSummary* out);
 
 /// The one-sided 95 % point of the deviance 2 delta cost / s^2 (chi^2(1) at 90 %, 1.6449^2): w's
@@ -125,7 +130,7 @@ const char* hold_sigma0_at_limit(FitRun& run, const ParameterMap& map, const std
 void report_sigma0_at_limit(const char* limit, double lambda, FitSummary* out);
 /// A free sigma0 with an error bar stays identifiable only when holding it at lambda 1e3 and at
 /// 1e-3, the others refitted, raises the deviance beyond kUpperBoundDeviance (noisy data only).
-void check_sigma0_limits(FitRun& run, CurveEvaluator& ev, const ParameterMap& map, const std::vector<double>& x,
+void check_sigma0_limits(FitRun& run, ResidualModel& ev, const ParameterMap& map, const std::vector<double>& x,
                          std::size_t residuals, FitSummary* out);
 
 /// FitSummary::no_move_reason when the first solve did not move from the start.

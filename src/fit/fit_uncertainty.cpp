@@ -51,7 +51,7 @@ struct Conditioning {
   Eigen::MatrixXd JtJ;  ///< unscaled, as ceres::Covariance sees it (held w: a unit direction)
 };
 
-std::string direction(const Eigen::VectorXd& v, const FitOptions& options, std::size_t held_slot) {
+std::string direction(const Eigen::VectorXd& v, const ParameterMap& map, std::size_t held_slot) {
   std::vector<std::pair<double, std::size_t>> parts;
   for (Eigen::Index j = 0; j < v.size(); ++j)
     if (static_cast<std::size_t>(j) != held_slot && std::abs(v[j]) > kNullComponent)
@@ -61,12 +61,12 @@ std::string direction(const Eigen::VectorXd& v, const FitOptions& options, std::
   for (const auto& [c, j] : parts) {
     char buf[16];
     std::snprintf(buf, sizeof buf, "%.2f", c);
-    out += (out.empty() ? "" : ", ") + std::string(to_string(options.free[j])) + " (" + buf + ")";
+    out += (out.empty() ? "" : ", ") + map.name_at(j) + " (" + buf + ")";
   }
   return out;
 }
 
-Conditioning condition(const CurveEvaluator& ev, const FitOptions& options, std::size_t held_slot) {
+Conditioning condition(const ResidualModel& ev, const FitOptions& options, std::size_t held_slot) {
   const std::size_t p_free = options.free.size();
   const Eigen::Map<const RowMajorMatrix> J(ev.jacobian().data(), static_cast<Eigen::Index>(ev.residuals().size()),
                                            static_cast<Eigen::Index>(p_free));
@@ -102,10 +102,10 @@ Conditioning condition(const CurveEvaluator& ev, const FitOptions& options, std:
 }
 
 // Names the rank-deficient group in the summary.
-void report_rank_deficiency(const std::vector<bool>& separable, const FitOptions& options, FitSummary* out) {
+void report_rank_deficiency(const std::vector<bool>& separable, const ParameterMap& map, FitSummary* out) {
   std::string group;
   for (std::size_t j = 0; j < separable.size(); ++j)
-    if (!separable[j]) group += (group.empty() ? "" : ", ") + std::string(to_string(options.free[j]));
+    if (!separable[j]) group += (group.empty() ? "" : ", ") + map.name_at(j);
   if (group.empty()) return;
   out->unidentifiable.push_back(group + " (the Jacobian is rank-deficient: the data constrain only a combination)");
   for (std::size_t j = 0; j < separable.size(); ++j)
@@ -116,12 +116,13 @@ void report_rank_deficiency(const std::vector<bool>& separable, const FitOptions
 }
 
 // Pairs whose correlation exceeds the limit cannot be separated either: no error bars.
-void report_correlated_pairs(const std::vector<bool>& separable, const FitOptions& options, FitSummary* out) {
+void report_correlated_pairs(const std::vector<bool>& separable, const ParameterMap& map, const FitOptions& options,
+                             FitSummary* out) {
   const std::size_t p_free = separable.size();
   for (std::size_t i = 0; i < p_free; ++i)
     for (std::size_t j = i + 1; j < p_free; ++j)
       if (separable[i] && separable[j] && std::abs(out->correlation[i][j]) > options.correlation_limit) {
-        out->unidentifiable.push_back(std::string(to_string(options.free[i])) + " and " + to_string(options.free[j]) +
+        out->unidentifiable.push_back(map.name_at(i) + " and " + map.name_at(j) +
                                       " (correlation " + short_number(out->correlation[i][j]) + ")");
         for (std::size_t k : {i, j}) {
           out->parameters[k].standard_error = kNaN;
@@ -153,7 +154,7 @@ std::string compute_error_bars(ceres::Problem* problem, double final_cost, const
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> raw(cond.JtJ);
     const Eigen::VectorXd& l = raw.eigenvalues();  // ascending
     const double rc = l[l.size() - 1] > 0.0 ? std::max(l[0], 0.0) / l[l.size() - 1] : 0.0;
-    const std::string weakest = direction(raw.eigenvectors().col(0), options, held_slot);
+    const std::string weakest = direction(raw.eigenvectors().col(0), map, held_slot);
     std::string why = "the covariance could not be computed: J^T J is singular to working precision (reciprocal "
                       "condition number " + short_number(rc) + ", below " +
                       short_number(kCovarianceMinReciprocalCondition) + ")";
@@ -175,18 +176,18 @@ std::string compute_error_bars(ceres::Problem* problem, double final_cost, const
       }
   for (std::size_t j = 0; j < p_free; ++j) {
     if (!cond.separable[j] || j == held_slot) continue;
-    out->parameters[j].standard_error = std::abs(map.derivative(options.free[j], x.data())) * std::sqrt(C[j * p_free + j] * s2);
+    out->parameters[j].standard_error = std::abs(map.derivative_at(j, x.data())) * std::sqrt(C[j * p_free + j] * s2);
     out->parameters[j].identifiable = std::isfinite(out->parameters[j].standard_error);
     if (!out->parameters[j].identifiable)
       out->parameters[j].reason = std::string(kUnknown) + "its variance is not finite";
   }
-  report_correlated_pairs(cond.separable, options, out);
+  report_correlated_pairs(cond.separable, map, options, out);
   return "";
 }
 
 // Error bars and verdicts at the run's current solution (w held at its bound or not). Returns
 // why the covariance failed ("" if it did not, or was not computed).
-std::string assess_once(FitRun& run, CurveEvaluator& ev, const ParameterMap& map, std::vector<double>& x,
+std::string assess_once(FitRun& run, ResidualModel& ev, const ParameterMap& map, std::vector<double>& x,
                         const FitOptions& options, std::size_t residuals, FitSummary* out) {
   const std::size_t p_free = options.free.size();
   const int held = run.held_slot();
@@ -198,7 +199,7 @@ std::string assess_once(FitRun& run, CurveEvaluator& ev, const ParameterMap& map
   }
   if (!ev.evaluate(x.data(), true)) throw NumericalError("fit: the model cannot be evaluated at the solution");
   const Conditioning cond = condition(ev, options, held_slot);
-  report_rank_deficiency(cond.separable, options, out);
+  report_rank_deficiency(cond.separable, map, out);
   std::string failed, not_computed;
   const bool only_w_held = held_slot < p_free && p_free == 1;
   if (!options.compute_covariance)
@@ -288,7 +289,7 @@ void conclude(FitSummary* out) {
 
 }  // namespace
 
-void assess_uncertainty(FitRun& run, CurveEvaluator& ev, const ParameterMap& map, std::vector<double>& x,
+void assess_uncertainty(FitRun& run, ResidualModel& ev, const ParameterMap& map, std::vector<double>& x,
                         const FitOptions& options, const FitData& data, FitSummary* out) {
   const std::size_t p_free = options.free.size();
   const std::size_t residuals = data.residuals();

@@ -44,28 +44,6 @@ json printable_list(const std::vector<std::string>& messages) {
 }
 json index_or_null(int v) { return v >= 0 ? json(v) : json(nullptr); }
 
-const char* unit(FitParameter p) {
-  switch (p) {
-    case FitParameter::K:
-      return "Pa/m";
-    case FitParameter::G:
-      return "N/m";
-    case FitParameter::w:
-      return "J/m^2";
-    case FitParameter::delta0:
-      return "m";
-    case FitParameter::P0:
-      return "N";
-    case FitParameter::E:
-      return "Pa";
-    case FitParameter::R:
-      return "m";
-    case FitParameter::sigma0:
-      return "Pa";
-  }
-  return "";
-}
-
 // The file an item came from: fit_files names a curve of a file of several `path#curve`.
 std::string file_of(const BatchItem& it) {
   if (it.curve < 0) return it.source;
@@ -316,8 +294,8 @@ std::string map_report_data(const std::vector<BatchItem>& items, const MapReport
   }
   json fields = json::array();
   for (FitParameter p : options.free) {
-    fields.push_back({{"key", name_of(p)}, {"label", name_of(p)}, {"unit", unit(p)}});
-    fields.push_back({{"key", name_of(p) + "_stderr"}, {"label", name_of(p) + " standard error"}, {"unit", unit(p)}});
+    fields.push_back({{"key", name_of(p)}, {"label", name_of(p)}, {"unit", unit_of(p)}});
+    fields.push_back({{"key", name_of(p) + "_stderr"}, {"label", name_of(p) + " standard error"}, {"unit", unit_of(p)}});
   }
   fields.push_back({{"key", "rms_residual"}, {"label", "rms residual"}, {"unit", "N"}});
   if (any_contact) fields.push_back({{"key", "contact_point"}, {"label", "contact point"}, {"unit", "m"}});

@@ -43,14 +43,14 @@ TEST_CASE("every registered enum spells each enumerator once and parses it back"
   check_round_trip<SceneModel>(11);
   check_round_trip<Solver>(2);
   check_round_trip<Branch>(3);
-  check_round_trip<FitParameter>(8);
+  check_round_trip<FitParameter>(13);
   check_round_trip<LossType>(3);
   check_round_trip<RetractWindow>(3);
   check_round_trip<RetractControl>(4);
   check_round_trip<Baseline>(2);
   check_round_trip<ContactPointMethod>(4);
   check_round_trip<AdhesionModel>(3);
-  check_round_trip<FitFamily>(4);
+  check_round_trip<FitFamily>(6);
   check_round_trip<SegmentStyle>(4);
   check_round_trip<InstrumentFormat>(6);
   check_round_trip<Smoothing>(2);

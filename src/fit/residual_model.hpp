@@ -1,0 +1,34 @@
+// Internal: what a fit's Ceres solves, error bars and diagnoses need of a forward model - the
+// residuals of its samples and their Jacobian at a parameter vector x, with what the model predicts
+// there. The equilibrium curves (curve_evaluator.hpp), the hereditary and kinetic models in time
+// (time_evaluators.hpp) and a joint fit of several curves (joint_evaluator.hpp) implement it.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace layerjkr::detail {
+
+class ResidualModel {
+ public:
+  virtual ~ResidualModel() = default;
+  /// Residuals (and the row-major Jacobian, residuals x free) at x. False if the model cannot be
+  /// evaluated there.
+  virtual bool evaluate(const double* x, bool jacobian) = 0;
+  virtual const std::vector<double>& residuals() const = 0;
+  virtual const std::vector<double>& jacobian() const = 0;
+  /// Model force at each sample (P0 included) of the last evaluation.
+  virtual const std::vector<double>& predicted() const = 0;
+  /// Samples the model put in contact in the last evaluation.
+  virtual std::size_t in_contact() const = 0;
+  /// Per sample of the last evaluation: a retract sample the model has already let go of.
+  virtual const std::vector<char>& detached() const = 0;
+  /// Forget cached residuals (after the data's weights changed).
+  virtual void invalidate() = 0;
+  /// Number of samples (residual groups); the rows of sample i are [row(i), row(i) + rows(i)).
+  virtual std::size_t points() const = 0;
+  virtual std::size_t row(std::size_t i) const = 0;
+  virtual std::size_t rows(std::size_t i) const = 0;
+};
+
+}  // namespace layerjkr::detail

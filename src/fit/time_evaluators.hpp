@@ -1,0 +1,100 @@
+// Internal: the forward models of a fit in time (time_fit.cpp) - each sample's force from the
+// whole measured history of the indentation delta_i - delta0 at the samples' times.
+//
+//   HereditaryEvaluator: a relaxing medium without adhesion (viscoelastic.hpp): Lee-Radok up to
+//     the deepest sample, Ting's rule after (src/viscoelastic/hereditary.hpp), over the elastic
+//     force of the medium's curve model at the instantaneous modulus; exact Jacobians through
+//     ceres::Jet (the kernel's weights and rates, the contact's start, each sample's radius by
+//     implicit differentiation).
+//   KineticEvaluator: an elastic medium whose JKR edge crack has Maugis-Barquins kinetics
+//     (kinetics.hpp): the approach and the dwell at equilibrium (the curve evaluator), the retract
+//     by the crack's ODE from the equilibrium contact at the deepest sample, driven by the measured
+//     indentation; the retract's Jacobian by central differences of the ODE's answer.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "curve_evaluator.hpp"
+#include "layerjkr/viscoelastic.hpp"
+#include "residual_model.hpp"
+#include "viscoelastic/relaxation_kernel.hpp"
+
+namespace layerjkr::detail {
+
+/// The relaxation kernel of `law` at the physical parameters p: one-term Prony laws from E_inf
+/// and tau (E_inf in Pa held where the law came from "sls", the ratio E_inf/E otherwise), longer
+/// Prony laws as given, the power law from beta (over [t_lo, t_hi]).
+template <class T>
+RelaxationKernel<T> kernel_at(const RelaxationLaw& law, const CurveParameters<T>& p, double t_lo, double t_hi);
+
+class HereditaryEvaluator final : public ResidualModel {
+ public:
+  /// model: the medium's elastic curve family (its adhesion unused: w = 0); data.t: the times.
+  /// Borrows everything; they outlive the evaluator.
+  HereditaryEvaluator(const CurveModel& model, const ParameterMap& map, const FitData& data, const RelaxationLaw& law);
+
+  bool evaluate(const double* x, bool jacobian) override;
+  const std::vector<double>& residuals() const override { return r_; }
+  const std::vector<double>& jacobian() const override { return J_; }
+  const std::vector<double>& predicted() const override { return P_fit_; }
+  std::size_t in_contact() const override { return contact_count_; }
+  const std::vector<char>& detached() const override { return detached_; }
+  void invalidate() override { have_cache_ = false; }
+  std::size_t points() const override { return data_.P.size(); }
+  std::size_t row(std::size_t i) const override { return i; }
+  std::size_t rows(std::size_t) const override { return 1; }
+
+ private:
+  template <class J>
+  bool sweep(const double* x, bool jacobian);
+
+  const CurveModel& model_;
+  const ParameterMap& map_;
+  const FitData& data_;
+  const RelaxationLaw& law_;
+  CurveEvaluator radii_;  // its radius solver (delta_H(a) = delta - delta0), nothing else
+  double t_lo_ = 0.0, t_hi_ = 0.0;
+  std::vector<double> a_cache_, x_cache_, r_, J_, P_fit_;
+  std::vector<char> detached_;
+  std::size_t contact_count_ = 0;
+  bool have_cache_ = false, have_jac_ = false, cache_ok_ = false;
+};
+
+class KineticEvaluator final : public ResidualModel {
+ public:
+  /// model: the medium's JKR curve family; data: every sample in acquisition order with its time
+  /// and segment; kinetics: the law's shape (v_star and n come from the parameters).
+  KineticEvaluator(const CurveModel& model, const ParameterMap& map, const FitData& data);
+  ~KineticEvaluator() override;
+
+  bool evaluate(const double* x, bool jacobian) override;
+  const std::vector<double>& residuals() const override { return r_; }
+  const std::vector<double>& jacobian() const override { return J_; }
+  const std::vector<double>& predicted() const override { return P_fit_; }
+  std::size_t in_contact() const override { return contact_count_; }
+  const std::vector<char>& detached() const override { return detached_; }
+  void invalidate() override;
+  std::size_t points() const override { return data_.P.size(); }
+  std::size_t row(std::size_t i) const override { return i; }
+  std::size_t rows(std::size_t) const override { return 1; }
+
+ private:
+  struct Retract;  // the retract's forces at one parameter vector
+  bool retract_at(const double* x, Retract* out) const;
+
+  const CurveModel& model_;
+  const ParameterMap& map_;
+  const FitData& data_;
+  FitData equilibrium_data_;               // the approach and dwell samples
+  std::vector<std::size_t> equilibrium_;   // their indices in data_
+  std::vector<std::size_t> retract_;       // the retract samples' indices
+  std::size_t turn_ = 0;                   // the last sample before the retract
+  std::unique_ptr<CurveEvaluator> equilibrium_ev_;
+  std::vector<double> x_cache_, r_, J_, P_fit_;
+  std::vector<char> detached_;
+  std::size_t contact_count_ = 0;
+  bool have_cache_ = false, have_jac_ = false, cache_ok_ = false;
+};
+
+}  // namespace layerjkr::detail

@@ -1,0 +1,191 @@
+// fit() in time: a relaxing medium (Lee-Radok and Ting) or crack kinetics, fitted to every sample
+// of a curve with its time - the history the force depends on - from an elastic fit's start.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "fit_run.hpp"
+#include "fit_steps.hpp"
+#include "layerjkr/error.hpp"
+#include "time_evaluators.hpp"
+#include "time_fit.hpp"
+
+namespace layerjkr::detail {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+}  // namespace
+
+bool time_parameter(FitParameter q) {
+  return q == FitParameter::E_inf || q == FitParameter::tau || q == FitParameter::beta || q == FitParameter::v_star ||
+         q == FitParameter::n;
+}
+
+void check_request(const CurveData& curve, const Scene& scene, const FitOptions& o) {
+  const bool relaxes = scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic;
+  const RelaxationLaw& law = scene.medium.relaxation;
+  const std::string what = relaxes ? "a relaxing medium (" + law.describe() + ")"
+                                   : "crack kinetics (" + scene.adhesion.kinetics->describe() + ")";
+  const auto refuse = [&](const std::string& why) { throw InputError(curve.source + ": " + what + " is fitted in time; " + why); };
+  if (curve.t.empty())
+    refuse("the curve has no time: give a t column [s], or read an instrument file whose segments have durations");
+  if (curve.radius_only()) refuse("(P, a) data have no indentation history to follow");
+  if (o.contact_point != ContactPointMethod::fit || o.indentation_range || o.force_range)
+    refuse("the contact point is delta0 (free it, or leave it 0), and the history needs every sample: no contact-point "
+           "method and no indentation or force range");
+  if (o.retract_window != RetractWindow::all) refuse("the retract window would cut the history: use retract_window all");
+  if (o.baseline == Baseline::tilt) refuse("a tilted baseline is not fitted in time: use baseline constant");
+  for (FitParameter q : o.free) {
+    const bool sls = law.kind == RelaxationLaw::Kind::prony && law.g.size() == 1;
+    std::string no;
+    if ((q == FitParameter::E_inf || q == FitParameter::tau) && !(relaxes && sls))
+      no = "is a one-term Prony law's (\"sls\", or \"prony\" with one g)";
+    else if (q == FitParameter::beta && !(relaxes && law.kind == RelaxationLaw::Kind::power_law))
+      no = "is a power law's (\"power_law\")";
+    else if ((q == FitParameter::v_star || q == FitParameter::n) && relaxes)
+      no = "belongs to crack kinetics (adhesion.kinetics)";
+    else if ((q == FitParameter::w || q == FitParameter::sigma0 || q == FitParameter::R) && relaxes)
+      no = "is not fitted on a relaxing medium (no adhesion there; R: the indenter is fixed in time fits)";
+    else if (q == FitParameter::sigma0 || q == FitParameter::R)
+      no = "is not fitted with crack kinetics";
+    if (!no.empty())
+      throw InputError("fit: free parameter " + std::string(to_string(q)) + " " + no + "; this scene has " + what);
+  }
+}
+
+FitData select_time_data(const CurveData& curve, const FitOptions& options, double* span, double* force_span) {
+  FitOptions approach = options;
+  approach.branch = Branch::approach;
+  approach.free.erase(std::remove_if(approach.free.begin(), approach.free.end(), time_parameter), approach.free.end());
+  double s0 = 0.0, f0 = 0.0;
+  const FitData base = select_fit_data(curve.without_dwell(), approach, &s0, &f0);
+  FitData data;
+  data.baseline = base.baseline;
+  data.noise = base.noise;
+  data.offset = base.offset;
+  data.spring_constant = base.spring_constant;
+  data.contact_slope = base.contact_slope;
+  const std::vector<bool> retract = curve.retract_mask();
+  double largest = 0.0;
+  for (std::size_t i = 0; i < curve.size(); ++i) largest = std::max(largest, curve.weight.empty() ? 1.0 : curve.weight[i]);
+  const auto segment = [&](std::size_t i) { return curve.segment.empty() ? (retract[i] ? 1 : 0) : curve.segment[i]; };
+  for (std::size_t i = 0; i < curve.size(); ++i) {
+    const int s = segment(i);
+    if (options.branch == Branch::approach && s != 0 && i > 0 && segment(i - 1) == 0) break;  // the approach's end
+    const bool weighted = options.branch == Branch::all || (options.branch == Branch::approach ? s == 0 : s == 1);
+    data.delta.push_back(curve.delta[i]);
+    data.P.push_back(curve.P[i] - base.offset);
+    data.t.push_back(curve.t[i]);
+    data.segment.push_back(s);
+    data.retract.push_back(s == 1);
+    data.sqrt_weight.push_back(weighted ? std::sqrt((curve.weight.empty() ? 1.0 : curve.weight[i]) / largest) : 0.0);
+  }
+  double lo = data.delta[0], hi = lo, plo = kNaN, phi = kNaN;
+  for (std::size_t i = 0; i < data.P.size(); ++i) {
+    lo = std::min(lo, data.delta[i]);
+    hi = std::max(hi, data.delta[i]);
+    if (data.sqrt_weight[i] > 0.0) {
+      plo = std::isnan(plo) ? data.P[i] : std::min(plo, data.P[i]);
+      phi = std::isnan(phi) ? data.P[i] : std::max(phi, data.P[i]);
+    }
+  }
+  *span = hi - lo;
+  *force_span = phi - plo;
+  if (!(*force_span > 0.0)) throw InputError(curve.source + ": P is constant on the chosen branch; nothing to fit");
+  if (data.residuals() <= options.free.size())
+    throw InputError(curve.source + ": the " + to_string(options.branch) + " branch has " +
+                     std::to_string(data.residuals()) + " samples; fitting " + std::to_string(options.free.size()) +
+                     " parameters needs more samples than parameters");
+  return data;
+}
+
+Scene elastic_scene(const Scene& scene) {
+  Scene s = scene;
+  s.medium.relaxation = RelaxationLaw{};
+  s.adhesion.kinetics.reset();
+  return s;
+}
+
+void law_values(const Scene& scene, SceneParameters* fixed) {
+  const RelaxationLaw& law = scene.medium.relaxation;
+  CurveParameters<double>& v = fixed->values;
+  if (law.kind == RelaxationLaw::Kind::prony && law.g.size() == 1) {
+    v.E_inf = v.E * (1.0 - law.g[0]);
+    v.tau = law.tau[0];
+  }
+  v.beta = law.beta;
+  if (scene.adhesion.kinetics) {
+    v.v_star = scene.adhesion.kinetics->v_star;
+    v.n = scene.adhesion.kinetics->n;
+  }
+}
+
+FitSummary fit_in_time(const CurveData& curve, const Scene& scene, const FitOptions& options) {
+  check_request(curve, scene, options);
+  const bool relaxes = scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic;
+  double span = 0.0, force_span = 0.0;
+  FitData data = select_time_data(curve, options, &span, &force_span);
+  require_usable_loss_scale(options, force_span, curve.source);
+  FitSummary out;
+  const Scene elastic = elastic_scene(scene);
+  const ResolvedModel resolved = resolve_model(elastic);
+  SceneParameters fixed;
+  FitOptions model_options = options;
+  model_options.free.erase(std::remove_if(model_options.free.begin(), model_options.free.end(), time_parameter),
+                           model_options.free.end());
+  // A relaxing medium's elastic force is the JKR curve at w = 0; its table must reach the data's span.
+  const std::unique_ptr<CurveModel> model = make_curve_model(elastic, resolved, model_options, span, &fixed);
+  law_values(scene, &fixed);
+  out.model = model->model_name();
+  out.family = relaxes ? FitFamily::hereditary : FitFamily::kinetic;
+  ParameterMap map = make_parameter_map(options, resolved, fixed, span, force_span);
+  out.warnings.insert(out.warnings.end(), fixed.warnings.begin(), fixed.warnings.end());
+  out.notices.insert(out.notices.end(), curve.notes.begin(), curve.notes.end());
+  out.notices.insert(out.notices.end(), resolved.notices.begin(), resolved.notices.end());
+  std::vector<double> x(options.free.size(), 0.0);
+  std::unique_ptr<ResidualModel> ev;
+  if (relaxes)
+    ev = std::make_unique<HereditaryEvaluator>(*model, map, data, scene.medium.relaxation);
+  else
+    ev = std::make_unique<KineticEvaluator>(*model, map, data);
+  start_in_time(curve, elastic, scene, options, data, *ev, map, x, &out);
+  for (FitParameter q : options.free) {
+    ParameterEstimate e;
+    e.parameter = q;
+    e.initial = map.value(q, x.data());
+    out.parameters.push_back(e);
+  }
+  if (!ev->evaluate(x.data(), false))
+    throw InputError(curve.source + ": the model in time cannot be evaluated at the start (does the curve begin "
+                                    "before the contact, and does the model reach its deepest indentation?)");
+  FitRun run(*ev, map, options, data, x);
+  run.solve();
+  run.try_extra_starts();
+  const std::vector<bool> excluded = run.exclude_non_jkr();
+  run.record(&out);
+  out.t = data.t;
+  out.excluded = excluded;
+  for (std::size_t i = 0; i < data.P.size(); ++i)
+    if (!(data.sqrt_weight[i] > 0.0) && !excluded[i]) out.excluded[i] = true;  // history only
+  out.excluded_count = static_cast<std::size_t>(std::count(excluded.begin(), excluded.end(), true));
+  assess_uncertainty(run, *ev, map, x, options, data, &out);
+  explain_no_move(run, data, map, &out);
+  out.baseline_offset = data.offset;
+  diagnose_residuals(data, force_span, &out);
+  diagnose_indentation(data, &out);
+  record_model_notes(*model, data, force_span, &out);
+  const std::size_t history = static_cast<std::size_t>(std::count_if(
+      data.sqrt_weight.begin(), data.sqrt_weight.end(), [](double w) { return !(w > 0.0); })) - out.excluded_count;
+  if (history > 0)
+    out.notices.push_back(std::to_string(history) + " samples off the " + std::string(to_string(options.branch)) +
+                          " branch enter as the history the force depends on, not as residuals");
+  judge_law(map, x, scene, data, &out);
+  const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;
+  for (std::size_t i = 0; i < data.P.size(); ++i)
+    if (data.retract[i] && !(data.P[i] - P0 >= out.pull_off_force)) out.pull_off_force = data.P[i] - P0;
+  return out;
+}
+
+}  // namespace layerjkr::detail
