@@ -132,6 +132,10 @@ bool KineticEvaluator::evaluate(const double* x, bool jacobian) {
     // the loss of contact moves across the sample on one side; 0 where it does on both.
     std::vector<double> xp(x, x + n_free), xm(x, x + n_free);
     for (std::size_t j = 0; j < n_free; ++j) {
+      if (map_.free[j] == FitParameter::P0) {  // the baseline moves every force alike: no ODE to solve again
+        for (std::size_t i : retract_) J_[i * n_free + j] = data_.sqrt_weight[i] * map_.F / F;
+        continue;
+      }
       xp[j] = x[j] + kStep;
       xm[j] = x[j] - kStep;
       Retract plus, minus;

@@ -79,7 +79,7 @@ void start_in_time(const CurveData& curve, const Scene& elastic, const Scene& sc
   const bool E_free = has(options.free, FitParameter::E);
   const auto E_for = [&](double psi_mean) { return E_free ? E_elastic / psi_mean : map.fixed_value(FitParameter::E); };
   struct Candidate {
-    double E, E_inf, tau, beta, v_star;
+    double E, E_inf, tau, beta, v_star, w_factor = 1.0;
   };
   std::vector<Candidate> candidates;
   const double E_inf0 = map.ref[static_cast<int>(FitParameter::E_inf)], tau0 = map.ref[static_cast<int>(FitParameter::tau)];
@@ -105,12 +105,24 @@ void start_in_time(const CurveData& curve, const Scene& elastic, const Scene& sc
     for (std::size_t i = 0; i < law.g.size(); ++i) mean += law.g[i] * mean_relaxation_sls(0.0, law.tau[i], T);
     candidates.push_back({E_for(mean), E_inf0, tau0, beta0, v0});
   } else {
+    // The crack's speed scale: the scene's, and two decades either way in half decades.
     std::vector<double> speeds{v0};
-    if (has(options.free, FitParameter::v_star)) speeds = {v0, v0 * 1e-2, v0 * 1e-1, v0 * 10, v0 * 100};
-    for (double v : speeds) candidates.push_back({map.ref[static_cast<int>(FitParameter::E)], E_inf0, tau0, beta0, v});
+    if (has(options.free, FitParameter::v_star))
+      for (int k = -6; k <= 6; ++k)
+        if (k != 0) speeds.push_back(v0 * std::pow(10.0, 0.5 * k));
+    // An elastic fit takes the rate's extra pull-off for adhesion: w0 lies at or below its w.
+    std::vector<double> w_factors{1.0};
+    if (has(options.free, FitParameter::w) && has(options.free, FitParameter::v_star)) w_factors = {1.0, 0.5, 0.25};
+    for (double f : w_factors)
+      for (double v : speeds) candidates.push_back({map.ref[static_cast<int>(FitParameter::E)], E_inf0, tau0, beta0, v, f});
   }
   // The references sit at the scene's values; each candidate is a point x.
+  const std::vector<double> x_elastic = x;
   const auto put = [&](const Candidate& c) {
+    if (map.is_free(FitParameter::w)) {
+      const auto k = static_cast<std::size_t>(map.index(FitParameter::w));
+      x[k] = x_elastic[k] * std::sqrt(c.w_factor);
+    }
     const auto set_log = [&](FitParameter q, double v) {
       if (map.is_free(q)) x[static_cast<std::size_t>(map.index(q))] = std::log(v / map.ref[static_cast<int>(q)]);
     };
@@ -135,7 +147,8 @@ void start_in_time(const CurveData& curve, const Scene& elastic, const Scene& sc
   x = best_x;
   std::string law_start;
   for (FitParameter q : options.free)
-    if (q == FitParameter::E || q == FitParameter::E_inf || q == FitParameter::tau || q == FitParameter::beta || q == FitParameter::v_star)
+    if (q == FitParameter::E || q == FitParameter::E_inf || q == FitParameter::tau || q == FitParameter::beta ||
+        q == FitParameter::v_star || (q == FitParameter::w && !relaxes))
       law_start += (law_start.empty() ? "" : ", ") + std::string(to_string(q)) + " = " + short_number(map.value(q, x.data()));
   out->notices.push_back("start: " + (said.empty() ? std::string("the scene's values") : "an elastic fit of the " +
                          std::string(to_string(e.branch)) + " (" + said + ")") +

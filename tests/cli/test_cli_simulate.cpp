@@ -115,3 +115,43 @@ TEST_CASE("summary --retract-speed: the rate-dependent pull-off and its sweep, r
   const Run both = run("summary " + scene + " --retract-speed 1e-6 --load-rate 1");
   CHECK(both.code == 2);
 }
+
+TEST_CASE("fit --joint: curves at three speeds fitted together, the report with each alone", "[cli][simulate]") {
+  const std::string scene = write_file("cell3.json", kCell);
+  std::vector<std::string> files;
+  for (const char* v : {"0.5e-6", "2e-6", "8e-6"}) {
+    files.push_back(unique(std::string("speed_") + v + ".csv"));
+    const Run s = run("simulate " + scene + " --max-indentation 2e-6 --speed " + v + " --points 150 --noise 5e-11 "
+                      "--delta0 1e-6 --out " + files.back());
+    REQUIRE(s.code == 0);
+  }
+  const std::string all = files[0] + " " + files[1] + " " + files[2], report = unique("joint.json");
+  const Run r = run("fit " + all + " --joint --scene " + scene + " --free E,E_inf,tau,delta0 --branch all --out " + report);
+  INFO(r.err << r.out);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("delta0 (curve 3) = ") != std::string::npos);
+  CHECK(r.out.find("curve 2: " + files[1]) != std::string::npos);
+  const nlohmann::json j = nlohmann::json::parse(slurp(report));
+  CHECK(j["joint"]["family"] == "hereditary");
+  CHECK(j["joint"]["parameters"].contains("delta0[2]"));
+  CHECK(j["joint"]["parameters"]["tau"]["unit"] == "s");
+  CHECK(j["joint"]["parameters"]["tau"]["value"].get<double>() == Approx(0.2).epsilon(0.01));
+  REQUIRE(j["curves"].size() == 3);
+  CHECK(j["curves"][1]["alone"]["parameters"].contains("E_inf"));
+  CHECK(j["provenance"]["inputs"].size() == 3);
+  // Rerun from the report: the same numbers.
+  const Run again = run("fit --from-report " + report + " --out " + unique("joint2.json"));
+  INFO(again.err);
+  REQUIRE(again.code == 0);
+  CHECK(nlohmann::json::parse(slurp(unique("joint2.json")))["joint"]["parameters"]["tau"]["value"] ==
+        j["joint"]["parameters"]["tau"]["value"]);
+  const Run several = run("fit " + all + " --scene " + scene + " --free E");
+  CHECK(several.code == 2);
+  CHECK(several.err.find("give --joint") != std::string::npos);
+  const Run one = run("fit " + files[0] + " --joint --scene " + scene + " --free E");
+  CHECK(one.code == 2);
+  CHECK(one.err.find("at least 2 curves") != std::string::npos);
+  const Run unknown = run("fit " + files[0] + " --scene " + scene + " --free E,Einf");
+  CHECK(unknown.code == 2);
+  CHECK(unknown.err.find("E_inf, tau, beta, v_star, n") != std::string::npos);
+}
