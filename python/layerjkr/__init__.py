@@ -37,6 +37,7 @@ from ._core import DomainError, Error, InputError, NumericalError, Scene
 __version__: str = _core.__version__
 
 __all__ = ["__version__", "Error", "DomainError", "InputError", "NumericalError", "ModelWarning", "Scene",
+           "simulate", "Simulation", "fit_joint", "JointFitResult",
            "AutoChoice", "AdhesionCheck", "FixedGrips", "ModelError", "Curve", "Summary", "NamedArray", "FitResult", "BatchResult",
            "Instrument", "scene", "curve", "summary", "fit", "fit_batch", "fit_files", "read_instrument",
            "open_instrument"]
@@ -87,12 +88,12 @@ def _json_value(value: Any) -> Any:
 
 
 def _segments(segment: npt.ArrayLike) -> List[int]:
-    """Segment labels 0 or 1; a non-integer label (0.5) is refused with its value, not cast."""
+    """Segment labels 0, 1 or 2; a non-integer label (0.5) is refused with its value, not cast."""
     values = np.asarray(segment).ravel()
     out = []
     for i, v in enumerate(values.tolist()):
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v) or v != int(v):
-            raise InputError("segment[%d] = %r is not a segment label; valid values: 0 (approach), 1 (retract)" % (i, v))
+            raise InputError("segment[%d] = %r is not a segment label; valid values: 0 (approach), 1 (retract), 2 (dwell)" % (i, v))
         out.append(int(v))
     return out
 
@@ -411,6 +412,7 @@ class _SummaryFields(NamedTuple):  # the bound SummaryAnswer as plain (picklable
     warnings: List[str]
     notices: List[str]
     seconds: float
+    kinetic: Optional[Dict[str, Any]]
 
 
 class Summary:
@@ -563,9 +565,26 @@ class Summary:
         if self._choice is not None:
             d["model_choice"] = {"model": self._choice.model, "estimated_error": self._choice.estimated_error,
                                  "tolerance": self._choice.tolerance}
+        k = self._a.kinetic
+        if k is not None:
+            d["kinetic_pull_off"] = {
+                "drive": k["drive"], "control": k["control"], "rate": k["rate"], "rate_unit": k["rate_unit"],
+                "start_force": k["start_force"], "pull_off_force": k["pull_off_force"],
+                "pull_off": dict(zip(("a", "P", "delta"), k["pull_off"])), "pull_off_time": k["pull_off_time"],
+                "separation_time": k["separation_time"], "equilibrium_pull_off_force": k["equilibrium_pull_off_force"],
+                "equilibrium_separation": dict(zip(("a", "P", "delta"), k["equilibrium_separation"])),
+                "rate_dependence": [{"rate": float(r), "pull_off_force": float(f)}
+                                    for r, f in zip(k["rates"], k["pull_off_forces"])]}
         d["warnings"] = self.warnings
         d["notices"] = self.notices
         return d
+
+    @property
+    def kinetic(self) -> Optional[Dict[str, Any]]:
+        """With adhesion kinetics and a retract rate: the rate-dependent pull-off (``layerjkr
+        summary --retract-speed``'s ``kinetic_pull_off``), else None."""
+        d = self.as_dict()
+        return d.get("kinetic_pull_off")
 
     def __getitem__(self, key: str) -> Any:
         d = self.as_dict()
@@ -586,7 +605,8 @@ def _finite_or_none(x: Optional[float]) -> Optional[float]:
     return x if x is not None and np.isfinite(x) else None
 
 
-def summary(scene: SceneLike, *, warning_threshold: float = 0.05) -> Summary:
+def summary(scene: SceneLike, *, warning_threshold: float = 0.05, retract_speed: Optional[float] = None,
+            load_rate: Optional[float] = None, stiffness: Optional[float] = None, start_force: float = 0.0) -> Summary:
     """The summary of a scene: pull-off, zero-load radius, fixed grips, model error, constants.
 
     Parameters
@@ -596,6 +616,16 @@ def summary(scene: SceneLike, *, warning_threshold: float = 0.05) -> Summary:
     warning_threshold : float, default 0.05
         A summary whose estimated relative model error exceeds this, in (0, 1), carries a
         warning.
+    retract_speed : float, optional
+        With adhesion kinetics in the scene: a retract at this speed [m/s] under fixed grips (or,
+        with ``stiffness``, of a cantilever's base) gives the rate-dependent pull-off and its
+        dependence on the speed (:attr:`Summary.kinetic`).
+    load_rate : float, optional
+        Instead of ``retract_speed``: a load-controlled retract at this rate [N/s].
+    stiffness : float, optional
+        The cantilever's stiffness [N/m] (with ``retract_speed``).
+    start_force : float, default 0
+        The retract starts from the equilibrium contact at this force [N].
 
     Returns
     -------
@@ -616,7 +646,17 @@ def summary(scene: SceneLike, *, warning_threshold: float = 0.05) -> Summary:
     ModelWarning
         Each of the summary's warnings.
     """
-    result = Summary(_core.summary(_as_scene(scene), _number("warning_threshold", warning_threshold)))
+    if retract_speed is not None and load_rate is not None:
+        raise InputError("give retract_speed or load_rate, not both")
+    if stiffness is not None and retract_speed is None:
+        raise InputError("stiffness is a cantilever's: give it with retract_speed")
+    control = None if retract_speed is None and load_rate is None else (
+        "load" if load_rate is not None else "cantilever" if stiffness is not None else "grips")
+    rate = load_rate if load_rate is not None else retract_speed
+    result = Summary(_core.summary(_as_scene(scene), _number("warning_threshold", warning_threshold), control,
+                                   0.0 if rate is None else _number("retract_speed" if load_rate is None else "load_rate", rate),
+                                   0.0 if stiffness is None else _number("stiffness", stiffness),
+                                   _number("start_force", start_force)))
     _warn(result._a.warnings, 2)
     return result
 
@@ -695,7 +735,7 @@ class FitResult:
     """
 
     __slots__ = ("_fields", "_params", "_corr", "_delta", "_P", "_P_fit", "_excluded", "_brief", "_branch",
-                 "_provenance")
+                 "_provenance", "_t")
 
     def __init__(self, s: Any, branch: str, provenance: Optional[Dict[str, Any]] = None) -> None:
         self._fields = {k: getattr(s, k) for k in ("converged", "termination", "iterations", "model", "family",
@@ -713,6 +753,7 @@ class FitResult:
                         for p in s.parameters}
         self._corr = s.correlation
         self._delta, self._P, self._P_fit, self._excluded = s.delta, s.P, s.P_fit, s.excluded
+        self._t = s.t
         self._brief = s.brief_report()
         self._branch = branch
         self._provenance = provenance if provenance is not None else {}
@@ -733,6 +774,11 @@ class FitResult:
     def P(self) -> npt.NDArray[np.float64]:
         """The fitted branch's force samples [N] (empty in a batch)."""
         return self._P
+
+    @property
+    def t(self) -> npt.NDArray[np.float64]:
+        """A fit in time: each sample's time [s] (aligned with ``delta``); empty otherwise."""
+        return getattr(self, "_t", np.empty(0))
 
     @property
     def P_fit(self) -> npt.NDArray[np.float64]:
@@ -909,7 +955,7 @@ class FitResult:
         return {
             "converged": f["converged"], "termination": f["termination"], "iterations": f["iterations"],
             "model": f["model"], "family": f["family"], "branch": self._branch,
-            "parameters": {k: {"value": p.value, "unit": _core.unit_of(k), "stderr": _finite_or_none(p.standard_error),
+            "parameters": {k: {"value": p.value, "unit": _core.unit_of(k.split("[")[0]), "stderr": _finite_or_none(p.standard_error),
                                "initial": p.initial,
                                "at_bound": p.at_bound, "upper_bound": _finite_or_none(p.upper_bound),
                                "identifiable": p.identifiable, "reason": p.reason}
@@ -996,8 +1042,10 @@ def _range(name: str, value: Optional[Tuple[float, float]]) -> Optional[Tuple[fl
 
 _FIT_PARAMETERS_DOC = """
     free : sequence of str or str, default ("E", "w", "delta0")
-        Parameters to identify: K, G (or T), w, delta0, P0, E, R, sigma0; a comma-separated string is
-        accepted too. The others come from the scene (delta0 = P0 = 0 unless freed).
+        Parameters to identify: K, G (or T), w, delta0, P0, E, R, sigma0, and in time E_inf, tau
+        (a standard linear solid), beta (a power law), v_star, n (crack kinetics); a
+        comma-separated string is accepted too. The others come from the scene (delta0 = P0 = 0
+        unless freed).
     branch : {"approach", "retract", "all"}, default "approach"
         Which part of the curve to fit.
     control : {"auto", "load", "cantilever", "grips"}, default "auto"
@@ -1054,7 +1102,7 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
         max_iterations: int = 200,
         contact_point: ContactPointMethod = "fit", indentation_range: Optional[Tuple[float, float]] = None,
         force_range: Optional[Tuple[float, float]] = None,
-        baseline_window: Optional[Tuple[float, float]] = None) -> FitResult:
+        baseline_window: Optional[Tuple[float, float]] = None, t: Optional[npt.ArrayLike] = None) -> FitResult:
     """Fit one measured curve with the model of a scene.
 
     Parameters
@@ -1066,7 +1114,10 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
     scene : Scene, dict or path
         Indenter, medium, model and the starting values (see :func:`scene`).
     segment : array_like of int, optional
-        Per sample 0 (approach) or 1 (retract); None splits the curve at its largest delta.
+        Per sample 0 (approach), 1 (retract) or 2 (dwell); None splits the curve at its largest delta.
+    t : array_like, optional
+        Each sample's time [s], strictly increasing: what a relaxing medium or crack kinetics
+        in the scene is fitted against (the fit is then in time).
     %s
 
     Returns
@@ -1093,15 +1144,168 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
                        starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
     seg = None if segment is None else _segments(segment)
     d, p = _float64(delta), _float64(P)
+    tt = None if t is None else _float64(t)
     s_ = _as_scene(scene)
-    s = _core.fit(d, p, seg, s_, options)
+    s = _core.fit(d, p, seg, tt, s_, options)
     inputs = _array_inputs(d, p, seg)
+    if tt is not None:
+        inputs.append(_core.record_bytes("t (float64 array)", tt))
     result = FitResult(s, options.branch, _provenance(s_, options, None, inputs))
     _warn(result.warnings, 2)
     return result
 
 
 _with_fit_parameters(fit)
+
+
+class Simulation(NamedTuple):
+    """A synthetic curve (:func:`simulate`): float64 arrays in SI units, ``a`` and ``t`` empty
+    where not made. ``fit(delta, P, scene, t=t, segment=segment)`` fits it back."""
+    t: npt.NDArray[np.float64]
+    delta: npt.NDArray[np.float64]
+    P: npt.NDArray[np.float64]
+    a: npt.NDArray[np.float64]
+    segment: npt.NDArray[np.int64]
+    source: str
+
+
+def simulate(scene: SceneLike, *, max_indentation: float, speed: float = 0.0, retract_speed: float = 0.0,
+             dwell: float = 0.0, points: int = 500, free_fraction: float = 0.5, noise: float = 0.0, seed: int = 1,
+             with_radius: bool = False, branch: Branch = "all", delta0: float = 0.0, P0: float = 0.0,
+             control: Literal["grips", "cantilever"] = "grips", stiffness: Optional[float] = None) -> Simulation:
+    """A synthetic curve of a scene: the fit's own physics, at equilibrium or in time.
+
+    Parameters
+    ----------
+    scene : Scene, dict or path
+        The scene (see :func:`scene`); a relaxing medium (``medium.viscoelastic``) or crack
+        kinetics (``adhesion.kinetics``) answer in time and need a ``speed``.
+    max_indentation : float
+        The deepest indentation beyond first contact [m], > 0.
+    speed : float, default 0
+        The indenter's approach speed [m/s]; > 0 samples the curve in time (``t`` from 0).
+    retract_speed : float, default 0
+        The retract's speed [m/s] (0: ``speed``).
+    dwell : float, default 0
+        A rest at the deepest point [s] (dwell samples, segment 2; needs ``speed``).
+    points : int, default 500
+        Samples per branch, >= 2.
+    free_fraction : float, default 0.5
+        Fraction of ``max_indentation`` sampled off contact, >= 0.
+    noise : float, default 0
+        Standard deviation of Gaussian force noise [N].
+    seed : int, default 1
+        The noise's seed.
+    with_radius : bool, default False
+        Also return the contact radius ``a`` [m].
+    branch : {"approach", "retract", "all"}, default "all"
+        Which samples to return (a retract in time keeps its history's times).
+    delta0, P0 : float, default 0
+        Contact-point offset [m] and force baseline [N] added to every sample.
+    control : {"grips", "cantilever"}, default "grips"
+        With crack kinetics: what drives the retract - the indenter itself, or a cantilever's
+        base (``stiffness`` [N/m]).
+    stiffness : float, optional
+        The cantilever's stiffness [N/m] (``control="cantilever"``).
+
+    Returns
+    -------
+    Simulation
+        t, delta, P, a, segment and the model's name; ``layerjkr simulate`` writes the same.
+
+    Raises
+    ------
+    InputError
+        A relaxing medium or crack kinetics without a speed, adhesion on a relaxing medium, a
+        cantilever without crack kinetics, an unknown choice (named).
+    DomainError
+        An option outside its range (named).
+    """
+    o = _core.simulation_options(
+        max_indentation=_number("max_indentation", max_indentation), speed=_number("speed", speed),
+        retract_speed=_number("retract_speed", retract_speed), dwell=_number("dwell", dwell),
+        points=_integer("points", points), free_fraction=_number("free_fraction", free_fraction),
+        noise=_number("noise", noise), seed=_integer("seed", seed), with_radius=bool(with_radius),
+        branch=_text("branch", branch), delta0=_number("delta0", delta0), P0=_number("P0", P0),
+        control=_text("control", control), stiffness=0.0 if stiffness is None else _number("stiffness", stiffness))
+    t, d, p, a, seg, source = _core.simulate(_as_scene(scene), o)
+    return Simulation(t, d, p, a, np.asarray(seg, dtype=np.int64), source)
+
+
+class JointFitResult(NamedTuple):
+    """Curves of one sample fitted together (:func:`fit_joint`).
+
+    ``fit`` holds the shared parameters, then each curve's own (``"delta0[2]"``: curve 2,
+    counting from 1), with one covariance; its samples are every curve's in turn, curve ``k``'s
+    at ``slice(curve_begin[k], curve_begin[k + 1])``. ``alone`` has each curve fitted by
+    itself, what one speed says alone."""
+    fit: "FitResult"
+    alone: List["FitResult"]
+    curve_begin: npt.NDArray[np.int64]
+    sources: List[str]
+
+
+def _curve_tuple(c: Any, k: int) -> Tuple[Any, Any, Optional[List[int]], Optional[Any]]:
+    """One curve of fit_joint: a Simulation, a mapping with delta, P[, segment][, t], or a tuple."""
+    if isinstance(c, Simulation):
+        return (_float64(c.delta), _float64(c.P), _segments(c.segment), _float64(c.t) if len(c.t) else None)
+    if isinstance(c, dict):
+        missing = [key for key in ("delta", "P") if key not in c]
+        if missing:
+            raise InputError("curves[%d] has no %s" % (k, " or ".join(missing)))
+        seg, t = c.get("segment"), c.get("t")
+        return (_float64(c["delta"]), _float64(c["P"]), None if seg is None else _segments(seg),
+                None if t is None else _float64(t))
+    if isinstance(c, (tuple, list)) and 2 <= len(c) <= 4:
+        seg = c[2] if len(c) > 2 else None
+        t = c[3] if len(c) > 3 else None
+        return (_float64(c[0]), _float64(c[1]), None if seg is None else _segments(seg), None if t is None else _float64(t))
+    raise InputError("curves[%d] is not a curve: give a Simulation, a dict with delta, P[, segment][, t], or a "
+                     "tuple (delta, P[, segment[, t]])" % k)
+
+
+def fit_joint(curves: Sequence[Any], scene: SceneLike, *, free: Union[str, Sequence[str]] = ("E", "delta0"),
+              branch: Branch = "all", control: Control = "auto", spring_constant: Optional[float] = None,
+              loss: Loss = "none", loss_scale: Optional[float] = None, max_iterations: int = 200) -> JointFitResult:
+    """Fit curves of one sample at several speeds together: one law in time, shared.
+
+    Parameters
+    ----------
+    curves : sequence
+        At least 2 curves, each a :class:`Simulation`, a dict with ``delta``, ``P`` and optional
+        ``segment`` and ``t``, or a tuple ``(delta, P[, segment[, t]])``; each with its times.
+    scene : Scene, dict or path
+        A relaxing medium or crack kinetics (see :func:`scene`); the starting values.
+    free : sequence of str or str, default ("E", "delta0")
+        As :func:`fit`; every parameter is shared but delta0 and P0, one per curve.
+    branch, control, spring_constant, loss, loss_scale, max_iterations
+        As :func:`fit`.
+
+    Returns
+    -------
+    JointFitResult
+
+    Raises
+    ------
+    InputError
+        Fewer than 2 curves, an elastic scene, a curve that cannot be fitted alone (named).
+    """
+    options = _options(free, branch, control, spring_constant, "constant", "all", 0.5, loss, loss_scale, 0,
+                       max_iterations, "fit", None, None, None)
+    tuples = [_curve_tuple(c, k) for k, c in enumerate(curves)]
+    s_ = _as_scene(scene)
+    joint, begin, sources, alone = _core.fit_joint(tuples, s_, options)
+    inputs = []
+    for k, (d, p, seg, t) in enumerate(tuples):
+        inputs += [_core.record_bytes("curve %d delta (float64 array)" % (k + 1), d),
+                   _core.record_bytes("curve %d P (float64 array)" % (k + 1), p)]
+        if t is not None:
+            inputs.append(_core.record_bytes("curve %d t (float64 array)" % (k + 1), t))
+    record = _provenance(s_, options, None, inputs)
+    result = JointFitResult(FitResult(joint, options.branch, record), [FitResult(a, options.branch) for a in alone],
+                            np.asarray(begin, dtype=np.int64), list(sources))
+    _warn(result.fit.warnings, 2)
+    return result
 
 
 def _float64(a: npt.ArrayLike) -> npt.NDArray[np.float64]:

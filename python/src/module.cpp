@@ -108,8 +108,14 @@ py::tuple curve(const Scene& scene, const Array& radii, double warning_threshold
   return py::make_tuple(block, c.warnings, c.model, c.reference, choice, c.seconds, c.notices);
 }
 
-SummaryAnswer summary(const Scene& scene, double warning_threshold) {
-  const AnswerOptions options = answer_options(warning_threshold);
+SummaryAnswer summary(const Scene& scene, double warning_threshold, const std::optional<std::string>& control,
+                      double rate, double stiffness, double start_force) {
+  AnswerOptions options = answer_options(warning_threshold);
+  if (control) {
+    options.retract = RetractDrive{parse_enum<RetractControl>(*control, "control"), rate, stiffness};
+    options.retract_start_force = start_force;
+    options.validate();
+  }
   py::gil_scoped_release release;
   return solve_summary(scene, options);
 }
@@ -153,15 +159,74 @@ CsvOptions csv_options(const std::string& units, std::optional<double> spring_co
   return c;
 }
 
-FitSummary fit_arrays(const Array& delta, const Array& P, const std::optional<std::vector<int>>& segment,
-                      const Scene& scene, const FitOptions& options) {
+// One curve from arrays: delta, P, optional segment labels and times.
+CurveData curve_of(const Array& delta, const Array& P, const std::optional<std::vector<int>>& segment,
+                   const std::optional<Array>& t, const std::string& source) {
   CurveData c;
   c.delta = to_vector(delta, "delta");
   c.P = to_vector(P, "P");
-  c.source = "array";
+  c.source = source;
   if (segment) c.segment = *segment;
+  if (t) c.t = to_vector(*t, "t");
+  return c;
+}
+
+FitSummary fit_arrays(const Array& delta, const Array& P, const std::optional<std::vector<int>>& segment,
+                      const std::optional<Array>& t, const Scene& scene, const FitOptions& options) {
+  const CurveData c = curve_of(delta, P, segment, t, "array");
   py::gil_scoped_release release;
   return fit(c, scene, options);
+}
+
+// Curves as (delta, P, segment, t) tuples, fitted jointly: (joint summary, curve_begin, sources, alone).
+py::tuple fit_joint_arrays(const std::vector<std::tuple<Array, Array, std::optional<std::vector<int>>, std::optional<Array>>>& curves,
+                           const Scene& scene, const FitOptions& options) {
+  std::vector<CurveData> cs;
+  for (std::size_t k = 0; k < curves.size(); ++k) {
+    const auto& [d, P, seg, t] = curves[k];
+    cs.push_back(curve_of(d, P, seg, t, "curve " + std::to_string(k + 1)));
+  }
+  JointFitSummary j;
+  {
+    py::gil_scoped_release release;
+    j = fit_joint(cs, scene, options);
+  }
+  return py::make_tuple(j.fit, j.curve_begin, j.sources, j.alone);
+}
+
+// simulate_curve's arrays: (t, delta, P, a, segment, source); t and a empty where not made.
+py::tuple simulate_py(const Scene& scene, const SimulationOptions& o) {
+  CurveData c;
+  {
+    py::gil_scoped_release release;
+    c = simulate_curve(scene, o);
+  }
+  py::array_t<int> segment(static_cast<py::ssize_t>(c.segment.size()));
+  std::copy(c.segment.begin(), c.segment.end(), segment.mutable_data());
+  return py::make_tuple(to_array(c.t), to_array(c.delta), to_array(c.P), to_array(c.a), segment, c.source);
+}
+
+SimulationOptions simulation_options(double max_indentation, double speed, double retract_speed, double dwell,
+                                     std::size_t points, double free_fraction, double noise, std::uint64_t seed,
+                                     bool with_radius, const std::string& branch, double delta0, double P0,
+                                     const std::string& control, double stiffness) {
+  SimulationOptions o;
+  o.max_indentation = max_indentation;
+  o.speed = speed;
+  o.retract_speed = retract_speed;
+  o.dwell = dwell;
+  o.points_per_branch = points;
+  o.free_fraction = free_fraction;
+  o.noise = noise;
+  o.seed = seed;
+  o.with_radius = with_radius;
+  o.branch = parse_enum<Branch>(branch, "branch");
+  o.delta0 = delta0;
+  o.P0 = P0;
+  o.control = parse_enum<RetractControl>(control, "control");
+  o.cantilever_stiffness = stiffness;
+  o.validate();
+  return o;
 }
 
 BatchOptions batch_options(int jobs) {
@@ -326,10 +391,31 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("choice", &SummaryAnswer::choice)
       .def_property_readonly("warnings", [](const SummaryAnswer& s) { return python::texts(s.warnings); })
       .def_property_readonly("notices", [](const SummaryAnswer& s) { return python::texts(s.notices); })
-      .def_readonly("seconds", &SummaryAnswer::seconds);
+      .def_readonly("seconds", &SummaryAnswer::seconds)
+      .def_property_readonly("kinetic", [](const SummaryAnswer& s) -> py::object {
+        if (!s.kinetic) return py::none();
+        const KineticSummary& k = *s.kinetic;
+        py::dict d;
+        d["drive"] = k.drive.describe();
+        d["control"] = std::string(to_string(k.drive.control));
+        d["rate"] = k.drive.rate;
+        d["rate_unit"] = std::string(k.drive.control == RetractControl::load ? "N/s" : "m/s");
+        d["start_force"] = k.start_force;
+        d["pull_off_force"] = k.pull_off.P;
+        d["pull_off"] = py::make_tuple(k.pull_off.a, k.pull_off.P, k.pull_off.delta);
+        d["pull_off_time"] = k.pull_off_time;
+        d["separation_time"] = k.separation_time;
+        d["equilibrium_pull_off_force"] = k.equilibrium_pull_off.P;
+        d["equilibrium_separation"] =
+            py::make_tuple(k.equilibrium_separation.a, k.equilibrium_separation.P, k.equilibrium_separation.delta);
+        d["rates"] = to_array(k.rates);
+        d["pull_off_forces"] = to_array(k.pull_off_forces);
+        return d;
+      });
 
   m.def("curve", &curve, py::arg("scene"), py::arg("a"), py::arg("warning_threshold"));
-  m.def("summary", &summary, py::arg("scene"), py::arg("warning_threshold"));
+  m.def("summary", &summary, py::arg("scene"), py::arg("warning_threshold"), py::arg("control") = py::none(),
+        py::arg("rate") = 0.0, py::arg("stiffness") = 0.0, py::arg("start_force") = 0.0);
 
   py::class_<FitOptions>(m, "FitOptions", "The library's FitOptions; make them with fit_options().")
       .def_property_readonly("branch", [](const FitOptions& o) { return std::string(to_string(o.branch)); })
@@ -347,7 +433,13 @@ PYBIND11_MODULE(_core, m) {
         py::arg("deflection_sign"), py::arg("curve"));
 
   py::class_<ParameterEstimate>(m, "ParameterEstimate", "One fitted parameter (ParameterEstimate), SI units.")
-      .def_property_readonly("name", [](const ParameterEstimate& p) { return std::string(to_string(p.parameter)); })
+      .def_property_readonly("name", [](const ParameterEstimate& p) {  // a joint fit's own: "delta0[2]"
+        return std::string(to_string(p.parameter)) + (p.curve >= 0 ? "[" + std::to_string(p.curve + 1) + "]" : "");
+      })
+      .def_property_readonly("parameter", [](const ParameterEstimate& p) { return std::string(to_string(p.parameter)); })
+      .def_property_readonly("curve", [](const ParameterEstimate& p) -> py::object {
+        return p.curve >= 0 ? py::object(py::int_(p.curve)) : py::object(py::none());
+      })
       .def_readonly("value", &ParameterEstimate::value)
       .def_readonly("standard_error", &ParameterEstimate::standard_error)
       .def_readonly("initial", &ParameterEstimate::initial)
@@ -394,6 +486,7 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("delta", [](const FitSummary& s) { return to_array(s.delta); })
       .def_property_readonly("P", [](const FitSummary& s) { return to_array(s.P); })
       .def_property_readonly("P_fit", [](const FitSummary& s) { return to_array(s.P_fit); })
+      .def_property_readonly("t", [](const FitSummary& s) { return to_array(s.t); })
       .def_property_readonly("excluded", [](const FitSummary& s) { return to_bool_array(s.excluded); })
       .def_readonly("excluded_count", &FitSummary::excluded_count)
       .def_readonly("baseline_slope", &FitSummary::baseline_slope)
@@ -426,7 +519,15 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("grid_x", &BatchItem::grid_x)
       .def_readonly("grid_y", &BatchItem::grid_y);
 
-  m.def("fit", &fit_arrays, py::arg("delta"), py::arg("P"), py::arg("segment"), py::arg("scene"), py::arg("options"));
+  m.def("fit", &fit_arrays, py::arg("delta"), py::arg("P"), py::arg("segment"), py::arg("t"), py::arg("scene"),
+        py::arg("options"));
+  m.def("fit_joint", &fit_joint_arrays, py::arg("curves"), py::arg("scene"), py::arg("options"));
+  py::class_<SimulationOptions>(m, "SimulationOptions", "The library's SimulationOptions; make them with simulation_options().");
+  m.def("simulation_options", &simulation_options, py::kw_only(), py::arg("max_indentation"), py::arg("speed"),
+        py::arg("retract_speed"), py::arg("dwell"), py::arg("points"), py::arg("free_fraction"), py::arg("noise"),
+        py::arg("seed"), py::arg("with_radius"), py::arg("branch"), py::arg("delta0"), py::arg("P0"), py::arg("control"),
+        py::arg("stiffness"));
+  m.def("simulate", &simulate_py, py::arg("scene"), py::arg("options"));
   m.def("fit_batch", &fit_batch_py, py::arg("curves"), py::arg("scene"), py::arg("options"), py::arg("jobs"),
         py::arg("display_points") = 0);
   m.def("fit_files", &fit_files_py, py::arg("paths"), py::arg("scene"), py::arg("options"), py::arg("csv"),
