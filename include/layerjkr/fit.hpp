@@ -41,6 +41,22 @@
 //     solved per parameter vector on 31 radii and interpolated (E by exact scaling, w and
 //     sigma0 by forward differences): seconds per fit, not milliseconds (docs/fitting.md).
 //
+// In time. A scene whose medium relaxes (medium.viscoelastic) or whose adhesion has kinetics
+// (adhesion.kinetics) is fitted in time, against every sample of the curve with its time
+// (CurveData::t; InputError without it) - the history the force depends on - whatever the branch,
+// which chooses only the samples that are residuals:
+//   hereditary (a relaxing half-space, layer or stack, w = 0): Lee-Radok up to the deepest sample,
+//     Ting's rule after (viscoelastic.hpp), over the measured indentation delta_i - delta0; free
+//     E (instantaneous; a power law's at t0), E_inf and tau (a one-term Prony law), beta (a power
+//     law), delta0, P0. Exact Jacobians; tens of milliseconds for curves of ~1 000 samples.
+//   kinetic (crack kinetics on an elastic medium): approach and dwell at equilibrium (as above),
+//     the retract by the crack's ODE from the equilibrium contact at the deepest sample, driven by
+//     the measured indentation (kinetics.hpp); free E (or K, G), w (w0), v_star, n, delta0, P0. The
+//     retract's Jacobian by central differences of the ODE: seconds per fit.
+// Both start from an elastic fit of the scene without its time and a scan of the law's time scale;
+// contact-point methods, ranges, retract windows and a tilted baseline are refused there.
+// fit_joint fits several such curves of one sample together.
+//
 // Internally parameters are dimensionless: log(K/K0), log(E/E0), log(R/R0), log(sigma0/sigma0_0),
 // G/(K0 L^2), sqrt(w/w0) (so w = 0 is a regular bound), delta0/L, P0/F, with L and F
 // the data's length and force scales; residuals are divided by F.

@@ -160,8 +160,8 @@ ResolvedModel resolve_model(const Scene& s) {
   if (s.medium.relaxation.kind != RelaxationLaw::Kind::elastic)
     r.warnings.push_back("the medium relaxes (" + s.medium.relaxation.describe() +
                          "); this answer is its elastic response at E, the instantaneous modulus (a power law's "
-                         "modulus at t0): the time-dependent response is lee_radok_loading's (viscoelastic.hpp), "
-                         "not yet an answer or a fit of its own");
+                         "modulus at t0): its response in time is simulate's with a speed (Lee-Radok and Ting), "
+                         "and a fit of a curve with its times");
   return r;
 }
 
