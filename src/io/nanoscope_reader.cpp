@@ -4,6 +4,7 @@
 // ../shared/data/instrument/bruker/FORMAT_NOTES.md.
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <optional>
 
@@ -132,6 +133,17 @@ class NanoscopeSource final : public CurveSource {
     // Fields are read where needed: a ramp that is missing or empty ('') costs the durations
     // (0, unknown) and, without a Z sensor, the height of each curve - never the file.
     const NanoscopeSection* force = h_.section("Ciao force list");
+    // A surface hold (dwell) stored with each curve: AtomicJ reads its samples after the retract
+    // block, but no public file has one, so where they lie is unverified - refused, not misread.
+    if (force)
+      if (const std::string* hold = force->find_any_case("Hold Samples")) {
+        char* end = nullptr;
+        const double n = std::strtod(hold->c_str(), &end);
+        if (end != hold->c_str() && n > 0.0)
+          h_.fail(*force, "\\Hold Samples = " + *hold + ": each curve stores a surface hold (a dwell), whose place "
+                          "among the curve's samples no public file lets us check (AtomicJ reads it after the retract); "
+                          "it is not read rather than read wrong - a file with a hold would let it be checked");
+      }
     const NanoscopeParameter ramp = ramp_parameter(*defl_section, force);
     if (!sensor_) {
       if (ramp.hard_value)

@@ -29,6 +29,7 @@ struct NanoscopeSpec {
   long long data_length = -1;       ///< the deflection's `Data length` if >= 0
   long long data_offset = -1;       ///< its `Data offset` if >= 0
   std::string extra_scan_lines;     ///< lines added to the scan list
+  std::string extra_force_lines;    ///< lines added to the force list
 };
 
 /// Little-endian two's complement samples of `bytes` bytes each.
@@ -56,7 +57,7 @@ inline std::string nanoscope_file(const NanoscopeSpec& s) {
                     "\r\n\\Samps/line: " + std::to_string(s.points) + "\r\n\\Lines: " + std::to_string(s.lines) +
                     "\r\n\\Capture mode : Single\r\n\\PF PGain\t: 99.8\r\n" + s.extra_scan_lines +
                     "\\@Sens. DeflSens: " + s.defl_sens + "\r\n\\@Sens. ZsensSens: V 500.0000 nm/V\r\n"
-                    "\\*Ciao force list\r\n\\Scan rate: 1.0\r\n\\Forward vel.: 80\r\n\\Reverse vel.: 160\r\n"
+                    "\\*Ciao force list\r\n\\Scan rate: 1.0\r\n\\Forward vel.: 80\r\n\\Reverse vel.: 160\r\n" + s.extra_force_lines +
                     "\\Samps/line: " + samps + "\r\n\\@4:Ramp Size Zsweep: V [Sens. Zsens] (\\Data length V/LSB) 1 V\r\n"
                     "\\*Ciao force image list\r\n\\Data offset: " + std::to_string(defl_at) +
                     "\r\n\\Data length: " + defl_len + "\r\n\\Bytes/pixel: 2\r\n\\Samps/line: " + samps +

@@ -312,6 +312,14 @@ TEST_CASE("nanoscope: damaged and foreign files give an InputError naming the fi
     return error(name, test::nanoscope_file(s));
   };
   using Catch::Contains;
+  // A surface hold is refused, not misread; a hold of 0 samples (every public file's) reads.
+  CHECK_THAT(spec_error("hold.spm", [](test::NanoscopeSpec& s) { s.extra_force_lines = "\\Hold Samples: 12\r\n\\Hold Time: 0.5\r\n"; }),
+             Contains("hold.spm") && Contains("Hold Samples = 12") && Contains("not read rather than read wrong"));
+  {
+    test::NanoscopeSpec s = good;
+    s.extra_force_lines = "\\Hold Type: Z Drive\r\n\\Hold Samples: 0\r\n\\Hold Time: 0\r\n";
+    CHECK(open_nanoscope(write("no_hold.spm", s), ReadLimits{})->curve(0).segments.size() == 2);
+  }
   CHECK_THAT(error("trunc_header.spm", bytes.substr(0, 300)), Contains("trunc_header.spm") && Contains("File list end"));
   std::string no_end = bytes;
   no_end.replace(no_end.find("\\*File list end"), 5, "\\*XXX");
