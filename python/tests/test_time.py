@@ -73,3 +73,14 @@ def test_time_bad_input():
         layerjkr.fit(s.delta, s.P, CELL, free="E", segment=s.segment)
     with pytest.raises(layerjkr.InputError, match="segment"):
         layerjkr.fit(s.delta, s.P, CELL, free="E", segment=np.full(len(s.P), 3), t=s.t)
+
+
+def test_docs_in_time_example_runs():
+    """docs/python.md's "In time" block, run as written: the documented scenes parse and answer."""
+    import pathlib
+    text = (pathlib.Path(__file__).resolve().parents[2] / "docs" / "python.md").read_text()
+    block = text[text.index("## In time"):].split("```python", 1)[1].split("```", 1)[0]
+    names = {"layerjkr": layerjkr}
+    exec(compile(block, "docs/python.md", "exec"), names)
+    assert abs(names["r"].values["tau"] - 0.2) < 3 * names["r"].errors["tau"]
+    assert names["j"].fit.parameters[:3] == ("E", "E_inf", "tau")

@@ -3,7 +3,11 @@
 // line, nothing written).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -154,4 +158,50 @@ TEST_CASE("fit --joint: curves at three speeds fitted together, the report with 
   const Run unknown = run("fit " + files[0] + " --scene " + scene + " --free E,Einf");
   CHECK(unknown.code == 2);
   CHECK(unknown.err.find("E_inf, tau, beta, v_star, n") != std::string::npos);
+}
+
+TEST_CASE("fit-map fits relaxing curves in time: the law's columns, within their errors, and the report", "[cli][simulate]") {
+  const std::string scene = write_file("cell4.json", kCell);
+  const std::filesystem::path dir = fresh_dir("relaxing_map");
+  for (const char* seed : {"1", "2", "3"}) {
+    const Run s = run("simulate " + scene + " --max-indentation 2e-6 --speed 2e-6 --points 150 --noise 5e-11 --seed " +
+                      seed + " --out " + (dir / (std::string("c") + seed + ".csv")).string());
+    REQUIRE(s.code == 0);
+  }
+  const std::string table = unique("relaxing_map.csv"), report = unique("relaxing_report");
+  const Run r = run("fit-map " + dir.string() + " --scene " + scene + " --free E,E_inf,tau,delta0 --branch all --out " +
+                    table + " --report " + report);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const std::vector<std::string> rows = lines(slurp(table));
+  REQUIRE(rows.size() == 4);
+  const auto cells = [](const std::string& row) {  // the leading cells; the quoted notices come last
+    std::vector<std::string> out;
+    std::string cell;
+    for (char ch : row) {
+      if (ch == '"') break;
+      if (ch == ',') {
+        out.push_back(cell);
+        cell.clear();
+      } else {
+        cell += ch;
+      }
+    }
+    return out;
+  };
+  const std::vector<std::string> head = cells(rows[0]);
+  const auto column = [&](const std::string& name) {
+    const auto it = std::find(head.begin(), head.end(), name);
+    REQUIRE(it != head.end());
+    return static_cast<std::size_t>(it - head.begin());
+  };
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const std::vector<std::string> row = cells(rows[k]);
+    CHECK(row.at(column("status")) == "ok");
+    for (const auto& [name, truth] : {std::pair<std::string, double>{"E", 2000.0}, {"E_inf", 800.0}, {"tau", 0.2}}) {
+      const double value = std::stod(row.at(column(name))), error = std::stod(row.at(column(name + "_stderr")));
+      CHECK(std::abs(value - truth) < 3.0 * error);
+    }
+  }
+  CHECK(slurp(report + "/index.html").find("E_inf") != std::string::npos);
 }
