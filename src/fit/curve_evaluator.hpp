@@ -97,7 +97,7 @@ struct BranchStart {
   double a = 0.0, delta = 0.0;
 };
 
-class CurveEvaluator final : public ResidualModel {
+class CurveEvaluator final : public ResidualStore {
  public:
   /// cantilever_k [N/m]: 0 for a load-controlled retract, > 0 for one a cantilever of that
   /// stiffness controls (infinity: fixed grips).
@@ -106,13 +106,6 @@ class CurveEvaluator final : public ResidualModel {
   /// Residuals (and the row-major Jacobian, residuals x free) at x. False if the
   /// model cannot be evaluated there (a radius outside the model's domain).
   bool evaluate(const double* x, bool jacobian) override;
-  const std::vector<double>& residuals() const override { return r_; }
-  const std::vector<double>& jacobian() const override { return J_; }
-  /// Model force at each sample (P0 included) and contact flags of the last evaluation.
-  const std::vector<double>& predicted() const override { return P_fit_; }
-  std::size_t in_contact() const override { return contact_count_; }
-  /// Per sample of the last evaluation: a retract sample the model has already let go of.
-  const std::vector<char>& detached() const override { return detached_; }
   /// Forget cached residuals (after the data's weights changed).
   void invalidate() override { have_cache_ = false; }
   /// Number of samples (residual groups).
@@ -146,11 +139,8 @@ class CurveEvaluator final : public ResidualModel {
   double a_typ_ = 0.0;
   std::array<double, 4> start_cache_{0.0, 0.0, 0.0, 0.0};
   double cantilever_k_ = 0.0;
-  std::vector<char> detached_;
   std::vector<double> x_cache_;
   bool have_cache_ = false, have_jac_ = false, cache_ok_ = false, reuse_radii_ = false;
-  std::vector<double> r_, J_, P_fit_;
-  std::size_t contact_count_ = 0;
 };
 
 }  // namespace layerjkr::detail

@@ -39,7 +39,7 @@ bool JointEvaluator::evaluate(const double* x, bool jacobian) {
   if (jacobian) J_.assign(rows_total * globals_, 0.0);
   P_fit_.clear();
   detached_.clear();
-  contact_ = 0;
+  contact_count_ = 0;
   for (std::size_t k = 0; k < parts_.size(); ++k) {
     const Part& p = parts_[k];
     const std::size_t n_local = p.slot.size();
@@ -55,7 +55,7 @@ bool JointEvaluator::evaluate(const double* x, bool jacobian) {
     }
     P_fit_.insert(P_fit_.end(), p.model->predicted().begin(), p.model->predicted().end());
     detached_.insert(detached_.end(), p.model->detached().begin(), p.model->detached().end());
-    contact_ += p.model->in_contact();
+    contact_count_ += p.model->in_contact();
   }
   return true;
 }

@@ -10,7 +10,7 @@
 
 namespace layerjkr::detail {
 
-class JointEvaluator final : public ResidualModel {
+class JointEvaluator final : public ResidualStore {
  public:
   struct Part {
     ResidualModel* model = nullptr;  ///< borrowed; outlives the evaluator
@@ -19,11 +19,6 @@ class JointEvaluator final : public ResidualModel {
   JointEvaluator(std::vector<Part> parts, std::size_t globals);
 
   bool evaluate(const double* x, bool jacobian) override;
-  const std::vector<double>& residuals() const override { return r_; }
-  const std::vector<double>& jacobian() const override { return J_; }
-  const std::vector<double>& predicted() const override { return P_fit_; }
-  std::size_t in_contact() const override { return contact_; }
-  const std::vector<char>& detached() const override { return detached_; }
   void invalidate() override;
   std::size_t points() const override { return first_point_.back(); }
   std::size_t row(std::size_t i) const override;
@@ -37,9 +32,7 @@ class JointEvaluator final : public ResidualModel {
   std::vector<Part> parts_;
   std::size_t globals_;
   std::vector<std::size_t> first_point_, first_row_;
-  std::vector<double> r_, J_, P_fit_, local_;
-  std::vector<char> detached_;
-  std::size_t contact_ = 0;
+  std::vector<double> local_;
 };
 
 }  // namespace layerjkr::detail

@@ -1,7 +1,8 @@
 // Internal: what a fit's Ceres solves, error bars and diagnoses need of a forward model - the
 // residuals of its samples and their Jacobian at a parameter vector x, with what the model predicts
 // there. The equilibrium curves (curve_evaluator.hpp), the hereditary and kinetic models in time
-// (time_evaluators.hpp) and a joint fit of several curves (joint_evaluator.hpp) implement it.
+// (time_evaluators.hpp) and a joint fit of several curves (joint_evaluator.hpp) implement it over
+// ResidualStore.
 #pragma once
 
 #include <cstddef>
@@ -29,6 +30,21 @@ class ResidualModel {
   virtual std::size_t points() const = 0;
   virtual std::size_t row(std::size_t i) const = 0;
   virtual std::size_t rows(std::size_t i) const = 0;
+};
+
+/// What every evaluator keeps of its last evaluation, and the accessors over it.
+class ResidualStore : public ResidualModel {
+ public:
+  const std::vector<double>& residuals() const final { return r_; }
+  const std::vector<double>& jacobian() const final { return J_; }
+  const std::vector<double>& predicted() const final { return P_fit_; }
+  std::size_t in_contact() const final { return contact_count_; }
+  const std::vector<char>& detached() const final { return detached_; }
+
+ protected:
+  std::vector<double> r_, J_, P_fit_;
+  std::vector<char> detached_;
+  std::size_t contact_count_ = 0;
 };
 
 }  // namespace layerjkr::detail

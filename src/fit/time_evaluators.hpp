@@ -28,18 +28,13 @@ namespace layerjkr::detail {
 template <class T>
 RelaxationKernel<T> kernel_at(const RelaxationLaw& law, const CurveParameters<T>& p, double t_lo, double t_hi);
 
-class HereditaryEvaluator final : public ResidualModel {
+class HereditaryEvaluator final : public ResidualStore {
  public:
   /// model: the medium's elastic curve family (its adhesion unused: w = 0); data.t: the times.
   /// Borrows everything; they outlive the evaluator.
   HereditaryEvaluator(const CurveModel& model, const ParameterMap& map, const FitData& data, const RelaxationLaw& law);
 
   bool evaluate(const double* x, bool jacobian) override;
-  const std::vector<double>& residuals() const override { return r_; }
-  const std::vector<double>& jacobian() const override { return J_; }
-  const std::vector<double>& predicted() const override { return P_fit_; }
-  std::size_t in_contact() const override { return contact_count_; }
-  const std::vector<char>& detached() const override { return detached_; }
   void invalidate() override { have_cache_ = false; }
   std::size_t points() const override { return data_.P.size(); }
   std::size_t row(std::size_t i) const override { return i; }
@@ -55,13 +50,11 @@ class HereditaryEvaluator final : public ResidualModel {
   const RelaxationLaw& law_;
   CurveEvaluator radii_;  // its radius solver (delta_H(a) = delta - delta0), nothing else
   double t_lo_ = 0.0, t_hi_ = 0.0;
-  std::vector<double> a_cache_, x_cache_, r_, J_, P_fit_;
-  std::vector<char> detached_;
-  std::size_t contact_count_ = 0;
+  std::vector<double> a_cache_, x_cache_;
   bool have_cache_ = false, have_jac_ = false, cache_ok_ = false;
 };
 
-class KineticEvaluator final : public ResidualModel {
+class KineticEvaluator final : public ResidualStore {
  public:
   /// model: the medium's JKR curve family; data: every sample in acquisition order with its time
   /// and segment; kinetics: the law's shape (v_star and n come from the parameters).
@@ -69,11 +62,6 @@ class KineticEvaluator final : public ResidualModel {
   ~KineticEvaluator() override;
 
   bool evaluate(const double* x, bool jacobian) override;
-  const std::vector<double>& residuals() const override { return r_; }
-  const std::vector<double>& jacobian() const override { return J_; }
-  const std::vector<double>& predicted() const override { return P_fit_; }
-  std::size_t in_contact() const override { return contact_count_; }
-  const std::vector<char>& detached() const override { return detached_; }
   void invalidate() override;
   std::size_t points() const override { return data_.P.size(); }
   std::size_t row(std::size_t i) const override { return i; }
@@ -91,9 +79,7 @@ class KineticEvaluator final : public ResidualModel {
   std::vector<std::size_t> retract_;       // the retract samples' indices
   std::size_t turn_ = 0;                   // the last sample before the retract
   std::unique_ptr<CurveEvaluator> equilibrium_ev_;
-  std::vector<double> x_cache_, r_, J_, P_fit_;
-  std::vector<char> detached_;
-  std::size_t contact_count_ = 0;
+  std::vector<double> x_cache_;
   bool have_cache_ = false, have_jac_ = false, cache_ok_ = false;
 };
 
