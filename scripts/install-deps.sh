@@ -10,7 +10,7 @@
 set -euo pipefail
 packages=(cmake ninja-build g++ libeigen3-dev libgsl-dev libboost-dev libceres-dev libmetis-dev
           catch2 libcli11-dev nlohmann-json3-dev libbenchmark-dev gnuplot-nox
-          clang clang-tidy libclang-rt-14-dev libzip-dev zipcmp zipmerge ziptool zlib1g-dev libssl-dev
+          clang clang-tidy libclang-rt-14-dev libzip-dev zipcmp zipmerge ziptool zlib1g-dev libdeflate-dev pkg-config libssl-dev
           pybind11-dev python3-dev python3-pybind11 python3-numpy python3-pytest python3-setuptools
           python3-pip python3-matplotlib python3-dask python3-distributed
           python3-selenium chromium chromium-driver fonts-liberation)

@@ -71,6 +71,7 @@ struct ExactLayerState {
   NonAdhesiveState state;
   double P_H_error = 0.0;      ///< estimated relative error of P_H (NaN if not estimated)
   double delta_H_error = 0.0;  ///< estimated relative error of delta_H (NaN if not estimated)
+  double S_error = 0.0;        ///< estimated relative error of S (NaN if not estimated)
   int unknowns = 0;            ///< Nystrom nodes of the fine solve
 };
 

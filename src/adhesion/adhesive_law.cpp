@@ -212,7 +212,7 @@ std::shared_ptr<const detail::DugdaleSolver> detail::make_dugdale_solver(const C
   if (spec.kind == ModelKind::exact) {
     auto kernel = spec.stack ? std::make_shared<ExactLayerKernel>(*spec.stack, spec.exact)
                              : std::make_shared<ExactLayerKernel>(spec.layer, spec.exact);
-    return std::make_shared<detail::DugdaleSolver>(std::move(profile), std::move(kernel));
+    return std::make_shared<detail::DugdaleSolver>(std::move(profile), std::move(kernel), /*tabulate=*/true);
   }
   throw InputError(std::string(what) + " is solved on the half-space and on the exact layer or stack (model \"exact\"), not on model \"" +
                    std::string(to_string(spec.kind)) + "\": the thin-layer and foundation laws do not give the gap outside the contact");

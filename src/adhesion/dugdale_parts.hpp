@@ -28,6 +28,8 @@ struct DugdaleSolver::Inner {
 struct DugdaleSolver::Zone {
   double c = 0.0, gamma = 0.0, s0 = 0.0;  // c [m], c/h, sigma0/E*
   double delta = 0.0;                     // [m]
+  double delta_H = 0.0;                   // its non-adhesive part, endf/end0 [m]
+  double gap_profile = 0.0;               // the gap at c of the non-adhesive state (s0 = 0) [m]
   double intD = 0.0;                      // int_0^a phi_D dt/h [m]
   double gap_c = 0.0;                     // the gap at c [m]
   Eigen::VectorXd psi_q;                  // W^1/2 q on the inner nodes [m]

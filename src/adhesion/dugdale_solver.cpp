@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include <Eigen/Dense>
@@ -14,7 +15,9 @@
 #include "core/gsl_support.hpp"
 #include "layerjkr/error.hpp"
 #include "adhesion/dugdale_parts.hpp"
+#include "adhesion/dugdale_table.hpp"
 #include "models/exact_layer_solver.hpp"
+#include "models/exact_power_law_table.hpp"
 
 namespace layerjkr::detail {
 namespace {
@@ -32,13 +35,112 @@ int theta_panels(const ExactLayerOptions& o, double arc_over_h, bool layer) {
 
 }  // namespace
 
-DugdaleSolver::DugdaleSolver(ProfilePtr profile, std::shared_ptr<const ExactLayerKernel> kernel)
+DugdaleSolver::DugdaleSolver(ProfilePtr profile, std::shared_ptr<const ExactLayerKernel> kernel, bool tabulate)
     : profile_(std::move(profile)), kernel_(std::move(kernel)) {
   if (!profile_) throw DomainError("DugdaleSolver", "profile", 0.0, "a profile (not null)");
   if (!kernel_) throw DomainError("DugdaleSolver", "kernel", 0.0, "an exact-layer kernel (not null)");
   E_star_ = kernel_->effective_modulus();
   h_ = kernel_->layer().h;
   options_ = kernel_->options();
+  if (tabulate && options_.tabulate_power_laws)
+    if (const std::optional<PowerLawForm> form = profile_->power_law_form()) {
+      form_ = *form;
+      table_ = shared_dugdale_table(kernel_->medium(), form->d, options_);
+      moments_table_ = shared_power_law_table(kernel_->medium(), form->d, options_);
+    }
+}
+
+double DugdaleSolver::table_error() const { return table_ ? table_->measured_error() : 0.0; }
+
+ExactMoments DugdaleSolver::moments(double a) const {
+  const double rho = a / h_;
+  if (a == 0.0) return ExactMoments{0.0, 0.0, 1.0, 0.0};
+  if (moments_table_ && moments_table_->covers(rho)) {
+    ExactMoments m = moments_table_->at(rho);
+    const double scale = form_.B * std::pow(h_, form_.d);
+    m.intf *= scale;
+    m.endf *= scale;
+    return m;
+  }
+  return exact_moments(*kernel_, *profile_, rho);
+}
+
+// A state from the table: its zone radius from gap(c) = h0 on the tabulated parts, then delta
+// and P in closed form; the errors from the pieces' measured errors (dugdale_table.hpp).
+struct DugdaleSolver::TableState {
+  AdhesiveState state;
+  double P_error = 0.0, delta_error = 0.0, c_error = 0.0;
+};
+
+bool DugdaleSolver::from_table(double a, double w, double sigma0, bool md, TableState& out) const {
+  const double rho = a / h_, h0 = w / sigma0, s0 = sigma0 / E_star_, scale = form_.B * std::pow(h_, form_.d);
+  const double c_lo = DugdaleTable::min_c();
+  const double c_hi = std::min({DugdaleTable::max_c(), options_.max_a_over_h, profile_->max_radius() / h_});
+  // The parts at c/h: the table's, or the half-space's below its range (within c/h of them).
+  auto parts = [&](double c) {
+    if (c < c_lo) {
+      DugdaleTable::Parts p = DugdaleTable::half_space(rho, c, form_.d);
+      p.error = c_lo;
+      return p;
+    }
+    return table_->at(rho, c);
+  };
+  auto gap = [&](double c) {
+    const DugdaleTable::Parts p = parts(c);
+    return (md ? s0 * h_ * p.G : 0.0) + scale * p.F - h0;
+  };
+  if (!(rho < c_hi)) return false;
+  // Bracket outwards from c = a (gap 0): steps growing 4x, so only the pieces up to the root are built.
+  double lo = rho, hi = rho > 0.0 ? rho * 1.01 : std::min(c_hi, std::max(c_lo, 0.5 * std::pow(h0 / scale, 1.0 / form_.d)));
+  double f_lo = -h0, f_hi = 0.0;
+  for (;;) {
+    f_hi = gap(hi);
+    if (f_hi >= 0.0) break;
+    if (!(hi < c_hi)) return false;  // the zone passes the table: solved directly
+    lo = hi;
+    f_lo = f_hi;
+    hi = std::min(c_hi, rho + 4.0 * (hi - rho));
+  }
+  double c = hi;
+  if (f_hi > 0.0) {
+    std::uintmax_t iterations = 100;
+    const auto root = boost::math::tools::toms748_solve(gap, lo, hi, f_lo, f_hi,
+                                                        boost::math::tools::eps_tolerance<double>(46), iterations);
+    c = 0.5 * (root.first + root.second);
+  }
+  const DugdaleTable::Parts p = parts(c);
+  const ExactMoments mo = moments(a);
+  const NonAdhesiveState hz = a > 0.0 ? exact_state_from(mo, a, h_, E_star_) : NonAdhesiveState{};
+  AdhesiveState& s = out.state;
+  s.a = a;
+  s.c = c * h_;
+  if (md) {
+    s.delta = mo.endf / mo.end0 + s0 * h_ * p.D;
+    s.P = (a > 0.0 ? hz.P_H : 0.0) + sigma0 * h_ * h_ * p.P;
+    s.hertz.a = a;
+    s.hertz.P_H = s.hertz.delta_H = s.hertz.S = s.hertz.dS_da = kNaN;
+  } else {
+    s.hertz = a > 0.0 ? hz : NonAdhesiveState{};
+    s.hertz.a = a;
+    s.delta = s.hertz.delta_H;
+    s.P = s.hertz.P_H - sigma0 * kPi * (s.c - a) * (s.c + a);
+  }
+  // Errors: each part within error x the larger of itself and its half-space size; c moves by the
+  // gap's error over its slope.
+  const DugdaleTable::Parts hs = DugdaleTable::half_space(rho, c, form_.d);
+  const auto size = [](double part, double half_space) { return std::max(std::abs(part), std::abs(half_space)); };
+  const double gap_error = p.error * ((md ? s0 * h_ * size(p.G, hs.G) : 0.0) + scale * size(p.F, hs.F));
+  const double dc = 1e-6 * c, slope = (gap(std::min(c_hi, c + dc)) - gap(std::max(rho, c - dc))) /
+                                       (std::min(c_hi, c + dc) - std::max(rho, c - dc));
+  out.c_error = slope > 0.0 ? h_ * gap_error / slope : kNaN;
+  const DugdaleTable::Parts up = parts(std::min(c_hi, c + dc));
+  const double dP_dc = md ? sigma0 * h_ * h_ * (up.P - p.P) / dc : -2.0 * sigma0 * kPi * c * h_ * h_;
+  const double ddelta_dc = md ? s0 * h_ * (up.D - p.D) / dc : 0.0;
+  out.P_error = (md ? p.error * sigma0 * h_ * h_ * size(p.P, hs.P) : 0.0) + std::abs(dP_dc) * out.c_error / h_ +
+                1e-9 * std::abs(hz.P_H);  // the power-law table's accuracy
+  out.delta_error = (md ? p.error * s0 * h_ * size(p.D, hs.D) : 0.0) + std::abs(ddelta_dc) * out.c_error / h_;
+  if (!std::isfinite(s.P) || !std::isfinite(s.delta)) return false;
+  return true;
 }
 
 DugdaleSolver::DugdaleSolver(ProfilePtr profile, double E_star) : profile_(std::move(profile)) {
@@ -147,15 +249,23 @@ DugdaleSolver::Zone DugdaleSolver::zone(const Inner& in, double c, double sigma0
     endD = rhs_D(0.0);  // a = 0: no unknowns, the zone's own displacement at the centre
   }
   // g continuous at a: delta end0 - endf + endD = q_D(a).
-  z.delta = (z.q_outer(in.rho, h_) - endD + in.mo.endf) / in.mo.end0;
+  z.delta_H = in.mo.endf / in.mo.end0;
+  z.delta = (z.q_outer(in.rho, h_) - endD) / in.mo.end0 + z.delta_H;
   if (in.system()) z.psi_q = z.delta * in.psi.col(0) - in.psi.col(1) + psiD;
   // The gap at c on the same theta rule: (2/pi) sum omega_k H(t_k) (see gap_at).
   Eigen::VectorXd kernel_part = self;
   if (in.system()) kernel_part += cross * in.grid.sqrt_w.cwiseProduct(z.psi_q);
-  double sum = 0.0;
-  for (Eigen::Index k = 0; k < m; ++k)
-    sum += z.theta.w(k) * (z.q_out(k) - kernel_part(k) / kPi - z.delta + profile_term(*profile_, h_ * z.t_out(k)));
+  // And the non-adhesive state's (the profile's part alone; the same kernel values).
+  Eigen::VectorXd kernel_H = Eigen::VectorXd::Zero(m);
+  if (in.system()) kernel_H = cross * in.grid.sqrt_w.cwiseProduct(z.delta_H * in.psi.col(0) - in.psi.col(1));
+  double sum = 0.0, sum_H = 0.0;
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const double profile = profile_term(*profile_, h_ * z.t_out(k));
+    sum += z.theta.w(k) * (z.q_out(k) - kernel_part(k) / kPi - z.delta + profile);
+    sum_H += z.theta.w(k) * (-kernel_H(k) / kPi - z.delta_H + profile);
+  }
   z.gap_c = (2.0 / kPi) * sum;
+  z.gap_profile = (2.0 / kPi) * sum_H;
   return z;
 }
 
@@ -240,6 +350,25 @@ double DugdaleSolver::find_c(double a, double h0, const char* function, double s
   return 0.5 * (root.first + root.second);
 }
 
+DugdaleParts DugdaleSolver::parts(double a, double c, int nodes) const {
+  const char* fn = "DugdaleSolver::parts";
+  check(fn, a, 0.0, 1.0);
+  if (!(c > a)) throw DomainError(fn, "c", c, "> a = " + format_double(a));
+  check(fn, c, 0.0, 1.0);
+  const Inner in = inner(a, nodes);
+  const Zone z = zone(in, c, E_star_);  // s0 = 1
+  DugdaleParts p;
+  p.delta_H = z.delta_H;
+  p.int0 = in.mo.int0;
+  p.intf = in.mo.intf;
+  p.D = z.delta - z.delta_H;
+  p.P = 2.0 * h_ * (p.D * in.mo.int0 + z.intD) -
+        2.0 * (c * c * std::acos(std::min(1.0, a / c)) - a * std::sqrt((c - a) * (c + a)));
+  p.G = z.gap_c - z.gap_profile;
+  p.F = z.gap_profile;
+  return p;
+}
+
 namespace {
 
 // w = 0: no adhesive zone (c = a), the non-adhesive state for either law.
@@ -255,6 +384,10 @@ AdhesiveState non_adhesive(const ExactMoments& mo, double a, double h, double E_
 }  // namespace
 
 AdhesiveState DugdaleSolver::solve_md(double a, double w, double sigma0, int nodes) const {
+  if (table_ && w > 0.0) {
+    TableState t;
+    if (from_table(a, w, sigma0, true, t)) return t.state;
+  }
   const Inner in = inner(a, nodes);
   if (w == 0.0) return non_adhesive(in.mo, a, h_, E_star_);
   const double h0 = w / sigma0;
@@ -277,6 +410,10 @@ AdhesiveState DugdaleSolver::solve_md(double a, double w, double sigma0, int nod
 }
 
 AdhesiveState DugdaleSolver::solve_dmt(double a, double w, double sigma0, int nodes) const {
+  if (table_ && w > 0.0) {
+    TableState t;
+    if (from_table(a, w, sigma0, false, t)) return t.state;
+  }
   const Inner in = inner(a, nodes);
   if (w == 0.0) return non_adhesive(in.mo, a, h_, E_star_);
   const double h0 = w / sigma0;
@@ -315,6 +452,8 @@ AdhesiveState DugdaleSolver::maugis_dugdale(double a, double w, double sigma0) c
 
 DugdaleEstimate DugdaleSolver::maugis_dugdale_estimate(double a, double w, double sigma0) const {
   check("DugdaleSolver::maugis_dugdale", a, w, sigma0);
+  if (TableState t; table_ && w > 0.0 && from_table(a, w, sigma0, true, t))
+    return DugdaleEstimate{t.state, t.P_error, t.delta_error, t.c_error};
   return with_error(solve_md(a, w, sigma0, fine_nodes(options_)), solve_md(a, w, sigma0, coarse_nodes(options_)));
 }
 
@@ -325,6 +464,8 @@ AdhesiveState DugdaleSolver::dmt(double a, double w, double sigma0) const {
 
 DugdaleEstimate DugdaleSolver::dmt_estimate(double a, double w, double sigma0) const {
   check("DugdaleSolver::dmt", a, w, sigma0);
+  if (TableState t; table_ && w > 0.0 && from_table(a, w, sigma0, false, t))
+    return DugdaleEstimate{t.state, t.P_error, t.delta_error, t.c_error};
   return with_error(solve_dmt(a, w, sigma0, fine_nodes(options_)), solve_dmt(a, w, sigma0, coarse_nodes(options_)));
 }
 

@@ -31,6 +31,10 @@
 
 namespace layerjkr::detail {
 
+class DugdaleTable;
+class ExactPowerLawTable;
+struct ExactMoments;
+
 /// A state with the two-grid error estimate: |fine - coarse| of the same state computed with
 /// p and 3p/4 nodes a panel (inner grid and [a, c] quadrature alike). Absolute, since P
 /// crosses zero: [N], [m], [m].
@@ -41,12 +45,31 @@ struct DugdaleEstimate {
   double c_error = 0.0;
 };
 
+/// The parts of a Dugdale state at contact radius a and zone radius c, linear in the tension
+/// sigma0 and in the profile (docs/theory.md s.4b): with s0 = sigma0/E*,
+///   delta = delta_H + s0 D,   P = P_H + sigma0 P,   gap(c) = s0 G + F.
+/// They depend on (a/h, c/h), the medium and the profile only: Maugis-Dugdale is gap(c) = w/sigma0,
+/// DMT is F = w/sigma0 with delta = delta_H (DugdaleTable tabulates them).
+struct DugdaleParts {
+  double delta_H = 0.0;  ///< the non-adhesive approach endf/end0 [m]
+  double int0 = 0.0;     ///< int_0^a phi0 dt/h (the flat punch's; S = 2 E* h int0)
+  double intf = 0.0;     ///< int_0^a phi_f dt/h [m]
+  double D = 0.0;        ///< delta's tension part per unit s0 [m]
+  double P = 0.0;        ///< P's tension part per unit sigma0 [m^2]
+  double G = 0.0;        ///< the gap at c per unit s0 [m]
+  double F = 0.0;        ///< the non-adhesive state's gap at c [m]
+};
+
 class DugdaleSolver {
  public:
   /// The exact layer or stack of `kernel` (E* and h of its top layer; its options set the
   /// grid: points_per_panel, panel_width, min_panels, max_a_over_h, which also bounds c/h).
-  /// Always dense Cholesky, whatever dense_max_unknowns says.
-  DugdaleSolver(ProfilePtr profile, std::shared_ptr<const ExactLayerKernel> kernel);
+  /// Always dense Cholesky, whatever dense_max_unknowns says. With `tabulate` (the library's
+  /// make_dugdale_solver; the tests of the direct solve leave it off) and the
+  /// options' tabulate_power_laws) a power-law profile's states come from the per-(medium, d)
+  /// DugdaleTable wherever the zone's c/h is within its range (microseconds a state; its
+  /// measured error in every estimate), the rest from direct solves.
+  DugdaleSolver(ProfilePtr profile, std::shared_ptr<const ExactLayerKernel> kernel, bool tabulate = false);
   /// The half-space of plane-strain modulus E_star [Pa] (> 0): Sneddon's closed forms on
   /// [0, a], quadrature only for the gap.
   DugdaleSolver(ProfilePtr profile, double E_star);
@@ -65,6 +88,11 @@ class DugdaleSolver {
   AdhesiveState dmt(double a, double w, double sigma0) const;
   DugdaleEstimate dmt_estimate(double a, double w, double sigma0) const;
 
+  /// The linear parts of the states with contact radius a [m] (>= 0) and zone radius c > a
+  /// [m], solved with `nodes` Gauss-Legendre nodes a panel (options' points_per_panel: the
+  /// states' own).
+  DugdaleParts parts(double a, double c, int nodes) const;
+
   /// Gap [m] between indenter and surface at r >= a [m] in the non-adhesive state at a.
   double non_adhesive_gap(double a, double r) const;
 
@@ -80,6 +108,11 @@ class DugdaleSolver {
                                               const std::vector<double>& radii) const;
 
   double effective_modulus() const { return E_star_; }
+  /// True when power-law states come from a DugdaleTable.
+  bool tabulated() const { return table_ != nullptr; }
+  /// The table's largest measured error so far, relative to each part's half-space size (0 if
+  /// untabulated or nothing built yet).
+  double table_error() const;
   /// True for the half-space (microseconds a state), false for a layer or a stack (milliseconds).
   bool on_half_space() const { return kernel_ == nullptr; }
 
@@ -94,12 +127,19 @@ class DugdaleSolver {
   double find_c(double a, double h0, const char* function, double sigma0,
                 const std::function<double(double)>& gap) const;
   void check(const char* function, double a, double w, double sigma0) const;
+  // The table's path: false when the zone passes the table's range (then a direct solve).
+  struct TableState;
+  bool from_table(double a, double w, double sigma0, bool md, TableState& out) const;
+  ExactMoments moments(double a) const;  // the non-adhesive moments (power-law table or a solve)
 
   ProfilePtr profile_;
   std::shared_ptr<const ExactLayerKernel> kernel_;  // null: the half-space
   double E_star_ = 0.0;
   double h_ = 1.0;  // length unit [m]: the top layer's h, 1 for the half-space
   ExactLayerOptions options_;
+  std::shared_ptr<const DugdaleTable> table_;               // null: every state solved
+  std::shared_ptr<const ExactPowerLawTable> moments_table_;  // the non-adhesive moments of r^d
+  PowerLawForm form_;
 };
 
 /// The solver of `model`'s medium as `spec` describes it: the half-space (E*), or the exact layer

@@ -1,7 +1,7 @@
 // The gnuplot pipe and the mark on its pictures (gnuplot.hpp).
 #include "gnuplot.hpp"
 
-#include <zlib.h>
+#include <libdeflate.h>
 
 #include <array>
 #include <cstdint>
@@ -26,8 +26,7 @@ std::string big_endian(std::uint32_t v) {
 
 std::string mark_chunk() {
   const std::string body = "tEXt" + kMarkData;
-  const auto crc = static_cast<std::uint32_t>(
-      crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
+  const std::uint32_t crc = libdeflate_crc32(0, body.data(), body.size());
   return big_endian(static_cast<std::uint32_t>(kMarkData.size())) + body + big_endian(crc);
 }
 

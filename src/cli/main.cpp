@@ -279,6 +279,8 @@ static int run_main(int argc, char** argv) {
   }
 
   try {
+    // A misspelt LAYERJKR_CACHE* is refused here, not left to switch the cache off quietly.
+    layerjkr::DiskCacheOptions::from_environment();
     if (*curve) return run_curve(scene_path, at, a_max, points);
     const std::vector<std::string> command_line(argv, argv + argc);
     if (*fit && !from_report.empty())

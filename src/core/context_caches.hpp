@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/disk_cache.hpp"
 #include "layerjkr/context.hpp"
 
 namespace layerjkr {
@@ -18,6 +19,7 @@ namespace detail {
 
 class LayerKernelFunction;
 class ExactPowerLawTable;
+class DugdaleTable;
 
 // Shared, immutable values per key, each built once: a request for a key being built waits
 // for that build (so two threads never build the same entry twice) while requests for other
@@ -82,10 +84,16 @@ using PowerLawTableKey = std::tuple<std::vector<double>, double, int, double, in
 }  // namespace detail
 
 struct Context::Caches {
+  explicit Caches(const DiskCacheOptions& options) : disk(std::make_shared<detail::DiskCache>(options)) {}
+  // Kernels and tables between processes (disabled unless the Context was given a directory).
+  // Shared: a table holds it to store the pieces it builds later, after its Context is gone.
+  std::shared_ptr<const detail::DiskCache> disk;
   // ~50 kB a kernel; a session rarely needs more layers.
   detail::BuildOnceCache<detail::KernelKey, detail::LayerKernelFunction> kernels{64};
   detail::BuildOnceCache<detail::StackKernelKey, detail::LayerKernelFunction> stack_kernels{64};
   detail::BuildOnceCache<detail::PowerLawTableKey, detail::ExactPowerLawTable> power_law_tables{64};
+  // the medium's signature, d and the discretisation: Dugdale states of r^d (dugdale_table.hpp)
+  detail::BuildOnceCache<std::vector<double>, detail::DugdaleTable> dugdale_tables{64};
   // nu -> beta: a handful of entries per process.
   detail::BuildOnceCache<double, double> uniform_betas;
 };

@@ -6,7 +6,7 @@
 // entries, and zip_open alone took 1.9 s and 350 MB on it (measured, docs/benchmarks.md), more
 // than the whole read may cost; its handles are not thread-safe either. This index keeps 32
 // bytes per entry plus the names, reads each entry with one positioned read and inflates it
-// with zlib outside any lock. libzip still writes archives (tests, tools).
+// with libdeflate outside any lock. libzip still writes archives (tests, tools).
 #pragma once
 
 #include <atomic>

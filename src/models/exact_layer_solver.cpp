@@ -314,13 +314,14 @@ ExactLayerState ExactLayerKernel::solve(const Profile& profile, double a) const 
   const Discretisation d = discretise(options_, rho);
   const int panels = d.panels, p = d.nodes;
   out.unknowns = panels * p;
-  out.P_H_error = out.delta_H_error = std::numeric_limits<double>::quiet_NaN();
+  out.P_H_error = out.delta_H_error = out.S_error = std::numeric_limits<double>::quiet_NaN();
   if (options_.estimate_error) {  // the same panels with 3/4 of the nodes
     const int coarse = std::max(2, 3 * p / 4);
     const NonAdhesiveState c =
         exact_state_from(nystrom_solve(*this, profile, rho, panels, coarse).moments, a, layer_.h, E_star_);
     out.P_H_error = std::abs(out.state.P_H - c.P_H) / std::abs(out.state.P_H);
     out.delta_H_error = std::abs(out.state.delta_H - c.delta_H) / std::abs(out.state.delta_H);
+    out.S_error = std::abs(out.state.S - c.S) / std::abs(out.state.S);
   }
   return out;
 }

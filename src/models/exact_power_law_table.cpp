@@ -11,12 +11,14 @@
 #include <limits>
 #include <string>
 #include <mutex>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include <boost/math/constants/constants.hpp>
 
 #include "core/context_caches.hpp"
+#include "core/disk_cache.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {
@@ -49,6 +51,8 @@ struct ExactPowerLawTable::Pieces {
   };
   std::array<std::once_flag, kPieces> built;
   std::array<Piece, kPieces> piece;
+  std::once_flag kernel_made;
+  std::unique_ptr<ExactLayerKernel> kernel;
 };
 
 double ExactPowerLawTable::max_rho() { return std::exp(x_min() + kBreaks[kPieces]); }
@@ -57,26 +61,77 @@ double ExactPowerLawTable::min_rho() { return std::exp(x_min() + kBreaks[0]); }
 ExactPowerLawTable::ExactPowerLawTable(double nu, Base base, double d, const ExactLayerOptions& options)
     : ExactPowerLawTable(LayeredMedium::single(ElasticLayer{1.0, nu, 1.0, base}), d, options) {}
 
-ExactPowerLawTable::ExactPowerLawTable(const LayeredMedium& unit_medium, double d, const ExactLayerOptions& options)
+ExactPowerLawTable::ExactPowerLawTable(const LayeredMedium& unit_medium, double d, const ExactLayerOptions& options,
+                                       std::shared_ptr<const DiskCache> disk, std::vector<double> disk_key)
     : d_(d),
       unit_profile_(make_power_law(1.0, d)),
-      unit_kernel_(std::make_unique<ExactLayerKernel>(unit_medium, options)),
+      unit_medium_(unit_medium),
+      options_(options),
+      context_(options.context),
+      disk_(std::move(disk)),
+      disk_key_(std::move(disk_key)),
       pieces_(std::make_unique<Pieces>()) {
   C_ = unit_profile_->sneddon(1.0).I0;
+  unit_medium_.validate("ExactPowerLawTable");
+  options_.context = nullptr;
 }
 
 ExactPowerLawTable::~ExactPowerLawTable() = default;
 
+const ExactLayerKernel& ExactPowerLawTable::unit_kernel() const {
+  std::call_once(pieces_->kernel_made, [&] {
+    ExactLayerOptions o = options_;
+    o.context = context_.lock();  // null after the Context is gone: the global one's kernel (same numbers)
+    pieces_->kernel = std::make_unique<ExactLayerKernel>(unit_medium_, o);
+  });
+  return *pieces_->kernel;
+}
+
+namespace {
+constexpr const char* kPieceKind = "power-law-piece-1";  // a new revision whenever a piece's numbers change
+}
+
+// A piece from the disk cache (4 series of kOrder + 1 coefficients on the piece's interval),
+// or solved and stored there.
+void ExactPowerLawTable::build_piece(int k) const {
+  Pieces::Piece& piece = pieces_->piece[static_cast<std::size_t>(k)];
+  const bool disk = disk_ && disk_->enabled();
+  std::vector<double> key;
+  if (disk) {
+    key = disk_key_;
+    key.push_back(k);
+    if (const std::optional<std::vector<double>> v = disk_->load(kPieceKind, key);
+        v && v->size() == 4 * static_cast<std::size_t>(kOrder + 1)) {
+      const double lo = x_min() + kBreaks[k], hi = x_min() + kBreaks[k + 1];
+      for (std::size_t w = 0; w < 4; ++w) {
+        Cheb c(gsl_cheb_alloc(kOrder));
+        c->a = lo;
+        c->b = hi;
+        c->order_sp = kOrder;
+        std::copy_n(v->begin() + static_cast<std::ptrdiff_t>(w * (kOrder + 1)), kOrder + 1, c->c);
+        piece.series[w] = std::move(c);
+      }
+      return;
+    }
+  }
+  solve_piece(k);
+  if (disk) {
+    std::vector<double> out;
+    for (const Cheb& c : piece.series) out.insert(out.end(), c->c, c->c + kOrder + 1);
+    disk_->store(kPieceKind, key, out);
+  }
+}
+
 // The solves happen here, in C++, at the points where gsl_cheb_init will sample (its
 // documented Chebyshev points); the sampler it calls only looks them up, so no exception
 // crosses GSL's C frames.
-void ExactPowerLawTable::build_piece(int k) const {
+void ExactPowerLawTable::solve_piece(int k) const {
   const double lo = x_min() + kBreaks[k], hi = x_min() + kBreaks[k + 1];
   std::vector<std::pair<double, std::array<double, 4>>> solved;
   for (int j = 0; j <= kOrder; ++j) {
     const double y = std::cos(boost::math::constants::pi<double>() * (j + 0.5) / (kOrder + 1.0));
     const double xs = y * 0.5 * (hi - lo) + 0.5 * (hi + lo), r = std::exp(xs);
-    const ExactMoments m = exact_moments(*unit_kernel_, *unit_profile_, r);
+    const ExactMoments m = exact_moments(unit_kernel(), *unit_profile_, r);
     solved.push_back({xs, {m.int0 / r, m.end0, m.intf / (C_ * std::pow(r, d_ + 1.0)),
                            m.endf / (C_ * std::pow(r, d_))}});
   }
@@ -136,8 +191,13 @@ std::shared_ptr<const ExactPowerLawTable> shared_power_law_table(const LayeredMe
   if (unit.substrate) unit.substrate->E /= top.E;
   const PowerLawTableKey key{StackSymbol(unit, "exact_power_law_table").signature(), d, o.points_per_panel,
                              o.panel_width, o.min_panels};
-  return context_caches(o.context).power_law_tables.get(
-      key, [&] { return std::make_shared<const ExactPowerLawTable>(unit, d, o); });
+  auto& caches = context_caches(o.context);
+  return caches.power_law_tables.get(key, [&] {
+    std::vector<double> disk_key = std::get<0>(key);
+    disk_key.insert(disk_key.end(), {d, static_cast<double>(o.points_per_panel), o.panel_width,
+                                     static_cast<double>(o.min_panels)});
+    return std::make_shared<const ExactPowerLawTable>(unit, d, o, caches.disk, std::move(disk_key));
+  });
 }
 
 }  // namespace layerjkr::detail

@@ -15,11 +15,14 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "layerjkr/layered_medium.hpp"
 #include "models/exact_layer_solver.hpp"
 
 namespace layerjkr::detail {
+
+class DiskCache;
 
 class ExactPowerLawTable {
  public:
@@ -27,7 +30,10 @@ class ExactPowerLawTable {
   /// `options` (their discretisation sets the table's accuracy).
   ExactPowerLawTable(double nu, Base base, double d, const ExactLayerOptions& options);
   /// The same for a stack, in units of its top layer (a/h1; h1 = E1 = 1 in `unit_medium`).
-  ExactPowerLawTable(const LayeredMedium& unit_medium, double d, const ExactLayerOptions& options);
+  /// With `disk` (enabled), each piece is loaded from it under `disk_key` and its index, or
+  /// built and stored there.
+  ExactPowerLawTable(const LayeredMedium& unit_medium, double d, const ExactLayerOptions& options,
+                     std::shared_ptr<const DiskCache> disk = nullptr, std::vector<double> disk_key = {});
   ~ExactPowerLawTable();
   ExactPowerLawTable(const ExactPowerLawTable&) = delete;
   ExactPowerLawTable& operator=(const ExactPowerLawTable&) = delete;
@@ -43,9 +49,15 @@ class ExactPowerLawTable {
  private:
   struct Pieces;
   void build_piece(int k) const;
+  void solve_piece(int k) const;
+  const ExactLayerKernel& unit_kernel() const;  // made on the first piece solved
   double d_, C_;
   ProfilePtr unit_profile_;
-  std::unique_ptr<ExactLayerKernel> unit_kernel_;
+  LayeredMedium unit_medium_;
+  ExactLayerOptions options_;           // its context reset: the table lives in that Context's cache
+  std::weak_ptr<Context> context_;      // the Context the kernel comes from, while it lives
+  std::shared_ptr<const DiskCache> disk_;
+  std::vector<double> disk_key_;
   std::unique_ptr<Pieces> pieces_;
 };
 

@@ -316,6 +316,55 @@ LayerKernelFunction::LayerKernelFunction(const StackSymbol& symbol) : pieces_(st
 
 LayerKernelFunction::~LayerKernelFunction() = default;
 
+// Layout: a, b, near, #breaks, breaks, #tail, tail, then each piece's Chebyshev order and its
+// order + 1 coefficients (its interval is its breaks; the slope's series is derived again).
+std::vector<double> LayerKernelFunction::serialized() const {
+  std::vector<double> out{model_a_, model_b_, near_, static_cast<double>(breaks_.size())};
+  out.insert(out.end(), breaks_.begin(), breaks_.end());
+  out.push_back(static_cast<double>(tail_.size()));
+  out.insert(out.end(), tail_.begin(), tail_.end());
+  for (const Cheb& c : pieces_->value) {
+    out.push_back(static_cast<double>(c->order));
+    out.insert(out.end(), c->c, c->c + c->order + 1);
+  }
+  return out;
+}
+
+LayerKernelFunction::LayerKernelFunction(const std::vector<double>& in) : pieces_(std::make_unique<Pieces>()) {
+  std::size_t at = 0;
+  auto next = [&]() {
+    if (at >= in.size()) throw NumericalError("layerjkr: a cached kernel is shorter than its layout");
+    return in[at++];
+  };
+  auto count = [&](double limit) {
+    const double n = next();
+    if (!(n >= 0.0 && n <= limit && n == std::floor(n))) throw NumericalError("layerjkr: a cached kernel's count is invalid");
+    return static_cast<std::size_t>(n);
+  };
+  model_a_ = next();
+  model_b_ = next();
+  near_ = next();
+  breaks_.resize(count(1e6));
+  for (double& b : breaks_) b = next();
+  tail_.resize(count(1e3));
+  for (double& t : tail_) t = next();
+  if (breaks_.size() < 2 || tail_.size() != static_cast<std::size_t>(kTailTerms))
+    throw NumericalError("layerjkr: a cached kernel has no pieces or another tail");
+  for (std::size_t i = 0; i + 1 < breaks_.size(); ++i) {
+    const std::size_t order = count(1e3);
+    Cheb c(gsl_cheb_alloc(order));
+    c->a = breaks_[i];
+    c->b = breaks_[i + 1];
+    c->order_sp = order;
+    for (std::size_t k = 0; k <= order; ++k) c->c[k] = next();
+    Cheb d(gsl_cheb_alloc(order));
+    gsl_cheb_calc_deriv(d.get(), c.get());
+    pieces_->value.push_back(std::move(c));
+    pieces_->slope.push_back(std::move(d));
+  }
+  if (at != in.size()) throw NumericalError("layerjkr: a cached kernel is longer than its layout");
+}
+
 double LayerKernelFunction::value(double sigma) const {
   const double x = std::abs(sigma);
   if (x < near_) {
@@ -347,10 +396,20 @@ double LayerKernelFunction::derivative(double sigma) const {
   return sigma < 0.0 ? -value : value;
 }
 
+namespace {
+// The disk cache's kinds: a new revision whenever a build's numbers change.
+constexpr const char* kLayerKernelKind = "layer-kernel-1";
+constexpr const char* kStackKernelKind = "stack-kernel-1";
+}  // namespace
+
 std::shared_ptr<const LayerKernelFunction> shared_layer_kernel(double nu, bool bonded,
                                                                const std::shared_ptr<Context>& context) {
-  return context_caches(context).kernels.get(
-      {nu, bonded}, [&] { return std::make_shared<const LayerKernelFunction>(nu, bonded); });
+  auto& caches = context_caches(context);
+  return caches.kernels.get({nu, bonded}, [&] {
+    return load_or_build<LayerKernelFunction>(*caches.disk, kLayerKernelKind, {nu, bonded ? 1.0 : 0.0}, [&] {
+      return std::make_shared<const LayerKernelFunction>(nu, bonded);
+    });
+  });
 }
 
 std::shared_ptr<const LayerKernelFunction> shared_stack_kernel(const LayeredMedium& medium,
@@ -360,8 +419,12 @@ std::shared_ptr<const LayerKernelFunction> shared_stack_kernel(const LayeredMedi
     return shared_layer_kernel(medium.layers[0].nu, medium.base == Base::bonded, context);
   }
   const StackSymbol symbol(medium, "shared_stack_kernel");
-  return context_caches(context).stack_kernels.get(
-      symbol.signature(), [&] { return std::make_shared<const LayerKernelFunction>(symbol); });
+  auto& caches = context_caches(context);
+  return caches.stack_kernels.get(symbol.signature(), [&] {
+    return load_or_build<LayerKernelFunction>(*caches.disk, kStackKernelKind, symbol.signature(), [&] {
+      return std::make_shared<const LayerKernelFunction>(symbol);
+    });
+  });
 }
 
 }  // namespace layerjkr::detail

@@ -44,6 +44,11 @@ class LayerKernelFunction {
   LayerKernelFunction(double nu, bool bonded);
   /// A stack's kernel in units of its top layer's thickness.
   explicit LayerKernelFunction(const StackSymbol& symbol);
+  /// The kernel whose serialized() numbers these are (the disk cache): bit-identical values.
+  /// Throws NumericalError if they are not a kernel's.
+  explicit LayerKernelFunction(const std::vector<double>& serialized);
+  /// Every number the kernel is made of, in a layout the constructor above reads back.
+  std::vector<double> serialized() const;
   ~LayerKernelFunction();
   LayerKernelFunction(const LayerKernelFunction&) = delete;
   LayerKernelFunction& operator=(const LayerKernelFunction&) = delete;
