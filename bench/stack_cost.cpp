@@ -7,9 +7,18 @@
 // the default discretisation and without the error estimate: ExactLayerKernel::state), a
 // fresh Context per set-up (median of 3), the median of 5 states per a/h1.
 //
-// Run: build/bin/stack_cost   (~30 s; prints a markdown table)
+// Then a single answer including its set-up (issue 35: within 2x the top layer alone): a
+// 200-radius sphere curve (R = 100 h1, a/h1 up to 10, evenly spaced: one sweep) on a fresh
+// Context - cold (nothing cached), and with a disk cache a previous process filled (a fresh
+// directory per measurement, removed after).
+//
+// Run: build/bin/stack_cost   (~30 s; prints two markdown tables)
+#include <stdlib.h>  // mkdtemp
+
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
+#include <string>
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -40,6 +49,9 @@ LayeredMedium stack(std::vector<StackLayer> layers, Base base = Base::bonded) {
   m.base = base;
   return m;
 }
+
+double medium_h1(const LayeredMedium& m) { return m.layers[0].h; }
+double medium_h1(const ElasticLayer& l) { return l.h; }
 
 }  // namespace
 
@@ -77,5 +89,28 @@ int main() {
     }
     std::printf("\n");
   }
+  // A single answer including set-up.
+  std::printf("\n| medium | 200-radius sphere curve, cold [ms] | with a filled disk cache [ms] |\n|---|---|---|\n");
+  const auto curve = [](const auto& medium, const std::shared_ptr<Context>& context) {
+    const ContactModelPtr m = make_exact_layer(make_sphere(100.0 * medium_h1(medium)), medium, options(context));
+    std::vector<double> radii;
+    for (int j = 1; j <= 200; ++j) radii.push_back(10.0 * medium_h1(medium) * j / 200.0);
+    (void)m->states(radii);
+  };
+  const auto row = [&](const char* name, const auto& medium) {
+    const double cold = median_seconds([&] { curve(medium, std::make_shared<Context>()); }, 3);
+    std::string pattern = (std::filesystem::temp_directory_path() / "layerjkr_bench_XXXXXX").string();
+    if (!mkdtemp(pattern.data())) return;
+    DiskCacheOptions disk;
+    disk.enabled = true;
+    disk.directory = pattern;
+    curve(medium, std::make_shared<Context>(disk));  // a previous process fills it
+    const double warm = median_seconds([&] { curve(medium, std::make_shared<Context>(disk)); }, 3);
+    std::filesystem::remove_all(pattern);
+    std::printf("| %s | %.1f | %.1f |\n", name, 1e3 * cold, 1e3 * warm);
+  };
+  const LayeredMedium appendix = cases.front().medium;
+  row("Appendix A bi-layer", appendix);
+  row("its top layer alone, bonded", ElasticLayer{appendix.layers[0].E, appendix.layers[0].nu, appendix.layers[0].h, Base::bonded});
   return 0;
 }

@@ -2,10 +2,6 @@
 #include "adhesion/dugdale_table.hpp"
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
-#include <mutex>
-#include <thread>
 #include <cmath>
 #include <iterator>
 #include <optional>
@@ -15,6 +11,7 @@
 
 #include "core/context_caches.hpp"
 #include "core/disk_cache.hpp"
+#include "core/parallel.hpp"
 #include "layerjkr/error.hpp"
 #include "models/stack_symbol.hpp"
 
@@ -135,29 +132,6 @@ namespace {
 
 std::size_t index(int sub, int q, int jx, int jt) {
   return static_cast<std::size_t>(((sub * kRatios + q) * kNx + jx) * kNt + jt);
-}
-
-// Runs body(i) for i in [0, n) on up to 4 threads (a piece's solves are independent; the first
-// use of a piece waits for it, so its build is worth the cores).
-template <class Body>
-void parallel_for(int n, const Body& body) {
-  const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 4);
-  std::atomic<int> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  auto work = [&] {
-    for (int i = next++; i < n; i = next++) try {
-        body(i);
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-      }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
 }
 
 // The series of one sub-piece at (ux, ut) in [-1, 1]^2, ratio q.

@@ -16,6 +16,7 @@
 
 #include "core/context_caches.hpp"
 #include "core/gsl_support.hpp"
+#include "core/parallel.hpp"
 #include "models/stack_symbol.hpp"
 #include "layerjkr/error.hpp"
 
@@ -112,9 +113,11 @@ struct Remainder {
 // int_0^inf fn(u) cos(sigma u) du for fn decaying like u^2 e^{-2u}: the tail beyond
 // u = kCutoff is below 1e-30, so GSL's QAWO on [0, kCutoff] (QAG at sigma = 0) is used, split
 // at `splits` (a stack's switch points, where its symbol has a rounding-size step).
+// `levels`: the bisections QAWO's table of moments covers (each costs its set-up; a stack's
+// segments between switch points need few, and 30 halve its kernel's build against 60).
 // `scale` is the size of fn near 0 (1 for one layer; |q(0)| = E1*/Es* - 1 for a stiff film on a
 // soft substrate): the tolerances are relative to it.
-double cosine_transform(gsl_function fn, double sigma, const std::vector<double>& splits, double scale) {
+double cosine_transform(gsl_function fn, double sigma, const std::vector<double>& splits, double scale, int levels) {
   constexpr std::size_t kLimit = 4000;
   constexpr double kCutoff = 40.0;
   struct Workspace {
@@ -134,7 +137,7 @@ double cosine_transform(gsl_function fn, double sigma, const std::vector<double>
     if (sigma == 0.0) {
       status = gsl_integration_qag(&fn, a, b, 1e-15 * scale, 1e-13, kLimit, GSL_INTEG_GAUSS41, w.ws, &result, &abserr);
     } else {
-      gsl_integration_qawo_table* wf = gsl_integration_qawo_table_alloc(sigma, b - a, GSL_INTEG_COSINE, 60);
+      gsl_integration_qawo_table* wf = gsl_integration_qawo_table_alloc(sigma, b - a, GSL_INTEG_COSINE, static_cast<std::size_t>(levels));
       status = gsl_integration_qawo(&fn, a, 1e-15 * scale, 1e-13, kLimit, w.ws, wf, &result, &abserr);
       gsl_integration_qawo_table_free(wf);
     }
@@ -146,6 +149,29 @@ double cosine_transform(gsl_function fn, double sigma, const std::vector<double>
                            format_double(sigma) + " on u in [" + format_double(a) + ", " + format_double(b) +
                            "] (" + gsl_strerror(status) + ", error estimate " + format_double(abserr) + ")");
     total += result;
+  }
+  return total;
+}
+
+// int_0^40 |q(u)| du to a few digits, split where q changes: the size of the transform, which
+// sets the quadrature's absolute tolerance (a thick soft stack has |q| ~ 1e6 where one layer
+// has 1).
+template <class Q>
+double integral_of_abs(const Q& q, const std::vector<double>& splits) {
+  std::vector<double> edges{0.0};
+  for (double x : splits)
+    if (x > 0.0 && x < 40.0) edges.push_back(x);
+  edges.push_back(40.0);
+  double total = 0.0;
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+    // Geometric nodes within each segment (q's features there are on log scales), midpoint rule.
+    const double a = std::max(edges[i], 1e-3 * edges[i + 1]), b = edges[i + 1];
+    constexpr int kNodes = 64;
+    for (int k = 0; k < kNodes; ++k) {
+      const double lo = a * std::pow(b / a, static_cast<double>(k) / kNodes), hi = a * std::pow(b / a, (k + 1.0) / kNodes);
+      total += std::abs(q(0.5 * (lo + hi))) * (hi - lo);
+    }
+    total += std::abs(q(0.5 * a)) * (a - edges[i]);
   }
   return total;
 }
@@ -198,7 +224,7 @@ std::vector<double> tail_terms(const std::vector<double>& tail, double x) {
 std::size_t LayerKernelFunction::pieces() const { return pieces_->value.size(); }
 
 template <class Q>
-void LayerKernelFunction::build(const Q& q, const std::vector<double>& splits) {
+void LayerKernelFunction::build(const Q& q, const std::vector<double>& splits, double size) {
   silence_gsl_errors();
   Remainder<Q> rem{&q, model_a_, model_b_};
   struct Transform {
@@ -207,13 +233,44 @@ void LayerKernelFunction::build(const Q& q, const std::vector<double>& splits) {
     double scale;
     static double at(double sigma, void* p) {
       const auto* t = static_cast<Transform*>(p);
-      return cosine_transform(gsl_function{&Remainder<Q>::at, t->rem}, sigma, *t->splits, t->scale);
+      return cosine_transform(gsl_function{&Remainder<Q>::at, t->rem}, sigma, *t->splits, t->scale,
+                              t->splits->empty() ? 60 : 30);
     }
-  } transform{&rem, &splits, std::max({1.0, std::abs(model_a_), 0.5 * std::abs(model_b_)})};
-  gsl_function f{&Transform::at, &transform};
-  for (std::size_t i = 0; i + 1 < breaks_.size(); ++i) {
+  } transform{&rem, &splits, std::max({1.0, std::abs(model_a_), 0.5 * std::abs(model_b_), size})};
+  // The transforms at every point gsl_cheb_init will sample (its documented Chebyshev points, in
+  // its own arithmetic), on several threads; gsl_cheb_init then looks them up, so the series are
+  // bit for bit those of sampling in turn.
+  const std::size_t pieces = breaks_.size() - 1, n = kChebOrder + 1;
+  std::vector<double> x(pieces * n), value(pieces * n);
+  for (std::size_t i = 0; i < pieces; ++i) {
+    const double bma = 0.5 * (breaks_[i + 1] - breaks_[i]), bpa = 0.5 * (breaks_[i + 1] + breaks_[i]);
+    for (std::size_t k = 0; k < n; ++k) {
+      const double y = std::cos(M_PI * (static_cast<double>(k) + 0.5) / static_cast<double>(n));
+      x[i * n + k] = y * bma + bpa;
+    }
+  }
+  parallel_for(static_cast<int>(x.size()), [&](int j) {
+    value[static_cast<std::size_t>(j)] = Transform::at(x[static_cast<std::size_t>(j)], &transform);
+  });
+  struct Lookup {
+    const std::vector<double>* x;
+    const std::vector<double>* value;
+    std::size_t begin, n;
+    Transform* transform;
+    static double at(double xs, void* p) {
+      const auto* l = static_cast<const Lookup*>(p);
+      for (std::size_t k = l->begin; k < l->begin + l->n; ++k)
+        if ((*l->x)[k] == xs) return (*l->value)[k];
+      return Transform::at(xs, l->transform);  // a point computed otherwise than here: solved again
+    }
+  };
+  for (std::size_t i = 0; i < pieces; ++i) {
+    Lookup lookup{&x, &value, i * n, n, &transform};
+    gsl_function f{&Lookup::at, &lookup};
     Cheb c(gsl_cheb_alloc(kChebOrder));
     gsl_cheb_init(c.get(), &f, breaks_[i], breaks_[i + 1]);
+    if (!std::isfinite(gsl_cheb_eval(c.get(), 0.5 * (breaks_[i] + breaks_[i + 1]))))
+      throw NumericalError("layerjkr exact layer: the kernel table's piece " + std::to_string(i) + " is not finite");
     Cheb d(gsl_cheb_alloc(kChebOrder));
     gsl_cheb_calc_deriv(d.get(), c.get());
     pieces_->value.push_back(std::move(c));
@@ -268,7 +325,7 @@ LayerKernelFunction::LayerKernelFunction(double nu, bool bonded) : pieces_(std::
   breaks_.assign(std::begin(kBreaks), std::end(kBreaks));
   near_ = kNear;
   const auto q = [kappa, bonded](double u) { return closed_form_q(u, kappa, bonded); };
-  build(q, {});
+  build(q, {}, 1.0);
 }
 
 LayerKernelFunction::LayerKernelFunction(const StackSymbol& symbol) : pieces_(std::make_unique<Pieces>()) {
@@ -302,16 +359,25 @@ LayerKernelFunction::LayerKernelFunction(const StackSymbol& symbol) : pieces_(st
       spread = std::abs(a - b) * y;
     }
     if (t[kTailTerms - 1] < 1e-18 && t[kTailTerms - 2] < 1e-18 && spread < 1e-16) break;
-    if (x > 1e7)
-      throw NumericalError("layerjkr exact layer: the stack's kernel needs a table beyond sigma = 1e7 (its total "
-                           "thickness is " + format_double(symbol.total_thickness()) +
-                           " times the top layer's); such a thin top layer is outside the solver's range");
-    breaks_.push_back(x * (factor_one_and_half ? 1.5 : 4.0 / 3.0));
+    // No solve asks beyond 2 max_a_over_h (<= 2000): where the series cannot be trusted by then
+    // (a top layer thin against the stack, or a stiff layer near the surface, moves q's nearest
+    // singularity in), the table simply ends there and the kernel has no tail.
+    if (x >= kMaxSigma) {
+      tail_.clear();
+      break;
+    }
+    breaks_.push_back(std::min(kMaxSigma, x * (factor_one_and_half ? 1.5 : 4.0 / 3.0)));
     factor_one_and_half = !factor_one_and_half;
   }
   near_ = breaks_.back();
+  if (tail_.empty()) {
+    // Without the series the model's only use would be the tail; its Taylor slope q'(0) is
+    // moreover meaningless for a stack whose compliance changes on scales u ~ h1/H far below 1
+    // (1e12 for a thick soft layer under a stiff one): the table holds the transform of q itself.
+    model_a_ = model_b_ = 0.0;
+  }
   const auto qfun = [&symbol](double u) { return symbol.q(u); };
-  build(qfun, symbol.switch_points());
+  build(qfun, symbol.switch_points(), integral_of_abs(qfun, symbol.switch_points()));
 }
 
 LayerKernelFunction::~LayerKernelFunction() = default;
@@ -348,7 +414,7 @@ LayerKernelFunction::LayerKernelFunction(const std::vector<double>& in) : pieces
   for (double& b : breaks_) b = next();
   tail_.resize(count(1e3));
   for (double& t : tail_) t = next();
-  if (breaks_.size() < 2 || tail_.size() != static_cast<std::size_t>(kTailTerms))
+  if (breaks_.size() < 2 || (!tail_.empty() && tail_.size() != static_cast<std::size_t>(kTailTerms)))
     throw NumericalError("layerjkr: a cached kernel has no pieces or another tail");
   for (std::size_t i = 0; i + 1 < breaks_.size(); ++i) {
     const std::size_t order = count(1e3);
@@ -365,8 +431,14 @@ LayerKernelFunction::LayerKernelFunction(const std::vector<double>& in) : pieces
   if (at != in.size()) throw NumericalError("layerjkr: a cached kernel is longer than its layout");
 }
 
+void LayerKernelFunction::beyond_table(double sigma) const {
+  throw DomainError("LayerKernelFunction", "sigma", sigma,
+                    "|sigma| < " + format_double(near_) + " (this stack's kernel table; 2 max_a_over_h is within it)");
+}
+
 double LayerKernelFunction::value(double sigma) const {
   const double x = std::abs(sigma);
+  if (x >= near_ && tail_.empty()) beyond_table(sigma);
   if (x < near_) {
     const double b2 = kBeta * kBeta, s2 = x * x, d = b2 + s2;
     const double model = model_a_ * kBeta / d + model_b_ * (b2 - s2) / (d * d);
@@ -380,6 +452,7 @@ double LayerKernelFunction::value(double sigma) const {
 
 double LayerKernelFunction::derivative(double sigma) const {
   const double x = std::abs(sigma);
+  if (x >= near_ && tail_.empty()) beyond_table(sigma);
   double value = 0.0;
   if (x < near_) {
     const double b2 = kBeta * kBeta, s2 = x * x, d = b2 + s2;
@@ -399,7 +472,7 @@ double LayerKernelFunction::derivative(double sigma) const {
 namespace {
 // The disk cache's kinds: a new revision whenever a build's numbers change.
 constexpr const char* kLayerKernelKind = "layer-kernel-1";
-constexpr const char* kStackKernelKind = "stack-kernel-1";
+constexpr const char* kStackKernelKind = "stack-kernel-3";
 }  // namespace
 
 std::shared_ptr<const LayerKernelFunction> shared_layer_kernel(double nu, bool bonded,

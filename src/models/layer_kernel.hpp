@@ -53,7 +53,7 @@ class LayerKernelFunction {
   LayerKernelFunction(const LayerKernelFunction&) = delete;
   LayerKernelFunction& operator=(const LayerKernelFunction&) = delete;
 
-  /// Ft(sigma), even; any finite sigma.
+  /// Ft(sigma), even; any finite sigma (below near() where there is no tail).
   double value(double sigma) const;
   /// dFt/dsigma, odd.
   double derivative(double sigma) const;
@@ -61,7 +61,12 @@ class LayerKernelFunction {
   /// The Chebyshev tables of a single layer reach sigma = kNear; the asymptotic series
   /// takes over beyond. A stack's reach further: near().
   static constexpr double kNear = 64.0;
+  /// A stack's table reaches at most this far: no solve asks beyond 2 max_a_over_h (<= 2000).
+  static constexpr double kMaxSigma = 2048.0;
   double near() const { return near_; }
+  /// False when the asymptotic series could not be verified by kMaxSigma: then |sigma| < near()
+  /// only (DomainError beyond).
+  bool has_tail() const { return !tail_.empty(); }
   /// Number of Chebyshev pieces (12 for one layer).
   std::size_t pieces() const;
 
@@ -78,8 +83,10 @@ class LayerKernelFunction {
  private:
   struct Pieces;
   // Chebyshev tables of the remainder's transform on breaks_, model A, B, the tail.
+  // size: the transform's scale (its quadrature's absolute tolerance is relative to it).
   template <class Q>
-  void build(const Q& q, const std::vector<double>& splits);
+  void build(const Q& q, const std::vector<double>& splits, double size);
+  [[noreturn]] void beyond_table(double sigma) const;
   double model_a_ = 1.0, model_b_ = 0.0;  // q ~ (A + B u) e^{-2u} is subtracted
   double near_ = kNear;
   std::vector<double> breaks_;
