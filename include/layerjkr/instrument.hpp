@@ -135,6 +135,13 @@ struct CurveRange {
 /// Thread safety: curve() may be called from several threads at once (the archive's entries
 /// are fetched under a lock and inflated and decoded outside it). Move-only; owns the file
 /// handle, which stays open until destruction.
+/// What a read unpacks beyond a curve's force and measured height.
+struct CurveChannels {
+  /// The commanded piezo height (InstrumentCurve::piezo_height). A fit does not use it: its
+  /// batches leave it out (a third of a JPK map's channel data), and it is then empty.
+  bool piezo_height = true;
+};
+
 class InstrumentReader {
  public:
   /// Opens `path` (its format from instrument_format). Throws InputError naming the file:
@@ -150,7 +157,7 @@ class InstrumentReader {
   std::size_t size() const;
   /// The curve at position i (< size()); throws InputError naming the file and the curve if it
   /// cannot be read or its spring constant is not finite and > 0, std::out_of_range past the end.
-  InstrumentCurve curve(std::size_t i) const;
+  InstrumentCurve curve(std::size_t i, const CurveChannels& channels = {}) const;
   /// The number curve i carries (InstrumentCurve::index: JPK's index/N, else the position),
   /// known without reading the curve; std::out_of_range past the end.
   int curve_number(std::size_t i) const;

@@ -148,7 +148,7 @@ class FileSlot {
       FileSlot& slot;
       ~Release() { slot.release(); }
     } release_after{*this};  // also when the curve cannot be read
-    return reader->curve(position);
+    return reader->curve(position, CurveChannels{false});  // a fit needs no piezo height
   }
   // A curve of this file that will not be read (skipped, failed before reading, cancelled).
   void release() {

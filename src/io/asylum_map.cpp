@@ -100,7 +100,7 @@ class AsylumMap final : public CurveSource {
   const InstrumentFile& header() const override { return file_; }
   std::size_t size() const override { return order_.size(); }
 
-  InstrumentCurve curve(std::size_t i) const override {
+  InstrumentCurve curve(std::size_t i, const CurveChannels& /*channels: a by-product of the height here*/) const override {
     const auto [line, point] = order_.at(i);
     const std::map<std::string, std::string>& channels = points_.at({line, point});
     const std::string where = file_.path + ": line " + std::to_string(line) + " point " + std::to_string(point);

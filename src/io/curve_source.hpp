@@ -22,7 +22,10 @@ class CurveSource {
   virtual std::size_t size() const = 0;
   /// The curve at position i in [0, size()), in file order, read on its own. Safe to call
   /// from several threads at once. Throws InputError naming the file, the curve and the field.
-  virtual InstrumentCurve curve(std::size_t i) const = 0;
+  /// `channels` may leave optional channels out (a source that has them at no cost may fill them).
+  virtual InstrumentCurve curve(std::size_t i, const CurveChannels& channels) const = 0;
+  /// Every channel.
+  InstrumentCurve curve(std::size_t i) const { return curve(i, CurveChannels{}); }
   /// The number curve i will carry (InstrumentCurve::index), known without reading it.
   virtual int number(std::size_t i) const { return static_cast<int>(i); }
 };

@@ -164,7 +164,9 @@ InstrumentReader& InstrumentReader::operator=(InstrumentReader&&) noexcept = def
 const InstrumentFile& InstrumentReader::header() const { return impl_->source->header(); }
 std::size_t InstrumentReader::size() const { return impl_->source->size(); }
 
-InstrumentCurve InstrumentReader::curve(std::size_t i) const { return detail::checked_curve(*impl_->source, i); }
+InstrumentCurve InstrumentReader::curve(std::size_t i, const CurveChannels& channels) const {
+  return detail::checked_curve(*impl_->source, i, channels);
+}
 
 int InstrumentReader::curve_number(std::size_t i) const {
   if (i >= size())
@@ -175,11 +177,13 @@ int InstrumentReader::curve_number(std::size_t i) const {
 
 namespace detail {
 
-InstrumentCurve checked_curve(const CurveSource& source, std::size_t i) {
+InstrumentCurve checked_curve(const CurveSource& source, std::size_t i, const CurveChannels& channels) {
   if (i >= source.size())
     throw std::out_of_range("InstrumentReader::curve: position " + std::to_string(i) + " of a file of " +
                             std::to_string(source.size()) + " curves");
-  InstrumentCurve c = source.curve(i);
+  InstrumentCurve c = source.curve(i, channels);
+  if (!channels.piezo_height)
+    for (InstrumentSegment& s : c.segments) s.piezo_height.clear();  // the same answer from every format
   // NaN: the file gives none (to_curve_data then needs one given); anything else must be a stiffness.
   if (!std::isnan(c.spring_constant) && (!(c.spring_constant > 0.0) || !std::isfinite(c.spring_constant)))
     throw InputError(source.header().path + ": curve " + std::to_string(c.index) + " has spring constant " +
@@ -202,7 +206,7 @@ class ReadWhole final : public CurveSource {
   }
   const InstrumentFile& header() const override { return file_; }
   std::size_t size() const override { return curves_.size(); }
-  InstrumentCurve curve(std::size_t i) const override { return curves_.at(i); }
+  InstrumentCurve curve(std::size_t i, const CurveChannels& /*read already*/) const override { return curves_.at(i); }
 
  private:
   std::vector<InstrumentCurve> curves_;

@@ -16,7 +16,7 @@
 namespace layerjkr::detail {
 
 /// Curve i of `source`, its spring constant checked (finite and > 0) as every reader does.
-InstrumentCurve checked_curve(const CurveSource& source, std::size_t i);
+InstrumentCurve checked_curve(const CurveSource& source, std::size_t i, const CurveChannels& channels = {});
 /// The curves of `range` with the file's metadata.
 InstrumentFile read_all(const CurveSource& source, const CurveRange& range = {});
 /// A source over curves already read (formats read whole, such as an Igor wave).

@@ -138,7 +138,7 @@ class JpkSource final : public CurveSource {
   std::size_t size() const override { return curves_.size(); }
   int number(std::size_t i) const override { return curves_.at(i).number; }
 
-  InstrumentCurve curve(std::size_t i) const override {
+  InstrumentCurve curve(std::size_t i, const CurveChannels& channels) const override {
     const CurveLocation& at = curves_.at(i);
     const std::string& p = at.prefix;
     InstrumentCurve curve;
@@ -159,7 +159,7 @@ class JpkSource final : public CurveSource {
     }
     if (at.segments.empty()) in_.fail(p.empty() ? "the archive" : p, "holds no segments");
     for (int s : at.segments)
-      curve.segments.push_back(read_segment(in_, shared_, p + "segments/" + std::to_string(s) + "/", curve));
+      curve.segments.push_back(read_segment(in_, shared_, p + "segments/" + std::to_string(s) + "/", curve, channels));
     return curve;
   }
 

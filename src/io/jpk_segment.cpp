@@ -217,7 +217,7 @@ SegmentStyle read_style(const Reader& in, std::string_view text, const std::stri
 }  // namespace
 
 InstrumentSegment read_segment(const Reader& in, const Properties& shared, const std::string& dir,
-                               InstrumentCurve& curve) {
+                               InstrumentCurve& curve, const CurveChannels& channels) {
   const std::string where = dir + "segment-header.properties";
   const SegmentHeader seg(in.properties(where), shared);
   std::optional<std::size_t> points;
@@ -238,7 +238,7 @@ InstrumentSegment read_segment(const Reader& in, const Properties& shared, const
       found = true;
     }
   if (!found) in.fail(where, "no measured height channel (strainGaugeHeight, capacitiveSensorHeight or measuredHeight)");
-  if (ch.has("height")) s.piezo_height = ch.values("height", "calibrated");
+  if (channels.piezo_height && ch.has("height")) s.piezo_height = ch.values("height", "calibrated");
   if (s.height.size() != s.force.size() || (!s.piezo_height.empty() && s.piezo_height.size() != s.force.size()))
     in.fail(where, "channels of different lengths (" + std::to_string(s.force.size()) + " force samples, " +
                        std::to_string(s.height.size()) + " heights)");

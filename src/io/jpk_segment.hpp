@@ -53,8 +53,8 @@ class Reader {
 
 /// Segment `dir` ("…/segments/N/"): its header, with the calibration it shares through
 /// `shared` (shared-data/header.properties), and its channels. Sets the curve's spring
-/// constant and sensitivity.
+/// constant and sensitivity. The piezo height only if `channels` asks for it.
 InstrumentSegment read_segment(const Reader& in, const Properties& shared, const std::string& dir,
-                               InstrumentCurve& curve);
+                               InstrumentCurve& curve, const CurveChannels& channels);
 
 }  // namespace layerjkr::detail

@@ -163,7 +163,7 @@ class NanoscopeSource final : public CurveSource {
   const InstrumentFile& header() const override { return file_; }
   std::size_t size() const override { return curves_; }
 
-  InstrumentCurve curve(std::size_t i) const override {
+  InstrumentCurve curve(std::size_t i, const CurveChannels& /*channels: a by-product of the height here*/) const override {
     if (i >= curves_) throw std::out_of_range("nanoscope curve " + std::to_string(i) + " of " + std::to_string(curves_));
     if (!ramp_error_.empty()) throw InputError(ramp_error_);
     InstrumentCurve c;
