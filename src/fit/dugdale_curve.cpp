@@ -155,7 +155,10 @@ class DugdaleCurve final : public CurveModelBase<DugdaleCurve> {
     return {std::string(kind_name()) + " on '" + medium_ + "' solved per parameter vector on " +
             std::to_string(radii_.size()) + " radii in [0, " + short_number(a_max_) +
             "] m and interpolated; measured interpolation error " + short_number(error_) +
-            " of the force and indentation spans at the start (target 1e-6)"};
+            " of the force and indentation spans at the start (target 1e-6)" +
+            (solver_->tabulated() ? "; states from the medium's Dugdale table, measured error " +
+                                        short_number(solver_->table_error()) + " of each part"
+                                  : std::string())};
   }
   std::vector<std::string> notes_at(const CurveParameters<double>& p) const override {
     const double kappa = p.E / E_ref_;
