@@ -131,7 +131,7 @@ double ParameterMap::fixed_value(FitParameter q) const {
 }
 
 std::string ParameterMap::name_at(std::size_t j) const {
-  const std::string name = to_string(free[j]);
+  std::string name = to_string(free[j]);
   if (j < slot_curve.size() && slot_curve[j] >= 0) return name + " of curve " + std::to_string(slot_curve[j] + 1);
   return name;
 }

@@ -151,30 +151,29 @@ FitSummary fit_automatic(const CurveData& curve, const Scene& scene, const FitOp
 
 }  // namespace
 
-FitSummary fit(const CurveData& given, const Scene& scene, const FitOptions& options) {
+FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& options) {
   const auto t_begin = std::chrono::steady_clock::now();
   options.validate();
-  given.validate();
+  curve.validate();
   if (!scene.profile) throw InputError("fit: the scene has no indenter profile");
   if (scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic || scene.adhesion.kinetics) {
-    FitSummary out = detail::fit_in_time(given, scene, options);
+    FitSummary out = detail::fit_in_time(curve, scene, options);
     out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
     return out;
   }
   // An elastic model holds the force while the indenter rests: dwell samples are not its to fit.
-  const CurveData curve = given.without_dwell();
-  if (!scene.profile) throw InputError("fit: the scene has no indenter profile");
-  if (curve.radius_only() && detail::steered_contact(options))
-    throw InputError(curve.source + ": (P, a) data have no displacement: no contact point to find and no indentation "
-                                    "range to select (use contact_point fit and no ranges)");
-  const bool stiffness_known = options.cantilever_stiffness.value_or(curve.spring_constant) > 0.0;
-  const std::vector<bool> retract = curve.retract_mask();
-  const bool retract_fitted = options.branch != Branch::approach && !curve.radius_only() &&
+  const CurveData data = curve.without_dwell();
+  if (data.radius_only() && detail::steered_contact(options))
+    throw InputError(data.source + ": (P, a) data have no displacement: no contact point to find and no indentation "
+                                   "range to select (use contact_point fit and no ranges)");
+  const bool stiffness_known = options.cantilever_stiffness.value_or(data.spring_constant) > 0.0;
+  const std::vector<bool> retract = data.retract_mask();
+  const bool retract_fitted = options.branch != Branch::approach && !data.radius_only() &&
                               std::find(retract.begin(), retract.end(), true) != retract.end();
   FitSummary out = options.retract_control == RetractControl::automatic && !stiffness_known && retract_fitted
-                       ? fit_automatic(curve, scene, options)
-                       : fit_once(curve, scene, options);
-  if (const std::size_t dwell = given.dwell_count(); dwell > 0)
+                       ? fit_automatic(data, scene, options)
+                       : fit_once(data, scene, options);
+  if (const std::size_t dwell = curve.dwell_count(); dwell > 0)
     out.notices.push_back(std::to_string(dwell) + " dwell samples (segment 2: the indenter at rest) are not fitted: an "
                           "elastic model holds the force constant there; a relaxation law (medium.viscoelastic) fits them");
   out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();

@@ -396,11 +396,12 @@ std::vector<double> LayerKernelFunction::serialized() const {
   return out;
 }
 
-LayerKernelFunction::LayerKernelFunction(const std::vector<double>& in) : pieces_(std::make_unique<Pieces>()) {
+LayerKernelFunction::LayerKernelFunction(const std::vector<double>& serialized)
+    : pieces_(std::make_unique<Pieces>()) {
   std::size_t at = 0;
   auto next = [&]() {
-    if (at >= in.size()) throw NumericalError("layerjkr: a cached kernel is shorter than its layout");
-    return in[at++];
+    if (at >= serialized.size()) throw NumericalError("layerjkr: a cached kernel is shorter than its layout");
+    return serialized[at++];
   };
   auto count = [&](double limit) {
     const double n = next();
@@ -428,7 +429,7 @@ LayerKernelFunction::LayerKernelFunction(const std::vector<double>& in) : pieces
     pieces_->value.push_back(std::move(c));
     pieces_->slope.push_back(std::move(d));
   }
-  if (at != in.size()) throw NumericalError("layerjkr: a cached kernel is longer than its layout");
+  if (at != serialized.size()) throw NumericalError("layerjkr: a cached kernel is longer than its layout");
 }
 
 void LayerKernelFunction::beyond_table(double sigma) const {
