@@ -131,7 +131,8 @@ DugdaleTable::Parts DugdaleTable::half_space(double a, double c, double d) {
 namespace {
 
 std::size_t index(int sub, int q, int jx, int jt) {
-  return static_cast<std::size_t>(((sub * kRatios + q) * kNx + jx) * kNt + jt);
+  const auto at = [](int i) { return static_cast<std::size_t>(i); };
+  return ((at(sub) * at(kRatios) + at(q)) * at(kNx) + at(jx)) * at(kNt) + at(jt);
 }
 
 // The series of one sub-piece at (ux, ut) in [-1, 1]^2, ratio q.
@@ -152,7 +153,7 @@ double series(const std::vector<double>& coef, int sub, int q, double ux, double
 }  // namespace
 
 void DugdaleTable::build(int k, Piece& piece) const {
-  const std::size_t size = static_cast<std::size_t>(kSub * kRatios * kNx * kNt);
+  const std::size_t size = index(kSub, 0, 0, 0);  // one past the last point
   const bool disk = disk_ && disk_->enabled();
   std::vector<double> key;
   if (disk) {

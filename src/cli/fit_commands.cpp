@@ -111,7 +111,7 @@ namespace {
 
 // Curves of one sample at several speeds, fitted jointly: the joint summary on stdout, the report
 // with the joint fit, each curve fitted alone and the provenance of every input.
-int joint_fit_and_report(const Prepared& p, const std::vector<std::string>& data, std::vector<std::string> not_outputs,
+int joint_fit_and_report(const Prepared& p, const std::vector<std::string>& data, const std::vector<std::string>& not_outputs,
                          const std::string& report, const std::string& plot, const std::vector<std::string>& command_line,
                          const nlohmann::ordered_json& extra = nlohmann::ordered_json::object()) {
   check_not_input(report, "--out", not_outputs);

@@ -133,7 +133,9 @@ RelaxationKernel<T> power_law_kernel(const T& beta, double t0, double t_lo, doub
   // beta = 0 it is the whole law, psi = 1, and every node's weight is 0.
   k.c.push_back(scale * exp(beta * x_first) * x_over_expm1(beta * h) * rg);
   k.u.push_back(std::exp(x_first) * expm1(beta * h) / expm1((T(1.0) + beta) * h));
-  for (double x = x_first; x <= x_last + 0.5 * h; x += h) {
+  const int nodes = static_cast<int>(std::floor((x_last - x_first) / h + 0.5)) + 1;
+  for (int m = 0; m < nodes; ++m) {
+    const double x = x_first + m * h;  // not accumulated: no drift over the nodes
     k.c.push_back(scale * h * beta * rg * exp(beta * x));
     k.u.push_back(T(std::exp(x)));
   }
