@@ -296,6 +296,17 @@ struct FitSummary {
 /// excluded by the rule of FitOptions::exclusion_sigmas (docs/fitting.md).
 FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& options);
 
+/// The scene a fit describes: `scene` with each fitted value in place of the scene's own, so the
+/// fit becomes a model again (curve, summary, simulate). E sets medium.E (a stack's moduli are
+/// scaled together, as the fit scales them: E is the top layer's); K and G (or T) the
+/// foundation's constants; w, R (sphere, paraboloid), sigma0 (replacing a z0), E_inf and tau (a
+/// standard linear solid), beta (a power law), v_star and n (crack kinetics) their keys. delta0,
+/// P0 and a joint fit's per-curve offsets belong to the data, not the scene, and are skipped.
+/// The result is parsed from the edited JSON, so its origin holds that JSON (what a file would).
+/// Throws InputError for a scene built in code (no JSON to edit) or a value the scene's JSON has
+/// no place for (K fitted on a medium given by E, nu and h), naming the parameter.
+Scene fitted_scene(const Scene& scene, const std::vector<ParameterEstimate>& parameters);
+
 /// Several curves of one sample fitted together - a relaxing medium or crack kinetics measured at
 /// several speeds: every parameter but delta0 and P0 is shared, each curve keeps its own contact
 /// point and baseline where they are free.
