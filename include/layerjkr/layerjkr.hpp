@@ -14,6 +14,7 @@
 #include "layerjkr/instrument.hpp"
 #include "layerjkr/jkr.hpp"
 #include "layerjkr/kinetics.hpp"
+#include "layerjkr/map_image.hpp"
 #include "layerjkr/map_report.hpp"
 #include "layerjkr/maugis_dugdale.hpp"
 #include "layerjkr/model.hpp"

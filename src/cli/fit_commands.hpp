@@ -38,6 +38,7 @@ struct MapOutputs {
   std::string out;         ///< the results table: a file, `-` or another stream (OutputFile)
   std::string plot_dir;    ///< heat maps of every fitted field (empty: none)
   std::string report_dir;  ///< the interactive report, DIR/index.html (empty: none)
+  std::string tiff_dir;    ///< each fitted field of each map as a float TIFF (empty: none; map_tiffs.hpp)
   int jobs = 1;            ///< worker threads
   bool resume = false;     ///< keep the rows of an existing table and fit only the curves it lacks
   /// Replace derived files layerjkr did not write (a record beside the table that is not a

@@ -25,6 +25,7 @@
 #include "limits.hpp"
 #include "map_resume.hpp"
 #include "plots.hpp"
+#include "map_tiffs.hpp"
 #include "reports.hpp"
 #include "results_table.hpp"
 
@@ -213,6 +214,8 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
     throw InputError("--plot-dir needs every fit, and --resume does not redo the earlier ones: run them apart");
   if (o.resume && !o.report_dir.empty())
     throw InputError("--report needs every fit, and --resume does not redo the earlier ones: run them apart");
+  if (o.resume && !o.tiff_dir.empty())
+    throw InputError("--tiff needs every fit, and --resume does not redo the earlier ones: run them apart");
   check_not_input(o.out, "--out", all_inputs);
   // Every output is opened, and every derived one checked, before the first fit: a bad path fails
   // now, not after the work. The report's directory first: the table and its record may go into it.
@@ -229,6 +232,7 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
     record.emplace(sidecar);
   }
   if (!o.plot_dir.empty()) prepare_plot_dir(o.plot_dir, map_plot_names(p.options.free), o.force);
+  if (!o.tiff_dir.empty()) prepare_tiff_dir(o.tiff_dir, map_tiff_names(files, p.options.free), o.force);
   for (const std::string& line : not_read) std::cerr << "fit-map: " << printable(line) << "\n";
   // What the rows are made from, hashed before any is read (docs/provenance.md has the cost).
   std::vector<InputRecord> hashed;
@@ -300,6 +304,10 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
     return 128 + sig;
   }
   if (!o.plot_dir.empty()) plot_map_fields(items, p.options.free, o.plot_dir, o.force);
+  if (!o.tiff_dir.empty()) {
+    const std::size_t n = write_map_tiffs(items, files, p.options.free, o.tiff_dir);
+    std::cerr << "fit-map: " << n << " TIFF image(s) written to " << printable(o.tiff_dir) << "\n";
+  }
   if (page) {
     MapReportOptions r;
     r.free = p.options.free;

@@ -201,9 +201,13 @@ static int run_main(int argc, char** argv) {
   fit_map->add_option("--plot-dir", map.plot_dir,
                       "Draw each fitted field (parameters, rms, status) as a heat-map PNG over the map grid (gnuplot); "
                       "pictures there that layerjkr did not draw are not replaced");
+  fit_map->add_option("--tiff", map.tiff_dir,
+                      "Write each fitted field of each map (parameters, their _stderr, pull_off, rms_residual) as a "
+                      "32-bit float TIFF for ImageJ or Gwyddion: DIR/FIELD.tiff (DIR/STEM.FIELD.tiff for several inputs), "
+                      "NaN where no fit; TIFFs there that layerjkr did not write are not replaced");
   fit_map->add_flag("--force", map.force,
                     "Replace derived files that layerjkr did not write: a file at the record's name that is not a "
-                    "fit-map record, pictures in --plot-dir");
+                    "fit-map record, pictures in --plot-dir, TIFFs in --tiff");
   std::string map_curves, export_curves;
   fit_map->add_option("--report", map.report_dir,
                       "Write an interactive report (one self-contained HTML page: maps, histograms, each curve and its "
@@ -267,7 +271,7 @@ static int run_main(int argc, char** argv) {
     };
     if (*fit) check_from_report(fit, from_report, fit_required, {"--out", "--plot"});
     if (*fit_map) check_from_report(fit_map, map_from_report, {"inputs", "--scene", "--free"},
-                        {"--out", "--jobs", "--plot-dir", "--report", "--force"});
+                        {"--out", "--jobs", "--plot-dir", "--report", "--tiff", "--force"});
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

@@ -217,6 +217,38 @@ TEST_CASE("fit-map --plot-dir: a picture layerjkr did not draw is not replaced u
   CHECK(again.code == 4);
 }
 
+TEST_CASE("fit-map --tiff: a float TIFF per field and map, a TIFF layerjkr did not write not replaced unless --force",
+          "[cli][output][tiff]") {
+  const std::string map = unique("tiff_grid.jpk-force-map");
+  test::write_jpk_map(map, 4, 2, 2, 2);
+  const fs::path dir = fresh_dir("tiffs");
+  const std::string args = "fit-map " + map + kFree + " --out " + unique("tiff_grid.csv") + " --tiff " + dir.string();
+  const Run first = run(args);
+  INFO(first.err);
+  CHECK(first.code == 4);  // the builder's 8-sample curves cannot be fitted: every pixel NaN
+  CHECK(first.err.find("TIFF image(s) written to") != std::string::npos);
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    CHECK(e.path().extension() == ".tiff");
+    const std::string bytes = slurp(e.path().string());
+    CHECK(bytes.compare(0, 4, std::string("II*\0", 4)) == 0);
+    CHECK(bytes.find("layerjkr fit-map") != std::string::npos);
+    ++files;
+  }
+  CHECK(files == 10);  // E, w, delta0, P0 (the sample flags' free parameters), each _stderr, pull_off, rms_residual
+  std::ofstream(dir / "E.tiff", std::ios::trunc) << "my own image\n";
+  const Run refused = run(args);
+  CHECK(refused.code == 2);
+  CHECK(refused.err.find("E.tiff exists and is not a TIFF layerjkr wrote") != std::string::npos);
+  CHECK(slurp((dir / "E.tiff").string()) == "my own image\n");
+  const Run forced = run(args + " --force");
+  CHECK(forced.code == 4);
+  CHECK(slurp((dir / "E.tiff").string()).find("layerjkr fit-map: E [Pa]") != std::string::npos);
+  const Run csv_only = run("fit-map " + kCurve + kFree + " --out " + unique("tiff_c.csv") + " --tiff " + unique("none"));
+  CHECK(csv_only.code == 2);
+  CHECK(csv_only.err.find("no input carries map positions") != std::string::npos);
+}
+
 TEST_CASE("fit-map's exit code: 0 every curve fitted, 3 some failed, 4 none - --version and --help say so",
           "[cli][output]") {
   const fs::path dir = fresh_dir("codes");

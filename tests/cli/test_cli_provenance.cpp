@@ -284,7 +284,7 @@ TEST_CASE("fit-map --from-report reruns a map to the same table byte for byte", 
   CHECK_FALSE(fs::exists(unique("never_map.csv")));
   const Run flags = run("fit-map --from-report " + unique("first_map.json") + " --starts 2 --out " + unique("never_map.csv"));
   CHECK(flags.code == 2);
-  CHECK(flags.err.find("give only --out, --jobs, --plot-dir, --report, --force with it, not --starts") != std::string::npos);
+  CHECK(flags.err.find("give only --out, --jobs, --plot-dir, --report, --tiff, --force with it, not --starts") != std::string::npos);
   const Run report = run("fit-map --from-report " + write_file("fit_report.json", "{\"provenance\": {}}") + " --out " +
                          unique("never_map.csv"));
   CHECK(report.code == 2);

@@ -1,0 +1,121 @@
+// fit-map --tiff DIR (map_tiffs.hpp): the fields of the results table, as images of each map.
+#include "map_tiffs.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "layerjkr/error.hpp"
+#include "layerjkr/map_image.hpp"
+#include "layerjkr/types.hpp"
+#include "output_file.hpp"
+
+namespace layerjkr::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kMarker = "layerjkr fit-map";
+
+struct Field {
+  std::string name, unit;
+  std::function<double(const FitSummary&)> value;
+};
+
+std::vector<Field> fields_of(const std::vector<FitParameter>& free) {
+  std::vector<Field> fields;
+  for (FitParameter q : free) {
+    auto pick = [q](bool error) {
+      return [q, error](const FitSummary& s) {
+        for (const auto& e : s.parameters)
+          if (e.parameter == q && e.curve < 0) return error ? e.standard_error : e.value;
+        return std::nan("");
+      };
+    };
+    fields.push_back({to_string(q), unit_of(q), pick(false)});
+    fields.push_back({std::string(to_string(q)) + "_stderr", unit_of(q), pick(true)});
+  }
+  fields.push_back({"pull_off", "N", [](const FitSummary& s) { return s.pull_off_force; }});
+  fields.push_back({"rms_residual", "N", [](const FitSummary& s) { return s.rms_residual; }});
+  return fields;
+}
+
+std::string prefix_of(const std::vector<std::string>& inputs, std::size_t k) {
+  return inputs.size() == 1 ? std::string() : fs::path(inputs[k]).stem().string() + ".";
+}
+
+// A file layerjkr wrote: a little-endian TIFF whose first bytes after the header hold the marker
+// somewhere in its first 64 kB (the description follows the strip, so read the whole small file).
+bool is_our_tiff(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::string head(4, '\0');
+  if (!f.read(head.data(), 4) || head != std::string("II*\0", 4)) return false;
+  std::string rest((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  return rest.find(kMarker) != std::string::npos;
+}
+
+bool belongs(const std::string& source, const std::string& input) {
+  return source == input || (source.size() > input.size() && source.compare(0, input.size(), input) == 0 &&
+                             source[input.size()] == '#');
+}
+
+}  // namespace
+
+std::vector<std::string> map_tiff_names(const std::vector<std::string>& inputs, const std::vector<FitParameter>& free) {
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < inputs.size(); ++k)
+    for (const Field& f : fields_of(free)) names.push_back(prefix_of(inputs, k) + f.name + ".tiff");
+  return names;
+}
+
+void prepare_tiff_dir(const std::string& dir, const std::vector<std::string>& names, bool force) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError("--tiff " + dir + ": cannot create the directory (" + ec.message() + ")");
+  for (const std::string& name : names) {
+    const std::string path = (fs::path(dir) / name).string();
+    const fs::file_status st = fs::symlink_status(path, ec);
+    if (force || !fs::exists(st)) continue;
+    if (!fs::is_regular_file(st) || !is_our_tiff(path))
+      throw InputError("--tiff " + dir + ": " + name +
+                       " exists and is not a TIFF layerjkr wrote; it is not replaced (move it, choose another "
+                       "directory, or give --force to replace it)");
+  }
+}
+
+std::size_t write_map_tiffs(const std::vector<BatchItem>& items, const std::vector<std::string>& inputs,
+                            const std::vector<FitParameter>& free, const std::string& dir) {
+  std::size_t written = 0;
+  const std::vector<Field> fields = fields_of(free);
+  for (std::size_t k = 0; k < inputs.size(); ++k) {
+    std::vector<const BatchItem*> mine;
+    for (const BatchItem& it : items)
+      if (belongs(it.source, inputs[k]) && it.grid_x >= 0 && it.grid_y >= 0) mine.push_back(&it);
+    if (mine.empty()) continue;
+    std::vector<int> gx, gy;
+    for (const BatchItem* it : mine) {
+      gx.push_back(it->grid_x);
+      gy.push_back(it->grid_y);
+    }
+    for (const Field& f : fields) {
+      std::vector<double> values;
+      for (const BatchItem* it : mine) values.push_back(it->ok ? f.value(it->summary) : std::nan(""));
+      const MapImage image = map_image(gx, gy, values);
+      OutputFile out((fs::path(dir) / (prefix_of(inputs, k) + f.name + ".tiff")).string());
+      write_tiff(image, out.temporary(), std::string(kMarker) + ": " + f.name + (f.unit.empty() ? "" : " [" + f.unit + "]") +
+                                  " of " + fs::path(inputs[k]).filename().string() + "; NaN where no fit");
+      out.commit();
+      ++written;
+    }
+  }
+  if (written == 0) throw InputError("--tiff: no input carries map positions (instrument force maps and QI files do)");
+  return written;
+}
+
+}  // namespace layerjkr::cli
