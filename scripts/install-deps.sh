@@ -6,13 +6,14 @@
 # python3-selenium, chromium and chromium-driver run the map report's test in a headless browser
 # (fonts-liberation: with --no-install-recommends chromium would have no font to draw text with).
 # The Python module builds against Debian's /usr/bin/python3 and its packages (no PyPI needed).
+# python3-pandas and python3-xarray: BatchResults.to_pandas and to_xarray (optional at run time).
 # Runs apt-get directly as root (CI, containers) and through sudo otherwise.
 set -euo pipefail
 packages=(cmake ninja-build g++ libeigen3-dev libgsl-dev libboost-dev libceres-dev libmetis-dev
           catch2 libcli11-dev nlohmann-json3-dev libbenchmark-dev gnuplot-nox
           clang clang-tidy libclang-rt-14-dev libzip-dev zipcmp zipmerge ziptool zlib1g-dev libdeflate-dev pkg-config libssl-dev
           pybind11-dev python3-dev python3-pybind11 python3-numpy python3-pytest python3-setuptools
-          python3-pip python3-matplotlib python3-dask python3-distributed
+          python3-pip python3-matplotlib python3-dask python3-distributed python3-pandas python3-xarray
           python3-selenium chromium chromium-driver fonts-liberation)
 as_root=()
 [ "$(id -u)" -eq 0 ] || as_root=(sudo)

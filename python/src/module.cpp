@@ -8,6 +8,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -431,6 +432,12 @@ PYBIND11_MODULE(_core, m) {
   py::class_<CsvOptions>(m, "CsvOptions", "The library's CsvOptions; make them with csv_options().");
   m.def("csv_options", &csv_options, py::kw_only(), py::arg("units"), py::arg("spring_constant"), py::arg("z_sign"),
         py::arg("deflection_sign"), py::arg("curve"));
+  // "LENGTH,FORCE" -> (metres per length unit, newtons per force unit): fit()'s units=.
+  m.def("unit_scales", [](const std::string& units) {
+        CsvOptions c;
+        parse_units(units, c);
+        return std::pair<double, double>{c.length_unit, c.force_unit};
+      }, py::arg("units"));
 
   py::class_<ParameterEstimate>(m, "ParameterEstimate", "One fitted parameter (ParameterEstimate), SI units.")
       .def_property_readonly("name", [](const ParameterEstimate& p) {  // a joint fit's own: "delta0[2]"
@@ -472,6 +479,7 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("identifiable", &FitSummary::identifiable)
       .def_readonly("identifiability_known", &FitSummary::identifiability_known)
       .def_property_readonly("identifiability_reason", [](const FitSummary& s) { return python::text(s.identifiability_reason); })
+      .def_property_readonly("identifiability", [](const FitSummary& s) { return python::text(s.identifiability()); })
       .def_readonly("unidentifiable", &FitSummary::unidentifiable)
       .def_property_readonly("no_move_reason", [](const FitSummary& s) { return python::text(s.no_move_reason); })
       .def_property_readonly("warnings", [](const FitSummary& s) { return python::texts(s.warnings); })
@@ -517,10 +525,43 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("x", &BatchItem::x)
       .def_readonly("y", &BatchItem::y)
       .def_readonly("grid_x", &BatchItem::grid_x)
-      .def_readonly("grid_y", &BatchItem::grid_y);
+      .def_readonly("grid_y", &BatchItem::grid_y)
+      .def_property_readonly("quality", &batch_quality);
+
+  // A map field's image and its TIFF (map_image.hpp): the same placement and writer as fit-map --tiff.
+  m.def("map_image", [](const std::vector<int>& grid_x, const std::vector<int>& grid_y, const std::vector<double>& values) {
+        const MapImage image = map_image(grid_x, grid_y, values);
+        py::array_t<double> out({image.height, image.width});
+        std::copy(image.values.begin(), image.values.end(), out.mutable_data());
+        return out;
+      }, py::arg("grid_x"), py::arg("grid_y"), py::arg("values"));
+  m.def("write_tiff", [](const std::string& path, const py::array_t<double, py::array::c_style | py::array::forcecast>& a,
+                         const std::string& description) {
+        if (a.ndim() != 2 || a.shape(0) < 1 || a.shape(1) < 1)
+          throw InputError("write_tiff " + path + ": the image must be a non-empty 2-D array");
+        MapImage image;
+        image.height = static_cast<std::size_t>(a.shape(0));
+        image.width = static_cast<std::size_t>(a.shape(1));
+        image.values.assign(a.data(), a.data() + a.size());
+        py::gil_scoped_release release;
+        write_tiff(image, path, description);
+      }, py::arg("path"), py::arg("image"), py::arg("description"));
 
   m.def("fit", &fit_arrays, py::arg("delta"), py::arg("P"), py::arg("segment"), py::arg("t"), py::arg("scene"),
         py::arg("options"));
+  // The scene a fit describes (fitted_scene): from the scene's JSON as the fit's provenance kept it
+  // and the fitted (name, value) pairs; a joint fit's per-curve names ("delta0[2]") are skipped.
+  m.def("fitted_scene", [](const std::string& scene_json, const std::vector<std::pair<std::string, double>>& values) {
+        std::vector<ParameterEstimate> estimates;
+        for (const auto& [name, value] : values) {
+          if (name.find('[') != std::string::npos) continue;
+          ParameterEstimate estimate;
+          estimate.parameter = parse_enum<FitParameter>(name, "parameter");
+          estimate.value = value;
+          estimates.push_back(estimate);
+        }
+        return fitted_scene(parse_scene(scene_json, "the fit's scene"), estimates);
+      }, py::arg("scene_json"), py::arg("values"));
   m.def("fit_joint", &fit_joint_arrays, py::arg("curves"), py::arg("scene"), py::arg("options"));
   py::class_<SimulationOptions>(m, "SimulationOptions", "The library's SimulationOptions; make them with simulation_options().");
   m.def("simulation_options", &simulation_options, py::kw_only(), py::arg("max_indentation"), py::arg("speed"),

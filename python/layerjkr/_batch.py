@@ -1,0 +1,272 @@
+"""Fitting many curves: fit_batch (arrays) and fit_files (CSV and instrument files, maps, reports)."""
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from typing import Any, Callable, Dict, Iterator, List, NamedTuple, Optional, Sequence, Tuple, Union
+
+import numpy.typing as npt
+
+from . import _core
+from ._common import BaselineKind, Branch, ContactPointMethod, Control, CurveRangeLike, Loss, SceneLike, Window, _float64, _integer, _number, _text
+from ._scene import _as_scene
+from ._fit_result import FitResult
+from ._fit_options import _array_inputs, _options, _provenance, _with_fit_parameters, _with_inputs
+from ._instrument import _NO_END, _curve_range
+from ._batch_tables import BatchResults
+
+
+class BatchResult(NamedTuple):
+    """One curve of :func:`fit_batch` or :func:`fit_files`: its fit, or why it failed."""
+
+    source: str
+    """The file name, or "curve N" in a batch of arrays."""
+    curve: Optional[int]
+    """The curve's number in an instrument file, else None."""
+    x: float
+    """Map position [m] (NaN where the file has none)."""
+    y: float
+    """Map position [m] (NaN where the file has none)."""
+    grid_x: Optional[int]
+    """Grid pixel (None where the file has none)."""
+    grid_y: Optional[int]
+    """Grid pixel (None where the file has none)."""
+    result: Optional[FitResult]
+    """The fit (without the per-sample arrays), or None if it failed."""
+    error: Optional[str]
+    """The library's message if the curve could not be read or fitted, else None."""
+
+    @property
+    def ok(self) -> bool:
+        """True if the curve was fitted."""
+        return self.result is not None
+
+
+def _batch(items: Sequence[Any], branch: str,
+           provenance: Optional[Callable[[int, Any], Dict[str, Any]]] = None) -> BatchResults:
+    out = []
+    for k, it in enumerate(items):
+        record = provenance(k, it) if provenance is not None and it.ok else None
+        out.append(BatchResult(source=it.source, curve=it.curve if it.curve >= 0 else None, x=it.x, y=it.y,
+                               grid_x=it.grid_x if it.grid_x >= 0 else None, grid_y=it.grid_y if it.grid_y >= 0 else None,
+                               result=FitResult(it.summary, branch, record) if it.ok else None,
+                               error=None if it.ok else it.error))
+    return BatchResults(out, [it.quality for it in items])
+
+
+@contextlib.contextmanager
+def _keep_finished(branch: str) -> Iterator[None]:
+    # _core attaches the finished items to the exception that a signal handler raised.
+    try:
+        yield
+    except BaseException as e:
+        items = getattr(e, "batch_items", None)
+        if items is not None:
+            e.results = _batch(items, branch)  # type: ignore[attr-defined]
+            del e.batch_items  # type: ignore[attr-defined]
+        raise
+
+
+def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: SceneLike, *,
+              free: Union[str, Sequence[str]] = ("E", "w", "delta0"), jobs: int = 1, branch: Branch = "approach",
+              control: Control = "auto", spring_constant: Optional[float] = None,
+              baseline: BaselineKind = "constant", window: Window = "all", window_fraction: float = 0.5,
+              loss: Loss = "none", loss_scale: Optional[float] = None, starts: int = 0,
+              max_iterations: int = 200,
+              contact_point: ContactPointMethod = "fit", indentation_range: Optional[Tuple[float, float]] = None,
+              force_range: Optional[Tuple[float, float]] = None,
+              baseline_window: Optional[Tuple[float, float]] = None,
+              report: Optional[Union[str, "os.PathLike[str]"]] = None) -> BatchResults:
+    """Fit many curves with the same scene and options on ``jobs`` threads.
+
+    Parameters
+    ----------
+    curves : sequence of (delta, P)
+        Each a pair of 1-D arrays [m], [N] (split at their largest delta).
+    scene : Scene, dict or path
+        See :func:`scene`.
+    jobs : int, default 1
+        Worker threads, >= 1 (the GIL is released).
+    %s
+    report : path, optional
+        Also write the interactive report (as ``fit-map --report``; see :func:`fit_files`)
+        to ``report/index.html``; the curves, having no map position, are laid out by index.
+
+    Returns
+    -------
+    BatchResults
+        A list of BatchResult (with ``to_pandas``, ``image``, ``to_xarray``, ``to_tiff``), one per curve, in order: its FitResult (without the per-sample arrays, or with
+        ``report``, with the thinned ones the report shows) or the error message. A curve that
+        cannot be fitted never stops the batch. The fits' warnings are in each result, not
+        emitted.
+
+    Raises
+    ------
+    KeyboardInterrupt
+        On Ctrl-C (checked every 0.1 s): no further curve starts, the running fits finish,
+        and the exception's ``results`` holds the finished curves (a prefix of the input, as
+        BatchResults). The same for any exception a signal handler raises.
+    InputError
+        An invalid option (named), ``jobs`` < 1, an array not 1-D.
+    DomainError
+        An option outside its range.
+    TypeError
+        An unknown keyword.
+    """
+    options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
+                       starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
+    pairs = [(_float64(d), _float64(p)) for d, p in curves]
+    s = _as_scene(scene)
+    directory = _report_dir(report)
+    with _keep_finished(options.branch):
+        items = _core.fit_batch(pairs, s, options, _integer("jobs", jobs),
+                                _core.DEFAULT_DISPLAY_POINTS if directory else 0)
+    if directory:
+        _write_report(items, options, directory, "%d curves (fit_batch)" % len(items))
+    base = _provenance(s, options, None, [])
+    return _batch(items, options.branch, lambda k, it: _with_inputs(base, _array_inputs(*pairs[k], None)))
+
+
+_with_fit_parameters(fit_batch)
+
+
+def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.PathLike[str]"]]], scene: SceneLike, *,
+              free: Union[str, Sequence[str]] = ("E", "w", "delta0"), jobs: int = 1, branch: Branch = "approach",
+              control: Control = "auto", spring_constant: Optional[float] = None,
+              baseline: BaselineKind = "constant", window: Window = "all", window_fraction: float = 0.5,
+              loss: Loss = "none", loss_scale: Optional[float] = None, starts: int = 0, max_iterations: int = 200,
+              units: str = "m,N", z_sign: float = 1.0, deflection_sign: float = 1.0,
+              curve: Optional[int] = None, curves: Optional[CurveRangeLike] = None,
+              contact_point: ContactPointMethod = "fit", indentation_range: Optional[Tuple[float, float]] = None,
+              force_range: Optional[Tuple[float, float]] = None,
+              baseline_window: Optional[Tuple[float, float]] = None,
+              report: Optional[Union[str, "os.PathLike[str]"]] = None) -> BatchResults:
+    """Fit CSV and instrument files on ``jobs`` threads, as ``layerjkr fit-map``.
+
+    Parameters
+    ----------
+    paths : path or sequence of paths
+        CSV files and instrument files (.jpk-force, .jpk-force-map, .jpk-qi-data, .ibw); every
+        curve of a map is its own item.
+    scene : Scene, dict or path
+        See :func:`scene`.
+    jobs : int, default 1
+        Worker threads, >= 1 (the GIL is released).
+    %s
+    units : str, default "m,N"
+        Units of the CSV files, "LENGTH,FORCE", e.g. "nm,nN".
+    z_sign : float, default 1.0
+        Raw z,deflection CSV: +1 if z grows towards the sample, -1 if it decreases.
+    deflection_sign : float, default 1.0
+        Raw z,deflection CSV: +1 if a deflection > 0 means repulsion, else -1.
+    curve : int, optional
+        Which curve of a CSV export holding several.
+    curves : slice or (int, int), optional
+        Fit only the curves at these positions of each instrument file (0-based, file order,
+        as ``fit-map --curves A:B``): ``slice(a, b)`` or ``(a, b)`` for positions a .. b - 1,
+        ``slice(a, None)`` for a to the end. Only those curves are read. A range that selects
+        no curve of a file is that file's failed item. CSV files are unaffected. None: every
+        curve.
+    report : path, optional
+        A directory for the interactive report, as ``layerjkr fit-map --report``: one
+        self-contained page, ``report/index.html``, that works from file:// without network
+        (a heat map per fitted field with colour bar and histogram, bad pixels marked, a
+        status filter, each curve with its fit; docs/report.md). The directory is created; an
+        existing one must be empty or hold an earlier report (only its index.html), checked
+        before any fitting. Not written if the batch is interrupted.
+
+    ``spring_constant`` is also the one the CSV reader uses for z,deflection data and that
+    replaces an instrument file's own.
+
+    Returns
+    -------
+    BatchResults
+        A list of BatchResult (with ``to_pandas``, ``image``, ``to_xarray``, ``to_tiff``), one per curve, in file order, with its map position and pixel: its FitResult
+        (without the per-sample arrays, or with ``report``, with the thinned ones the report
+        shows) or the error message. A file that cannot be read is
+        one failed item (so is a path that is not a regular file: a directory, a FIFO, a
+        dangling or looping link, never opened). The fits' warnings are in each result, not
+        emitted.
+
+    Raises
+    ------
+    KeyboardInterrupt
+        On Ctrl-C (checked every 0.1 s): no further curve starts, the running fits finish,
+        and the exception's ``results`` holds the finished curves (a prefix of the input, as
+        BatchResults). The same for any exception a signal handler raises.
+    InputError
+        An invalid option (named), unknown units, ``jobs`` < 1; a ``curves`` range with a
+        step other than 1, a negative bound or its begin after its end; a ``report`` that is a
+        file, cannot be created or written, or is a directory holding other files.
+    DomainError
+        An option outside its range.
+    TypeError
+        An unknown keyword; a ``curves`` that is not a slice or a pair of integers.
+    """
+    options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
+                       starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
+    selection = None
+    if curves is not None:
+        begin, end = _curve_range(curves)
+        selection = (begin, _NO_END if end is None else end)
+    csv = _core.csv_options(units=_text("units", units),
+                            spring_constant=None if spring_constant is None else _number("spring_constant", spring_constant),
+                            z_sign=_number("z_sign", z_sign), deflection_sign=_number("deflection_sign", deflection_sign),
+                            curve=None if curve is None else _integer("curve", curve))
+    if isinstance(paths, (str, os.PathLike)):
+        paths = [paths]
+    # As bytes, the file system's own names: a name that is not UTF-8 (os.listdir gives it with
+    # surrogates) reaches the file; each result's source gives it back as os.fsdecode would.
+    names = [os.fsencode(p) for p in paths]
+    s = _as_scene(scene)
+    directory = _report_dir(report)
+    # Each file hashed once, before it is read (a FIFO or a directory is recorded, not opened).
+    hashed = {name: _core.record_file(name) for name in names}
+    with _keep_finished(options.branch):
+        items = _core.fit_files(names, s, options, csv, _integer("jobs", jobs), selection,
+                                _core.DEFAULT_DISPLAY_POINTS if directory else 0)
+    if directory:
+        _write_report(items, options, directory, "%d input file(s) (fit_files)" % len(names))
+    base = _provenance(s, options, csv, [])
+    return _batch(items, options.branch,
+                  lambda k, it: _with_inputs(base, [hashed.get(os.fsencode(it.source)) or _core.record_file(os.fsencode(it.source))]))
+
+
+def _report_dir(report: Optional[Union[str, "os.PathLike[str]"]]) -> Optional[str]:
+    """The report's directory, created and checked before any fitting (None: no report)."""
+    if report is None:
+        return None
+    directory = os.fspath(report)
+    _core.prepare_report_dir(directory, "report")
+    return directory
+
+
+def _write_report(items: Sequence[Any], options: Any, directory: str, subtitle: str) -> None:
+    """Writes the report's page atomically: a private temporary file renamed over index.html,
+    which keeps the mode and owner of a page it replaces (as the CLI's outputs do)."""
+    html = _core.map_report_html(items, options, "layerjkr force-map report", subtitle)
+    target = os.path.join(directory, "index.html")
+    fd, tmp = tempfile.mkstemp(prefix=".index.html.", dir=directory)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(html)
+            f.flush()
+            os.fsync(f.fileno())
+        try:
+            old = os.stat(target)
+            if (old.st_uid, old.st_gid) != (os.getuid(), os.getgid()):
+                os.chown(tmp, old.st_uid, old.st_gid)
+            os.chmod(tmp, old.st_mode & 0o7777)
+        except FileNotFoundError:
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, target)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+_with_fit_parameters(fit_files)

@@ -1,0 +1,162 @@
+"""A batch's results as tables and images: BatchResults (the list fit_batch and fit_files return)
+with to_pandas (the fit-map CSV's columns), image and to_xarray (each field on the map grid,
+coordinates in metres) and to_tiff (fit-map --tiff's writer). pandas and xarray are imported
+only when their method is called."""
+from __future__ import annotations
+
+import math
+import os
+from typing import Any, Dict, List, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _core
+from ._core import InputError
+
+_HEAD = ("file", "curve", "x", "y", "grid_x", "grid_y", "status", "error", "model", "converged", "iterations",
+         "rms_residual", "identifiable", "identifiability", "contact_point", "contact_point_err", "range_samples")
+
+
+_UNITS = {"rms_residual": "N", "pull_off": "N", "iterations": "", "contact_point": "m"}
+
+
+def _unit(field: str) -> str:
+    """The SI unit of a field: its parameter's (errors share it), or the fixed ones."""
+    base = field[:-7] if field.endswith("_stderr") else field
+    return _UNITS[base] if base in _UNITS else _core.unit_of(base)
+
+
+def _import(module: str, method: str, package: str) -> Any:
+    try:
+        return __import__(module)
+    except ImportError:
+        raise ImportError("BatchResults.%s needs %s (Debian: %s; pip: %s)" % (method, module, package, module)) from None
+
+
+class BatchResults(list):  # type: ignore[type-arg]
+    """The results of :func:`fit_batch` and :func:`fit_files`: a list of :class:`BatchResult`,
+    one per curve in input order, that also becomes a table (:meth:`to_pandas`), an image of a
+    field (:meth:`image`), a labelled dataset of every field (:meth:`to_xarray`) and a TIFF
+    (:meth:`to_tiff`). Failed curves are rows with ``status`` "error" and NaN pixels."""
+
+    def __init__(self, items: Sequence[Any] = (), quality: Sequence[str] = ()) -> None:
+        super().__init__(items)
+        self.quality: List[str] = list(quality) if quality else ["" for _ in self]
+        """Per curve: fit-map's quality column (ok, warning, not identifiable, not converged, failed)."""
+
+    def _free(self) -> List[str]:
+        for it in self:
+            if it.result is not None:
+                return list(it.result.parameters)
+        return []
+
+    def fields(self) -> List[str]:
+        """The numeric fields an image can show: each free parameter and its ``_stderr``,
+        ``rms_residual``, ``pull_off``, ``iterations`` and ``contact_point``."""
+        names = []
+        for p in self._free():
+            names += [p, p + "_stderr"]
+        return names + ["rms_residual", "pull_off", "iterations", "contact_point"]
+
+    def _value(self, it: Any, field: str) -> float:
+        r = it.result
+        if r is None:
+            return math.nan
+        if field in r.parameters:
+            return float(r.values[field])
+        if field.endswith("_stderr") and field[:-7] in r.parameters:
+            return float(r.errors[field[:-7]])
+        if field == "rms_residual":
+            return float(r.rms_residual)
+        if field == "pull_off":
+            return float(r._fields["pull_off_force"])
+        if field == "iterations":
+            return float(r.iterations)
+        if field == "contact_point":
+            return float(r.contact_point.get("value", math.nan))
+        raise InputError("field = %r is not a field of these results (fields: %s)" % (field, ", ".join(self.fields())))
+
+    def to_pandas(self) -> Any:
+        """A pandas DataFrame with the columns of ``layerjkr fit-map``'s CSV, one row per curve."""
+        pd = _import("pandas", "to_pandas", "python3-pandas")
+        free = self._free()
+        rows = []
+        for it, quality in zip(self, self.quality):
+            r = it.result
+            row: Dict[str, Any] = {"file": it.source, "curve": it.curve, "x": it.x, "y": it.y, "grid_x": it.grid_x,
+                                   "grid_y": it.grid_y, "status": "ok" if r is not None else "error",
+                                   "error": it.error or ""}
+            if r is not None:
+                point = r.contact_point
+                row.update(model=r.model, converged=r.converged, iterations=r.iterations, rms_residual=r.rms_residual,
+                           identifiable=r.identifiable, identifiability=r._fields.get("identifiability", ""),
+                           contact_point=point.get("value"), contact_point_err=point.get("stderr"),
+                           range_samples=point.get("samples_in_range"))
+            for p in free:
+                row[p] = self._value(it, p)
+                row[p + "_stderr"] = self._value(it, p + "_stderr")
+            row.update(quality=quality, warnings=" | ".join(r.warnings) if r is not None else "",
+                       notices=" | ".join(r.notices) if r is not None else "")
+            rows.append(row)
+        columns = list(_HEAD) + [c for p in free for c in (p, p + "_stderr")] + ["quality", "warnings", "notices"]
+        return pd.DataFrame(rows, columns=columns)
+
+    def _of_file(self, file: Optional[str], method: str) -> List[Any]:
+        """The curves of one map: those of ``file``, or of the only file whose curves have pixels."""
+        def stem(source: str) -> str:
+            return source.rsplit("#", 1)[0] if "#" in source else source
+        mapped = [it for it in self if it.grid_x is not None and it.grid_y is not None]
+        files = list(dict.fromkeys(stem(it.source) for it in mapped))
+        if file is None:
+            if len(files) != 1:
+                raise InputError("%s: %s; give file=" % (method, "no curve has a map pixel (instrument maps have them)"
+                                                             if not files else "the results hold %d maps (%s)" %
+                                                             (len(files), ", ".join(files))))
+            file = files[0]
+        chosen = [it for it in mapped if stem(it.source) == os.fsdecode(file)]
+        if not chosen:
+            raise InputError("%s: file = %r has no curve with a map pixel here (maps: %s)" % (method, file, ", ".join(files)))
+        return chosen
+
+    def image(self, field: str, *, file: Optional[str] = None) -> npt.NDArray[np.float64]:
+        """A field on the map grid: a float64 array [grid_y, grid_x], NaN where a curve failed or
+        the grid has none. ``file`` picks the map when the results hold several."""
+        items = self._of_file(file, "image")
+        values = [self._value(it, field) for it in items]
+        return _core.map_image([it.grid_x for it in items], [it.grid_y for it in items], values)
+
+    def to_xarray(self, *, file: Optional[str] = None) -> Any:
+        """An xarray Dataset of every field on the map grid: dims (y, x), coordinates ``x`` and
+        ``y`` in metres (each column's and row's mean stage position; NaN where a whole column
+        or row failed to read), ``grid_x`` and ``grid_y``; units in each variable's attrs."""
+        xr = _import("xarray", "to_xarray", "python3-xarray")
+        items = self._of_file(file, "to_xarray")
+        gx = np.array([it.grid_x for it in items])
+        gy = np.array([it.grid_y for it in items])
+        data = {}
+        for field in self.fields():
+            data[field] = (("y", "x"), self.image(field, file=file), {"units": _unit(field)})
+        shape = data[self.fields()[0]][1].shape
+
+        def axis(positions: npt.NDArray[np.float64], index: npt.NDArray[np.int64], n: int) -> npt.NDArray[np.float64]:
+            out = np.full(n, np.nan)
+            for k in range(n):
+                mine = positions[(index == k) & np.isfinite(positions)]
+                if mine.size:
+                    out[k] = float(mine.mean())
+            return out
+
+        xs = axis(np.array([it.x for it in items], float), gx, shape[1])
+        ys = axis(np.array([it.y for it in items], float), gy, shape[0])
+        return xr.Dataset(data, coords={"x": ("x", xs, {"units": "m"}), "y": ("y", ys, {"units": "m"}),
+                                        "grid_x": ("x", np.arange(shape[1])), "grid_y": ("y", np.arange(shape[0]))},
+                          attrs={"source": "layerjkr %s" % _core.__version__})
+
+    def to_tiff(self, field: str, path: Union[str, "os.PathLike[str]"], *, file: Optional[str] = None) -> None:
+        """Writes :meth:`image` of ``field`` to ``path`` as a 32-bit float TIFF (ImageJ, Fiji,
+        Gwyddion; NaN where no fit) with the writer of ``fit-map --tiff``; replaces ``path``."""
+        image = self.image(field, file=file)  # checks the field first
+        unit = _unit(field)
+        _core.write_tiff(os.fsdecode(path), image,
+                         "layerjkr fit-map: %s%s" % (field, " [%s]" % unit if unit else ""))

@@ -1,0 +1,251 @@
+"""Fitting one curve (fit), several curves of one sample jointly (fit_joint) and simulating a
+curve (simulate)."""
+from __future__ import annotations
+
+from typing import Any, List, Literal, NamedTuple, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _core
+from ._core import InputError, NumericalError
+from ._common import BaselineKind, Branch, ContactPointMethod, Control, Loss, SceneLike, Window, _float64, _integer, _number, _segments, _text, _warn
+from ._scene import _as_scene
+from ._fit_result import FitResult
+from ._fit_options import _array_inputs, _options, _provenance, _with_fit_parameters
+
+
+def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
+        free: Union[str, Sequence[str]] = ("E", "w", "delta0"), segment: Optional[npt.ArrayLike] = None,
+        branch: Branch = "approach", control: Control = "auto", spring_constant: Optional[float] = None,
+        baseline: BaselineKind = "constant", window: Window = "all", window_fraction: float = 0.5,
+        loss: Loss = "none", loss_scale: Optional[float] = None, starts: int = 0,
+        max_iterations: int = 200,
+        contact_point: ContactPointMethod = "fit", indentation_range: Optional[Tuple[float, float]] = None,
+        force_range: Optional[Tuple[float, float]] = None,
+        baseline_window: Optional[Tuple[float, float]] = None, t: Optional[npt.ArrayLike] = None,
+        units: str = "m,N") -> FitResult:
+    """Fit one measured curve with the model of a scene.
+
+    Parameters
+    ----------
+    delta : array_like
+        Approach [m] (any offset; the fit's delta0 maps it), 1-D.
+    P : array_like
+        Force [N], positive when repulsive, 1-D, as long as ``delta``.
+    scene : Scene, dict or path
+        Indenter, medium, model and the starting values (see :func:`scene`).
+    segment : array_like of int, optional
+        Per sample 0 (approach), 1 (retract) or 2 (dwell); None splits the curve at its largest delta.
+    t : array_like, optional
+        Each sample's time [s], strictly increasing: what a relaxing medium or crack kinetics
+        in the scene is fitted against (the fit is then in time).
+    %s
+    units : str, default "m,N"
+        Units of ``delta`` and ``P``, "LENGTH,FORCE" as for :func:`fit_files` (LENGTH in m, mm,
+        um, nm, pm; FORCE in N, mN, uN, nN, pN), e.g. "nm,nN"; the result is in SI units.
+
+    Returns
+    -------
+    FitResult
+
+    Raises
+    ------
+    InputError
+        Data that cannot be fitted (too few samples, no sample in contact, a parameter the
+        model does not have), an unknown choice (the message names the parameter, e.g.
+        ``branch``), control "cantilever" without a stiffness.
+    DomainError
+        An option outside its range (the message names it).
+    TypeError
+        An unknown keyword.
+
+    Warns
+    -----
+    ModelWarning
+        Each of the fit's warnings (a convergence failure is reported, not raised).
+    """
+    options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
+                       starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
+    seg = None if segment is None else _segments(segment)
+    length, force = _core.unit_scales(_text("units", units))
+    d, p = _float64(delta) * length, _float64(P) * force
+    tt = None if t is None else _float64(t)
+    s_ = _as_scene(scene)
+    try:
+        s = _core.fit(d, p, seg, tt, s_, options)
+    except (InputError, NumericalError) as e:
+        hint = _unit_hint(d, p) if units.replace(" ", "") == "m,N" else ""
+        if not hint:
+            raise
+        raise type(e)(str(e) + hint) from None
+    inputs = _array_inputs(d, p, seg)
+    if tt is not None:
+        inputs.append(_core.record_bytes("t (float64 array)", tt))
+    result = FitResult(s, options.branch, _provenance(s_, options, None, inputs))
+    _warn(result.warnings, 2)
+    return result
+
+
+_with_fit_parameters(fit)
+
+
+def _unit_hint(delta: npt.NDArray[np.float64], P: npt.NDArray[np.float64]) -> str:
+    """A hint for a fit that failed on data whose size says they are not in metres and newtons:
+    AFM indentations of 1 mm or forces of 1 N are nanometres and nanonewtons read as SI."""
+    span_d = float(np.nanmax(np.abs(delta))) if delta.size else 0.0
+    span_P = float(np.nanmax(np.abs(P))) if P.size else 0.0
+    if span_d <= 1e-3 and span_P <= 1.0:
+        return ""
+    return (" [the data reach |delta| = %.3g m and |P| = %.3g N: if they are in nm and nN (or other units), "
+            "pass units=\"nm,nN\"]" % (span_d, span_P))
+
+
+class Simulation(NamedTuple):
+    """A synthetic curve (:func:`simulate`): float64 arrays in SI units, ``a`` and ``t`` empty
+    where not made. ``fit(delta, P, scene, t=t, segment=segment)`` fits it back."""
+    t: npt.NDArray[np.float64]
+    delta: npt.NDArray[np.float64]
+    P: npt.NDArray[np.float64]
+    a: npt.NDArray[np.float64]
+    segment: npt.NDArray[np.int64]
+    source: str
+
+
+def simulate(scene: SceneLike, *, max_indentation: float, speed: float = 0.0, retract_speed: float = 0.0,
+             dwell: float = 0.0, points: int = 500, free_fraction: float = 0.5, noise: float = 0.0, seed: int = 1,
+             with_radius: bool = False, branch: Branch = "all", delta0: float = 0.0, P0: float = 0.0,
+             control: Literal["grips", "cantilever"] = "grips", stiffness: Optional[float] = None) -> Simulation:
+    """A synthetic curve of a scene: the fit's own physics, at equilibrium or in time.
+
+    Parameters
+    ----------
+    scene : Scene, dict or path
+        The scene (see :func:`scene`); a relaxing medium (``medium.viscoelastic``) or crack
+        kinetics (``adhesion.kinetics``) answer in time and need a ``speed``.
+    max_indentation : float
+        The deepest indentation beyond first contact [m], > 0.
+    speed : float, default 0
+        The indenter's approach speed [m/s]; > 0 samples the curve in time (``t`` from 0).
+    retract_speed : float, default 0
+        The retract's speed [m/s] (0: ``speed``).
+    dwell : float, default 0
+        A rest at the deepest point [s] (dwell samples, segment 2; needs ``speed``).
+    points : int, default 500
+        Samples per branch, >= 2.
+    free_fraction : float, default 0.5
+        Fraction of ``max_indentation`` sampled off contact, >= 0.
+    noise : float, default 0
+        Standard deviation of Gaussian force noise [N].
+    seed : int, default 1
+        The noise's seed.
+    with_radius : bool, default False
+        Also return the contact radius ``a`` [m].
+    branch : {"approach", "retract", "all"}, default "all"
+        Which samples to return (a retract in time keeps its history's times).
+    delta0, P0 : float, default 0
+        Contact-point offset [m] and force baseline [N] added to every sample.
+    control : {"grips", "cantilever"}, default "grips"
+        With crack kinetics: what drives the retract - the indenter itself, or a cantilever's
+        base (``stiffness`` [N/m]).
+    stiffness : float, optional
+        The cantilever's stiffness [N/m] (``control="cantilever"``).
+
+    Returns
+    -------
+    Simulation
+        t, delta, P, a, segment and the model's name; ``layerjkr simulate`` writes the same.
+
+    Raises
+    ------
+    InputError
+        A relaxing medium or crack kinetics without a speed, adhesion on a relaxing medium, a
+        cantilever without crack kinetics, an unknown choice (named).
+    DomainError
+        An option outside its range (named).
+    """
+    o = _core.simulation_options(
+        max_indentation=_number("max_indentation", max_indentation), speed=_number("speed", speed),
+        retract_speed=_number("retract_speed", retract_speed), dwell=_number("dwell", dwell),
+        points=_integer("points", points), free_fraction=_number("free_fraction", free_fraction),
+        noise=_number("noise", noise), seed=_integer("seed", seed), with_radius=bool(with_radius),
+        branch=_text("branch", branch), delta0=_number("delta0", delta0), P0=_number("P0", P0),
+        control=_text("control", control), stiffness=0.0 if stiffness is None else _number("stiffness", stiffness))
+    t, d, p, a, seg, source = _core.simulate(_as_scene(scene), o)
+    return Simulation(t, d, p, a, np.asarray(seg, dtype=np.int64), source)
+
+
+class JointFitResult(NamedTuple):
+    """Curves of one sample fitted together (:func:`fit_joint`).
+
+    ``fit`` holds the shared parameters, then each curve's own (``"delta0[2]"``: curve 2,
+    counting from 1), with one covariance; its samples are every curve's in turn, curve ``k``'s
+    at ``slice(curve_begin[k], curve_begin[k + 1])``. ``alone`` has each curve fitted by
+    itself, what one speed says alone."""
+    fit: "FitResult"
+    alone: List["FitResult"]
+    curve_begin: npt.NDArray[np.int64]
+    sources: List[str]
+
+
+def _curve_tuple(c: Any, k: int) -> Tuple[Any, Any, Optional[List[int]], Optional[Any]]:
+    """One curve of fit_joint: a Simulation, a mapping with delta, P[, segment][, t], or a tuple."""
+    if isinstance(c, Simulation):
+        return (_float64(c.delta), _float64(c.P), _segments(c.segment), _float64(c.t) if len(c.t) else None)
+    if isinstance(c, dict):
+        missing = [key for key in ("delta", "P") if key not in c]
+        if missing:
+            raise InputError("curves[%d] has no %s" % (k, " or ".join(missing)))
+        seg, t = c.get("segment"), c.get("t")
+        return (_float64(c["delta"]), _float64(c["P"]), None if seg is None else _segments(seg),
+                None if t is None else _float64(t))
+    if isinstance(c, (tuple, list)) and 2 <= len(c) <= 4:
+        seg = c[2] if len(c) > 2 else None
+        t = c[3] if len(c) > 3 else None
+        return (_float64(c[0]), _float64(c[1]), None if seg is None else _segments(seg), None if t is None else _float64(t))
+    raise InputError("curves[%d] is not a curve: give a Simulation, a dict with delta, P[, segment][, t], or a "
+                     "tuple (delta, P[, segment[, t]])" % k)
+
+
+def fit_joint(curves: Sequence[Any], scene: SceneLike, *, free: Union[str, Sequence[str]] = ("E", "delta0"),
+              branch: Branch = "all", control: Control = "auto", spring_constant: Optional[float] = None,
+              loss: Loss = "none", loss_scale: Optional[float] = None, max_iterations: int = 200) -> JointFitResult:
+    """Fit curves of one sample at several speeds together: one law in time, shared.
+
+    Parameters
+    ----------
+    curves : sequence
+        At least 2 curves, each a :class:`Simulation`, a dict with ``delta``, ``P`` and optional
+        ``segment`` and ``t``, or a tuple ``(delta, P[, segment[, t]])``; each with its times.
+    scene : Scene, dict or path
+        A relaxing medium or crack kinetics (see :func:`scene`); the starting values.
+    free : sequence of str or str, default ("E", "delta0")
+        As :func:`fit`; every parameter is shared but delta0 and P0, one per curve.
+    branch, control, spring_constant, loss, loss_scale, max_iterations
+        As :func:`fit`.
+
+    Returns
+    -------
+    JointFitResult
+
+    Raises
+    ------
+    InputError
+        Fewer than 2 curves, an elastic scene, a curve that cannot be fitted alone (named).
+    """
+    options = _options(free, branch, control, spring_constant, "constant", "all", 0.5, loss, loss_scale, 0,
+                       max_iterations, "fit", None, None, None)
+    tuples = [_curve_tuple(c, k) for k, c in enumerate(curves)]
+    s_ = _as_scene(scene)
+    joint, begin, sources, alone = _core.fit_joint(tuples, s_, options)
+    inputs = []
+    for k, (d, p, seg, t) in enumerate(tuples):
+        inputs += [_core.record_bytes("curve %d delta (float64 array)" % (k + 1), d),
+                   _core.record_bytes("curve %d P (float64 array)" % (k + 1), p)]
+        if t is not None:
+            inputs.append(_core.record_bytes("curve %d t (float64 array)" % (k + 1), t))
+    record = _provenance(s_, options, None, inputs)
+    result = JointFitResult(FitResult(joint, options.branch, record), [FitResult(a, options.branch) for a in alone],
+                            np.asarray(begin, dtype=np.int64), list(sources))
+    _warn(result.fit.warnings, 2)
+    return result

@@ -1,0 +1,370 @@
+"""What a fit returns: FitResult (values, errors, correlation indexable by name) and NamedArray."""
+from __future__ import annotations
+
+import math
+from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _core, _fit_views
+from ._core import Scene
+from ._common import _finite_or_none
+
+
+class NamedArray(np.ndarray):
+    """A read-only float64 array of fit quantities indexed by parameter name as well as by
+    position (iminuit's util pattern): ``values["E"]``, ``correlation["E", "w"]``,
+    ``correlation["E"]`` (a row). Arithmetic gives plain arrays of the same shape."""
+
+    _names: Tuple[str, ...]
+
+    def __new__(cls, data: npt.ArrayLike, names: Sequence[str]) -> "NamedArray":
+        obj = np.array(data, dtype=np.float64).view(cls)
+        obj._names = tuple(names)
+        obj.flags.writeable = False
+        return obj
+
+    def __array_finalize__(self, obj: Any) -> None:
+        self._names = getattr(obj, "_names", ())
+
+    @property
+    def names(self) -> Tuple[str, ...]:
+        """The parameter names, in index order."""
+        return self._names
+
+    def _index(self, key: Any) -> Any:
+        if isinstance(key, str):
+            try:
+                return self._names.index(key)
+            except ValueError:
+                raise KeyError("%r is not a fitted parameter (fitted: %s)" % (key, ", ".join(self._names))) from None
+        if isinstance(key, tuple):
+            return tuple(self._index(k) for k in key)
+        return key
+
+    def __getitem__(self, key: Any) -> Any:
+        out = super().__getitem__(self._index(key))
+        return out.view(np.ndarray) if isinstance(out, np.ndarray) else out
+
+    def to_dict(self) -> Dict[str, Any]:
+        """{name: value} (1-D) or {name: {name: value}} (2-D), as Python floats."""
+        if self.ndim == 1:
+            return {n: float(v) for n, v in zip(self._names, self.view(np.ndarray))}
+        m = self.view(np.ndarray)
+        return {a: {b: float(m[i, k]) for k, b in enumerate(self._names)} for i, a in enumerate(self._names)}
+
+    def __array_wrap__(self, out: Any, context: Any = None, *args: Any) -> Any:
+        return np.asarray(out).view(np.ndarray) if out.ndim else out[()]
+
+    def __reduce__(self) -> Any:
+        return (NamedArray, (self.view(np.ndarray), self._names))
+
+    def __str__(self) -> str:
+        """Labelled: ``E = 1.99972e+04`` lines, or a matrix with its names on both sides."""
+        m = self.view(np.ndarray)
+        if self.ndim == 1 and len(self._names) == m.size:
+            width = max((len(n) for n in self._names), default=0)
+            return "\n".join("%-*s = %.6g" % (width, n, float(v)) for n, v in zip(self._names, m))
+        if self.ndim == 2 and m.shape == (len(self._names),) * 2:
+            width = max(max((len(n) for n in self._names), default=0), 9)
+            head = " " * width + "".join(" %9s" % n[:9] for n in self._names)
+            return "\n".join([head] + ["%-*s" % (width, a) + "".join(" %9.3f" % float(v) for v in m[i])
+                                        for i, a in enumerate(self._names)])
+        return str(m)
+
+    def __repr__(self) -> str:
+        if self.ndim == 1:
+            return "NamedArray({%s})" % ", ".join("%r: %r" % (n, float(v)) for n, v in zip(self._names, self.view(np.ndarray)))
+        return "NamedArray(%s, names=%r)" % (np.array2string(self.view(np.ndarray), separator=", "), self._names)
+
+
+class _Parameter(NamedTuple):
+    value: float
+    standard_error: float
+    initial: float
+    at_bound: bool
+    identifiable: bool
+    upper_bound: float
+    reason: str
+
+
+class FitResult:
+    """A fitted curve (the library's FitSummary): estimates with standard errors, their
+    covariance and correlation, identifiability, warnings, and the data with the fitted curve.
+
+    ``values``, ``errors``, ``covariance`` and ``correlation`` are :class:`NamedArray`
+    indexed by the names in ``parameters``; ``provenance`` says what the fit was made from
+    (version, scene, options, the inputs' SHA-256). Picklable (plain Python and numpy values).
+    """
+
+    __slots__ = ("_fields", "_params", "_corr", "_delta", "_P", "_P_fit", "_excluded", "_brief", "_branch",
+                 "_provenance", "_t")
+
+    def __init__(self, s: Any, branch: str, provenance: Optional[Dict[str, Any]] = None) -> None:
+        self._fields = {k: getattr(s, k) for k in ("converged", "termination", "iterations", "model", "family",
+                                                     "rms_residual", "excluded_count", "pull_off_force",
+                                                     "baseline_slope", "baseline_slope_stderr", "baseline_offset",
+                                                     "points",
+                                                     "points_in_contact", "identifiable", "identifiability_known",
+                                                     "identifiability_reason", "identifiability", "unidentifiable", "no_move_reason",
+                                                     "warnings", "notices", "initial_cost", "final_cost",
+                                                     "solve_seconds", "contact_point", "noise", "runs_z",
+                                                     "residual_structure", "force_noise", "radius_noise",
+                                                     "force_noise_given", "radius_noise_given")}
+        self._params = {p.name: _Parameter(p.value, p.standard_error, p.initial, p.at_bound, p.identifiable,
+                                              p.upper_bound, p.reason)
+                        for p in s.parameters}
+        self._corr = s.correlation
+        self._delta, self._P, self._P_fit, self._excluded = s.delta, s.P, s.P_fit, s.excluded
+        self._t = s.t
+        self._brief = s.brief_report()
+        self._branch = branch
+        self._provenance = provenance if provenance is not None else {}
+
+    def __getstate__(self) -> Any:
+        return {k: getattr(self, k) for k in self.__slots__}
+
+    def __setstate__(self, state: Any) -> None:
+        for k, v in state.items():
+            object.__setattr__(self, k, v)
+
+    @property
+    def delta(self) -> npt.NDArray[np.float64]:
+        """The fitted branch's approach samples [m], in acquisition order (empty in a batch)."""
+        return self._delta
+
+    @property
+    def P(self) -> npt.NDArray[np.float64]:
+        """The fitted branch's force samples [N] (empty in a batch)."""
+        return self._P
+
+    @property
+    def t(self) -> npt.NDArray[np.float64]:
+        """A fit in time: each sample's time [s] (aligned with ``delta``); empty otherwise."""
+        return getattr(self, "_t", np.empty(0))
+
+    @property
+    def P_fit(self) -> npt.NDArray[np.float64]:
+        """The fitted model at the same samples [N] (empty in a batch)."""
+        return self._P_fit
+
+    @property
+    def excluded(self) -> npt.NDArray[np.bool_]:
+        """Per sample: a retract sample after the model's jump that is not JKR, excluded from
+        the fit (empty in a batch)."""
+        return self._excluded
+
+    @property
+    def parameters(self) -> Tuple[str, ...]:
+        """The free parameters' names, in the order of ``free``."""
+        return tuple(self._params)
+
+    @property
+    def values(self) -> NamedArray:
+        """Fitted values, SI units."""
+        return NamedArray([p.value for p in self._params.values()], self.parameters)
+
+    @property
+    def errors(self) -> NamedArray:
+        """Standard errors scaled by the residual variance; NaN where not identifiable, at a
+        bound or not computed."""
+        return NamedArray([p.standard_error for p in self._params.values()], self.parameters)
+
+    @property
+    def correlation(self) -> NamedArray:
+        """Correlation matrix of the estimates (symmetric; NaN where not computed)."""
+        return NamedArray(self._corr, self.parameters)
+
+    @property
+    def covariance(self) -> NamedArray:
+        """Covariance matrix of the estimates, SI units: ``correlation * outer(errors, errors)``
+        (the library reports standard errors and correlations; as every map from the fit's
+        internal parameters to SI is increasing, this is the linearised covariance exactly).
+        Its diagonal is ``errors ** 2``; NaN where an error is."""
+        e = np.array([p.standard_error for p in self._params.values()])
+        c = np.array(self._corr) * np.outer(e, e)
+        np.fill_diagonal(c, e * e)
+        return NamedArray(c, self.parameters)
+
+    @property
+    def initial(self) -> NamedArray:
+        """The data-driven starting values."""
+        return NamedArray([p.initial for p in self._params.values()], self.parameters)
+
+    @property
+    def at_bound(self) -> Dict[str, bool]:
+        """Per parameter: ended at its bound (w = 0; its error bar is one-sided)."""
+        return {k: p.at_bound for k, p in self._params.items()}
+
+    @property
+    def upper_bound(self) -> Dict[str, float]:
+        """Per parameter: for w at its bound, its 95 % one-sided upper bound [J/m^2] from the
+        profile likelihood; NaN otherwise."""
+        return {k: p.upper_bound for k, p in self._params.items()}
+
+    @property
+    def identifiable(self) -> bool:
+        """True only when every parameter was shown identifiable (an error bar, or w's upper
+        bound, was computed). False if the data cannot separate some parameters (see
+        :attr:`unidentifiable`) or if that is unknown (:attr:`identifiability_known` is False);
+        :attr:`identifiability_reason` says which and why."""
+        return self._fields["identifiable"]
+
+    @property
+    def identifiability_known(self) -> bool:
+        """False when identifiability could not be decided (the covariance failed or was not
+        computed)."""
+        return self._fields["identifiability_known"]
+
+    @property
+    def identifiability_reason(self) -> str:
+        """Why the fit is not identifiable, or why that is unknown; empty when identifiable."""
+        return self._fields["identifiability_reason"]
+
+    @property
+    def reasons(self) -> Dict[str, str]:
+        """Per parameter: why it has no error bar or is not identifiable (empty when it has both)."""
+        return {k: p.reason for k, p in self._params.items()}
+
+    @property
+    def no_move_reason(self) -> str:
+        """Why the solver did not move from its start (empty when it did)."""
+        return self._fields["no_move_reason"]
+
+    @property
+    def unidentifiable(self) -> List[str]:
+        """The groups of parameters the data cannot separate."""
+        return list(self._fields["unidentifiable"])
+
+    @property
+    def converged(self) -> bool:
+        """Whether the solver converged."""
+        return self._fields["converged"]
+
+    @property
+    def warnings(self) -> List[str]:
+        """The fit's warnings (also emitted as :class:`ModelWarning` by :func:`fit`)."""
+        return list(self._fields["warnings"])
+
+    @property
+    def notices(self) -> List[str]:
+        """What the fit records but does not warn about (never a :class:`ModelWarning`): a
+        numerical error far below what matters, a documented approximation, a reader's choice."""
+        return list(self._fields["notices"])
+
+    @property
+    def model(self) -> str:
+        """The contact model that was fitted."""
+        return self._fields["model"]
+
+    @property
+    def family(self) -> str:
+        """How the model was evaluated: "foundation", "hertz", "tabulated" or "dugdale"
+        (a Dugdale law solved on the medium per parameter vector; docs/fitting.md)."""
+        return self._fields["family"]
+
+    @property
+    def iterations(self) -> int:
+        """Solver iterations."""
+        return self._fields["iterations"]
+
+    @property
+    def termination(self) -> str:
+        """The solver's termination message."""
+        return self._fields["termination"]
+
+    @property
+    def rms_residual(self) -> float:
+        """Root-mean-square force residual [N]."""
+        return self._fields["rms_residual"]
+
+    @property
+    def contact_point(self) -> Dict[str, Any]:
+        """The contact point the fit used: ``method``; ``value`` [m] (the fitted delta0 for
+        "fit", else the method's point) and ``stderr`` [m] (delta0's standard error, or the
+        method's uncertainty; NaN when delta0 was fixed with "fit"); ``baseline`` [N] the
+        method found (NaN for "fit"); ``range_reference`` [m], the point the ranges were
+        measured from (NaN without a range); ``approach_samples`` and ``samples_in_range``."""
+        return dict(self._fields["contact_point"])
+
+    @property
+    def residuals(self) -> npt.NDArray[np.float64]:
+        """``P - P_fit`` [N]."""
+        return self.P - self.P_fit
+
+    def report(self) -> str:
+        """The brief report the CLI prints (FitSummary::brief_report)."""
+        return self._brief
+
+    @property
+    def provenance(self) -> Dict[str, Any]:
+        """What the fit was made from, as ``layerjkr fit --out`` records it (docs/provenance.md):
+        ``layerjkr_version``; ``scene`` (its JSON as parsed, its file and that file's SHA-256, or
+        for a scene built in code a description and a note); ``options`` (every FitOptions field);
+        ``csv`` (every CsvOptions field; files only); ``inputs``, each with ``path``, ``size``
+        [bytes] and ``sha256``: a file's bytes, or for arrays given directly the bytes of the
+        float64 arrays the library fitted (``"delta (float64 array)"``, ``"P (float64 array)"``,
+        ``"segment (int64 array)"``: native little-endian, C order, so
+        ``hashlib.sha256(np.ascontiguousarray(delta, dtype=np.float64).tobytes())`` gives it).
+        The nested dicts of a batch's results are shared between them: do not change them."""
+        return self._provenance
+
+    def as_dict(self) -> Dict[str, Any]:
+        """The keys and values of ``layerjkr fit --out``'s JSON report, in its order (None for
+        NaN), but its provenance (see :attr:`provenance`)."""
+        f = self._fields
+        names = self.parameters
+        corr = np.asarray(self._corr)
+        return {
+            "converged": f["converged"], "termination": f["termination"], "iterations": f["iterations"],
+            "model": f["model"], "family": f["family"], "branch": self._branch,
+            "parameters": {k: {"value": p.value, "unit": _core.unit_of(k.split("[")[0]), "stderr": _finite_or_none(p.standard_error),
+                               "initial": p.initial,
+                               "at_bound": p.at_bound, "upper_bound": _finite_or_none(p.upper_bound),
+                               "identifiable": p.identifiable, "reason": p.reason}
+                           for k, p in self._params.items()},
+            "correlation": {a: {b: _finite_or_none(float(corr[i, k])) for k, b in enumerate(names)}
+                            for i, a in enumerate(names)},
+            "rms_residual": f["rms_residual"], "excluded": f["excluded_count"],
+            "pull_off_force": _finite_or_none(f["pull_off_force"]), "baseline_slope": f["baseline_slope"],
+            "baseline_slope_stderr": f["baseline_slope_stderr"], "baseline_offset": f["baseline_offset"],
+            "points": f["points"],
+            "points_in_contact": f["points_in_contact"], "identifiable": f["identifiable"],
+            "identifiability_known": f["identifiability_known"],
+            "identifiability_reason": f["identifiability_reason"],
+            "unidentifiable": list(f["unidentifiable"]), "no_move_reason": f["no_move_reason"],
+            "warnings": list(f["warnings"]), "notices": list(f["notices"]),
+            "noise": None if not math.isfinite(f["radius_noise"]) else {
+                "P": f["force_noise"], "P_given": f["force_noise_given"], "a": f["radius_noise"],
+                "a_given": f["radius_noise_given"]},
+            "contact_point": {k: _finite_or_none(v) if isinstance(v, float) else v
+                              for k, v in f["contact_point"].items()},
+        }
+
+    @property
+    def scene(self) -> Scene:
+        """The fit's scene with the fitted values in place: a model again, for :func:`curve`,
+        :func:`summary` and :func:`simulate` (delta0 and P0 belong to the data and stay out).
+        Raises InputError for a scene built in code (no JSON to put the values in)."""
+        return _fit_views.fitted_scene(self)
+
+    def eval(self, delta: npt.ArrayLike, *, branch: Optional[str] = None) -> npt.NDArray[np.float64]:
+        """The fitted force [N] at approaches ``delta`` [m] (the data's coordinates: delta0
+        and P0 applied), on ``branch`` ("approach" or "retract"; default the fit's), from the
+        fitted scene's curve under fixed grips (:func:`simulate`), linear between 4000
+        samples. A fit in time raises InputError: its force depends on the history."""
+        return _fit_views.evaluate(self, delta, branch)
+
+    def plot(self, ax: Any = None) -> Any:
+        """Data, fit and residuals (excluded samples marked) with matplotlib, imported on
+        first use; ``ax`` draws into given axes (residuals in an inset below). Returns the
+        (curve, residual) axes."""
+        return _fit_views.plot(self, ax)
+
+    def _repr_html_(self) -> str:
+        return _fit_views.html_table(self)
+
+    def __repr__(self) -> str:
+        return "layerjkr.FitResult(%s)" % ", ".join(
+            "%s=%.6g+-%.2g" % (k, p.value, p.standard_error) for k, p in self._params.items())
