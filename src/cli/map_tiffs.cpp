@@ -99,12 +99,15 @@ std::size_t write_map_tiffs(const std::vector<BatchItem>& items, const std::vect
       if (belongs(it.source, inputs[k]) && it.grid_x >= 0 && it.grid_y >= 0) mine.push_back(&it);
     if (mine.empty()) continue;
     std::vector<int> gx, gy;
+    gx.reserve(mine.size());
+    gy.reserve(mine.size());
     for (const BatchItem* it : mine) {
       gx.push_back(it->grid_x);
       gy.push_back(it->grid_y);
     }
     for (const Field& f : fields) {
       std::vector<double> values;
+      values.reserve(mine.size());
       for (const BatchItem* it : mine) values.push_back(it->ok ? f.value(it->summary) : std::nan(""));
       const MapImage image = map_image(gx, gy, values);
       OutputFile out((fs::path(dir) / (prefix_of(inputs, k) + f.name + ".tiff")).string());
