@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "afm_retract.hpp"
 #include "layerjkr/layerjkr.hpp"
 
 using namespace layerjkr;
@@ -35,27 +36,7 @@ Scene film(double E, double w) {
   return s;
 }
 
-CurveData retract(const Scene& truth, std::mt19937_64& rng) {
-  const BuiltScene built = build_scene(truth, 0.0, false);
-  const AdhesiveLawPtr law = make_adhesive_law(built.model, resolve_model(truth).spec, truth.w, truth.adhesion);
-  const std::optional<CriticalPoint> po = AdhesiveSolution(law).pull_off();
-  const double a0 = po ? po->a : 0.0, noise = 0.005 * 5.3e-9;
-  std::normal_distribution<double> g(0.0, 1.0);
-  CurveData c;
-  for (int i = 0; i < 60; ++i) {
-    const AdhesiveState s = law->at(a0 + 15e-9 * (59 - i) / 59.0);
-    c.delta.push_back(s.delta);
-    c.P.push_back(s.P + noise * g(rng));
-    c.segment.push_back(1);
-  }
-  const double d_release = c.delta.back(), span = c.delta.front() - d_release;
-  for (int i = 1; i <= 30; ++i) {
-    c.delta.push_back(d_release - span * i / 60.0);
-    c.P.push_back(noise * g(rng));
-    c.segment.push_back(1);
-  }
-  return c;
-}
+CurveData retract(const Scene& truth, std::mt19937_64& rng) { return bench::afm_retract(truth, rng); }
 
 }  // namespace
 

@@ -28,14 +28,19 @@ CASES = {
 ALPHAS = [1.0, 4.0]
 
 
-def u_rule(u_max=30.0, width=0.25, p=24):
-    edges = [0.0] + list(np.geomspace(1e-4, 1.0, 17)) + list(np.arange(1.0 + width, u_max + 1e-9, width))
+def gauss_panels(edges, p):
+    """A p-point Gauss-Legendre rule on each panel [edges[k], edges[k + 1]]: nodes and weights."""
     x, w = np.polynomial.legendre.leggauss(p)
     U, W = [], []
     for a, b in zip(edges[:-1], edges[1:]):
         U.append(0.5 * (b - a) * x + 0.5 * (a + b))
         W.append(0.5 * (b - a) * w)
     return np.concatenate(U), np.concatenate(W)
+
+
+def u_rule(u_max=30.0, width=0.25, p=24):
+    edges = [0.0] + list(np.geomspace(1e-4, 1.0, 17)) + list(np.arange(1.0 + width, u_max + 1e-9, width))
+    return gauss_panels(edges, p)
 
 
 def factor(u, wq, alpha, n):

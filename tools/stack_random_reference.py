@@ -33,6 +33,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from stack_reference import pn_L  # noqa: E402
+from stack_flat_punch_reference import factor, gauss_panels  # noqa: E402
 
 SEED = 20261126
 RANDOM_STACKS = 24
@@ -91,25 +92,7 @@ def u_rule(H, panels_per_decade, width, p=24):
     decades = math.log10(1.0 / u_min)
     geo = list(np.geomspace(u_min, 1.0, int(math.ceil(decades * panels_per_decade)) + 1))
     edges = [0.0] + geo + list(np.arange(1.0 + width, U_MAX + 1e-9, width))
-    x, w = np.polynomial.legendre.leggauss(p)
-    U, W = [], []
-    for a, b in zip(edges[:-1], edges[1:]):
-        U.append(0.5 * (b - a) * x + 0.5 * (a + b))
-        W.append(0.5 * (b - a) * w)
-    return np.concatenate(U), np.concatenate(W)
-
-
-def factor(u, wq, alpha, n):
-    x, w = np.polynomial.legendre.leggauss(n)
-    t = 0.5 * alpha * (x + 1)
-    wt = 0.5 * alpha * w
-
-    def F(s):
-        return (np.cos(np.outer(s.ravel(), u)) @ wq).reshape(s.shape)
-
-    K = (F(t[:, None] - t[None, :]) + F(t[:, None] + t[None, :])) * wt[None, :] / np.pi
-    phi = np.linalg.solve(np.eye(n) - K, np.ones(n))
-    return wt @ phi / alpha
+    return gauss_panels(edges, p)
 
 
 def spell(layers, base):

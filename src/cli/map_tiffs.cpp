@@ -75,18 +75,7 @@ std::vector<std::string> map_tiff_names(const std::vector<std::string>& inputs, 
 }
 
 void prepare_tiff_dir(const std::string& dir, const std::vector<std::string>& names, bool force) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError("--tiff " + dir + ": cannot create the directory (" + ec.message() + ")");
-  for (const std::string& name : names) {
-    const std::string path = (fs::path(dir) / name).string();
-    const fs::file_status st = fs::symlink_status(path, ec);
-    if (force || !fs::exists(st)) continue;
-    if (!fs::is_regular_file(st) || !is_our_tiff(path))
-      throw InputError("--tiff " + dir + ": " + name +
-                       " exists and is not a TIFF layerjkr wrote; it is not replaced (move it, choose another "
-                       "directory, or give --force to replace it)");
-  }
+  prepare_derived_dir(dir, "--tiff", names, force, is_our_tiff, "a TIFF layerjkr wrote");
 }
 
 std::size_t write_map_tiffs(const std::vector<BatchItem>& items, const std::vector<std::string>& inputs,

@@ -243,4 +243,23 @@ void write_atomically(const std::string& path, const std::string& text) {
   f.commit();
 }
 
+void prepare_derived_dir(const std::string& dir, const std::string& flag, const std::vector<std::string>& names,
+                         bool force, bool (*ours)(const std::string& path), const std::string& what) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(flag + " " + dir + ": cannot create the directory (" + ec.message() + ")");
+  for (const std::string& name : names) {
+    const std::string path = (fs::path(dir) / name).string();
+    const fs::file_status st = fs::symlink_status(path, ec);
+    if (force || !fs::exists(st)) continue;
+    if (!fs::is_regular_file(st) || !ours(path))
+      throw InputError(flag + " " + dir + ": " + name + " exists and is not " + what +
+                       "; it is not replaced (move it, choose another directory, or give --force to replace it)");
+  }
+  if (!names.empty()) {
+    const OutputFile probe((fs::path(dir) / names.back()).string());
+  }
+}
+
 }  // namespace layerjkr::cli

@@ -4,6 +4,7 @@
 #include <sys/types.h>
 
 #include <string>
+#include <vector>
 
 namespace layerjkr::cli {
 
@@ -76,5 +77,12 @@ class ScratchFile {
 
 /// Writes `text` to `path` through an OutputFile.
 void write_atomically(const std::string& path, const std::string& text);
+
+/// A directory of derived files (`flag` DIR: --plot-dir's pictures, --tiff's images), checked
+/// before any work: created if missing, and each of `names` in it either absent, one layerjkr
+/// wrote (`ours(path)`), or replaced only with `force`; otherwise InputError naming the file
+/// and `what` layerjkr writes there. The last name is opened as a probe of writability.
+void prepare_derived_dir(const std::string& dir, const std::string& flag, const std::vector<std::string>& names,
+                         bool force, bool (*ours)(const std::string& path), const std::string& what);
 
 }  // namespace layerjkr::cli

@@ -118,19 +118,7 @@ std::vector<std::string> map_plot_names(const std::vector<FitParameter>& free) {
 }
 
 void prepare_plot_dir(const std::string& dir, const std::vector<std::string>& names, bool force) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError("--plot-dir " + dir + ": cannot create the directory (" + ec.message() + ")");
-  for (const std::string& name : names) {
-    const std::string path = (fs::path(dir) / name).string();
-    const fs::file_status st = fs::symlink_status(path, ec);
-    if (force || !fs::exists(st)) continue;
-    if (!fs::is_regular_file(st) || !is_marked_png(path))
-      throw InputError("--plot-dir " + dir + ": " + name +
-                       " exists and is not a picture layerjkr drew; it is not replaced (move it, choose another "
-                       "directory, or give --force to replace it)");
-  }
-  const OutputFile probe((fs::path(dir) / names.back()).string());
+  prepare_derived_dir(dir, "--plot-dir", names, force, is_marked_png, "a picture layerjkr drew");
 }
 
 void plot_map_fields(const std::vector<BatchItem>& items, const std::vector<FitParameter>& free,
