@@ -168,15 +168,16 @@ def test_batch_results_become_tables_images_and_tiffs(fitted, tmp_path):
     assert clone.quality == b.quality and isinstance(clone, layerjkr.BatchResults)
 
 
-def test_bundled_map_to_xarray_has_the_map_shape_in_metres(instrument_dir):
-    qi = sorted(instrument_dir.glob("*.jpk-qi-data"))
-    if not qi:
-        pytest.skip("no QI map in ../shared/data/instrument")
+def test_bundled_map_to_xarray_has_the_map_shape_in_metres(source):
+    # data/instrument's QI map (afmformats, MIT): 4 curves on one row of a 128 x 128 grid.
+    qi = source / "data" / "instrument" / "fmt-jpk-fd_2020.02.07-16.29.05.036.jpk-qi-data"
     scene = {"indenter": {"shape": "sphere", "R": 5e-6}, "medium": {"type": "half_space", "E": 5e3, "nu": 0.5},
              "model": "half_space"}
-    b = layerjkr.fit_files([str(qi[0])], scene, free="E,delta0,P0", jobs=2)
-    shape = (max(it.grid_y for it in b) + 1, max(it.grid_x for it in b) + 1)
+    b = layerjkr.fit_files([str(qi)], scene, free="E,delta0,P0", jobs=2)
+    assert len(b) == 4 and all(it.ok for it in b)
     ds = b.to_xarray()
-    assert ds["E"].shape == shape
+    assert ds["E"].shape == (1, 4) and ds.sizes == {"y": 1, "x": 4}
     assert ds.x.attrs["units"] == "m" and np.all(np.diff(ds.x.values) > 0)
+    assert np.allclose(np.diff(ds.x.values), 1e-5 / 128)  # the grid's pitch: 10 um over 128 pixels
+    assert np.all(np.isfinite(ds["E"].values)) and ds["E"].attrs["units"] == "Pa"
     assert b.to_pandas().shape[0] == len(b)
