@@ -1,6 +1,7 @@
-// The AFM retract the Maugis-Dugdale benchmarks fit (dugdale_fit_cost, dugdale_map): 60 radii
-// from the law's load-controlled pull-off to 15 nm beyond, then 30 samples off contact, with
-// Gaussian noise of 0.5 % of a 5.3 nN pull-off on every force.
+// The AFM retract the Maugis-Dugdale benchmarks and study fit (bench/dugdale_fit_cost,
+// bench/dugdale_map, tools/adhesion_fit_study): the scene's adhesive law at 60 radii from its
+// load-controlled pull-off to 15 nm beyond, then 30 samples off contact, with Gaussian noise of
+// standard deviation `noise` [N] on every force (the benchmarks: 0.5 % of a 5.3 nN pull-off).
 #pragma once
 
 #include <optional>
@@ -10,11 +11,13 @@
 
 namespace layerjkr::bench {
 
-inline CurveData afm_retract(const Scene& truth, std::mt19937_64& rng) {
+constexpr double kAfmRetractNoise = 0.005 * 5.3e-9;  ///< [N]
+
+inline CurveData afm_retract(const Scene& truth, std::mt19937_64& rng, double noise = kAfmRetractNoise) {
   const BuiltScene built = build_scene(truth, 0.0, false);
   const AdhesiveLawPtr law = make_adhesive_law(built.model, resolve_model(truth).spec, truth.w, truth.adhesion);
   const std::optional<CriticalPoint> po = AdhesiveSolution(law).pull_off();
-  const double a0 = po ? po->a : 0.0, noise = 0.005 * 5.3e-9;
+  const double a0 = po ? po->a : 0.0;
   std::normal_distribution<double> g(0.0, 1.0);
   CurveData c;
   for (int i = 0; i < 60; ++i) {

@@ -23,6 +23,7 @@
 
 #include <boost/math/constants/constants.hpp>
 
+#include "afm_retract.hpp"  // bench/: the retract the Dugdale benchmarks fit
 #include "layerjkr/layerjkr.hpp"
 
 using namespace layerjkr;
@@ -44,26 +45,9 @@ CurveData film_retract(double sigma0, double noise, unsigned seed) {
   Scene truth = scene(json);
   truth.medium.E = kE;
   truth.w = kW;
-  const BuiltScene built = build_scene(truth, 0.0, false);
-  const AdhesiveLawPtr law = make_adhesive_law(built.model, resolve_model(truth).spec, kW, truth.adhesion);
-  const std::optional<CriticalPoint> po = AdhesiveSolution(law).pull_off();
-  const double a0 = po ? po->a : 0.0;
   std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0.0, 1.0);
-  CurveData c;
+  CurveData c = bench::afm_retract(truth, rng, noise);
   c.source = "maugis_dugdale on a film";
-  for (int i = 0; i < 60; ++i) {
-    const AdhesiveState s = law->at(a0 + 15e-9 * (59 - i) / 59.0);
-    c.delta.push_back(s.delta);
-    c.P.push_back(s.P + noise * g(rng));
-    c.segment.push_back(1);
-  }
-  const double d_release = c.delta.back(), span = c.delta.front() - d_release;
-  for (int i = 1; i <= 30; ++i) {
-    c.delta.push_back(d_release - span * i / 60.0);
-    c.P.push_back(noise * g(rng));
-    c.segment.push_back(1);
-  }
   return c;
 }
 
