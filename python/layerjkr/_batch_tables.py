@@ -104,17 +104,18 @@ class BatchResults(list):  # type: ignore[type-arg]
 
     def _of_file(self, file: Optional[str], method: str) -> List[Any]:
         """The curves of one map: those of ``file``, or of the only file whose curves have pixels."""
-        def stem(source: str) -> str:
-            return source.rsplit("#", 1)[0] if "#" in source else source
+        def stem(it: Any) -> str:  # the file: a map's curve is "FILE#N", N its curve number
+            suffix = "#%d" % it.curve if it.curve is not None else None
+            return it.source[:-len(suffix)] if suffix and it.source.endswith(suffix) else it.source
         mapped = [it for it in self if it.grid_x is not None and it.grid_y is not None]
-        files = list(dict.fromkeys(stem(it.source) for it in mapped))
+        files = list(dict.fromkeys(stem(it) for it in mapped))
         if file is None:
             if len(files) != 1:
                 raise InputError("%s: %s; give file=" % (method, "no curve has a map pixel (instrument maps have them)"
                                                              if not files else "the results hold %d maps (%s)" %
                                                              (len(files), ", ".join(files))))
             file = files[0]
-        chosen = [it for it in mapped if stem(it.source) == os.fsdecode(file)]
+        chosen = [it for it in mapped if stem(it) == os.fsdecode(file)]
         if not chosen:
             raise InputError("%s: file = %r has no curve with a map pixel here (maps: %s)" % (method, file, ", ".join(files)))
         return chosen
@@ -122,7 +123,9 @@ class BatchResults(list):  # type: ignore[type-arg]
     def image(self, field: str, *, file: Optional[str] = None) -> npt.NDArray[np.float64]:
         """A field on the map grid: a float64 array [grid_y, grid_x], NaN where a curve failed or
         the grid has none. ``file`` picks the map when the results hold several."""
-        items = self._of_file(file, "image")
+        return self._image(self._of_file(file, "image"), field)
+
+    def _image(self, items: Sequence[Any], field: str) -> npt.NDArray[np.float64]:
         values = [self._value(it, field) for it in items]
         return _core.map_image([it.grid_x for it in items], [it.grid_y for it in items], values)
 
@@ -136,7 +139,7 @@ class BatchResults(list):  # type: ignore[type-arg]
         gy = np.array([it.grid_y for it in items])
         data = {}
         for field in self.fields():
-            data[field] = (("y", "x"), self.image(field, file=file), {"units": _unit(field)})
+            data[field] = (("y", "x"), self._image(items, field), {"units": _unit(field)})
         shape = data[self.fields()[0]][1].shape
 
         def axis(positions: npt.NDArray[np.float64], index: npt.NDArray[np.int64], n: int) -> npt.NDArray[np.float64]:

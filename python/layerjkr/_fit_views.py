@@ -45,7 +45,7 @@ def evaluate(result: Any, delta: npt.ArrayLike, branch: Optional[str]) -> npt.ND
     if result.t.size:
         raise InputError("FitResult.eval: a fit in time has a force that depends on the history, not on delta "
                          "alone; simulate(result.scene, speed=...) gives the curve at a speed")
-    chosen = _text("branch", branch if branch is not None else result.as_dict()["branch"])
+    chosen = _text("branch", branch if branch is not None else result._branch)
     if chosen not in ("approach", "retract"):
         raise InputError("FitResult.eval: branch = %r is invalid; give \"approach\" or \"retract\" (the fit used "
                          "both: say which)" % chosen)
@@ -74,7 +74,7 @@ def plot(result: Any, ax: Any = None) -> Any:
     if not result.delta.size:
         raise InputError("FitResult.plot: a batch's results keep no samples; fit the curve alone to plot it")
     if ax is None:
-        fig, (top, bottom) = plt.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [3, 1]})
+        _, (top, bottom) = plt.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [3, 1]})
     else:
         top = ax
         bottom = ax.inset_axes([0.0, -0.38, 1.0, 0.28], sharex=ax)
