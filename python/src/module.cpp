@@ -550,13 +550,15 @@ PYBIND11_MODULE(_core, m) {
   m.def("fit", &fit_arrays, py::arg("delta"), py::arg("P"), py::arg("segment"), py::arg("t"), py::arg("scene"),
         py::arg("options"));
   // The scene a fit describes (fitted_scene): from the scene's JSON as the fit's provenance kept it
-  // and the fitted (name, value) pairs; a joint fit's per-curve names ("delta0[2]") are skipped.
+  // and the fitted (name, value) pairs; a joint fit's per-curve names ("delta0[2]", as ParameterEstimate's
+  // name above spells them) carry their curve, which fitted_scene leaves with the data.
   m.def("fitted_scene", [](const std::string& scene_json, const std::vector<std::pair<std::string, double>>& values) {
         std::vector<ParameterEstimate> estimates;
         for (const auto& [name, value] : values) {
-          if (name.find('[') != std::string::npos) continue;
+          const std::size_t bracket = name.find('[');
           ParameterEstimate estimate;
-          estimate.parameter = parse_enum<FitParameter>(name, "parameter");
+          estimate.parameter = parse_enum<FitParameter>(name.substr(0, bracket), "parameter");
+          if (bracket != std::string::npos) estimate.curve = std::stoi(name.substr(bracket + 1)) - 1;
           estimate.value = value;
           estimates.push_back(estimate);
         }

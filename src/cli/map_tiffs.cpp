@@ -2,6 +2,7 @@
 #include "map_tiffs.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -50,14 +51,18 @@ std::string prefix_of(const std::vector<std::string>& inputs, std::size_t k) {
   return inputs.size() == 1 ? std::string() : fs::path(inputs[k]).stem().string() + ".";
 }
 
-// A file layerjkr wrote: a little-endian TIFF whose first bytes after the header hold the marker
-// somewhere in its first 64 kB (the description follows the strip, so read the whole small file).
+// A file layerjkr wrote: a little-endian TIFF whose description, which write_tiff puts just
+// before the IFD, holds the marker. Only the bytes before the IFD are read, not the image.
 bool is_our_tiff(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
-  std::string head(4, '\0');
-  if (!f.read(head.data(), 4) || head != std::string("II*\0", 4)) return false;
-  std::string rest((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  return rest.find(kMarker) != std::string::npos;
+  unsigned char head[8] = {};
+  if (!f.read(reinterpret_cast<char*>(head), 8) || std::memcmp(head, "II*\0", 4) != 0) return false;
+  const std::uint32_t ifd = head[4] | head[5] << 8 | head[6] << 16 | static_cast<std::uint32_t>(head[7]) << 24;
+  const std::uint32_t from = ifd > 8 + 4096 ? ifd - 4096 : 8;
+  if (ifd <= from) return false;
+  std::string tail(ifd - from, '\0');
+  if (!f.seekg(from) || !f.read(tail.data(), static_cast<std::streamsize>(tail.size()))) return false;
+  return tail.find(kMarker) != std::string::npos;
 }
 
 bool belongs(const std::string& source, const std::string& input) {

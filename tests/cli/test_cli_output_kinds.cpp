@@ -244,6 +244,9 @@ TEST_CASE("fit-map --tiff: a float TIFF per field and map, a TIFF layerjkr did n
   const Run forced = run(args + " --force");
   CHECK(forced.code == 4);
   CHECK(slurp((dir / "E.tiff").string()).find("layerjkr fit-map: E [Pa]") != std::string::npos);
+  const Run again = run(args);  // its own TIFFs are replaced without --force
+  INFO(again.err);
+  CHECK(again.code == 4);
   const Run csv_only = run("fit-map " + kCurve + kFree + " --out " + unique("tiff_c.csv") + " --tiff " + unique("none"));
   CHECK(csv_only.code == 2);
   CHECK(csv_only.err.find("no input carries map positions") != std::string::npos);
