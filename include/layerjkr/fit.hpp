@@ -197,8 +197,14 @@ struct ParameterEstimate {
 };
 
 struct FitSummary {
+  /// The solver converged and the answer is plausible: false also where the parameters left every
+  /// physical range or the residuals are orders of magnitude above the noise (`failure`).
   bool converged = false;
-  std::string termination;  ///< Ceres' termination message
+  std::string termination;  ///< Ceres' termination message (prefixed by "failed: ..." on a failure)
+  /// Empty, or why the fit failed although the solver may have stopped normally: a modulus
+  /// outside [1e-3, 1e15] Pa, w above 1e3 J/m^2, a non-finite value, or an rms residual 100 times
+  /// the data's noise. fit-map reports such a curve as failed, with this reason.
+  std::string failure;
   /// Trust-region iterations summed over the solves that produced the result (the solve from the
   /// start, or the winning extra start, then the refits after exclusion, detilt and holding w).
   int iterations = 0;
@@ -245,11 +251,25 @@ struct FitSummary {
   double baseline_slope = 0.0, baseline_slope_stderr = 0.0;
   /// The force offset [N] subtracted before the fit (FitOptions::remove_offset; 0 when none was).
   double baseline_offset = 0.0;
-  /// The measured pull-off force [N]: the lowest retract force minus the fitted baseline P0
-  /// (NaN without retract samples).
+  /// The measured pull-off force [N]: the lowest retract force minus the retract's baseline
+  /// measured from the data (pull_off_baseline), as instruments' software measures adhesion; no
+  /// fitted parameter moves it, and every statement of the report about the force below the
+  /// baseline is this number (NaN without retract samples).
   double pull_off_force = std::numeric_limits<double>::quiet_NaN();
+  /// The baseline the pull-off is measured from [N]: the median of the last tenth of the retract
+  /// where it is at rest, else of the first tenth of the approach, else the force's zero; and
+  /// which of these, in words (empty without retract samples).
+  double pull_off_baseline = std::numeric_limits<double>::quiet_NaN();
+  std::string pull_off_baseline_source;
+  /// How the retract let go of the contact, read from the data before the fit (docs/fitting.md,
+  /// "Rules decided from the data"): empty without adhesion on the retract, else e.g. "a jump at
+  /// the force minimum", "held past the force minimum, then a jump", "held to the end",
+  /// "gradual: a tail, excluded".
+  std::string retract_release;
   /// The data's noise [N]: 1.4826 MAD of the force's third differences in acquisition order,
-  /// divided by sqrt(20) (a smooth curve cancels; white noise of sigma gives sigma).
+  /// divided by sqrt(20) (a smooth curve cancels; white noise of sigma gives sigma), combined in
+  /// quadrature with the displacement's noise (its own third differences) times the fitted
+  /// curve's rms slope: noise in delta moves a sample along the curve.
   double noise = std::numeric_limits<double>::quiet_NaN();
   /// A runs test of the residuals' signs in acquisition order (Wald-Wolfowitz): the number of
   /// runs as a z-score against noise's expectation, NaN with fewer than 20 fitted samples.

@@ -30,11 +30,15 @@ bool steered_contact(const FitOptions& options);
 void report_fitted_contact(const CurveData& curve, const FitOptions& options, FitSummary* s);
 
 /// fit() with the contact point found by options.contact_point and the ranges applied.
-FitSummary fit_steered(const CurveData& curve, const Scene& scene, const FitOptions& options);
+FitSummary fit_steered(const CurveData& curve, const Scene& scene, const FitOptions& options,
+                       bool hold_gradual_rise = false);
 
 /// fit() itself. contact_given: the data were shifted so that the found contact point and
 /// baseline (or a first fit's delta0 and P0) are 0; a free delta0 and P0 start there instead
-/// of at the data-driven scan.
-FitSummary fit_core(const CurveData& curve, const Scene& scene, const FitOptions& options, bool contact_given);
+/// of at the data-driven scan. hold_gradual_rise: a retract that returns to the baseline without
+/// a release is held in contact up to it instead of excluded as a tail (read_retract), the other
+/// reading fit() weighs against the first.
+FitSummary fit_core(const CurveData& curve, const Scene& scene, const FitOptions& options, bool contact_given,
+                    bool hold_gradual_rise = false);
 
 }  // namespace layerjkr::detail

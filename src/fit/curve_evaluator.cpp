@@ -323,6 +323,7 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
   const std::size_t m = row_.back();
   r_.assign(m, 0.0);
   detached_.assign(data_.delta.size(), 0);
+  clamped_.assign(data_.delta.size(), 0);
   if (jacobian) J_.assign(m * n_free_, 0.0);
   contact_count_ = 0;
   const double F = map_.F, A = data_.a_scale;
@@ -384,6 +385,7 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
       double a;
       if (clamped) {
         double d;
+        clamped_[i] = 1;
         a = start.a;
         curve(p, a, &d, &P, nullptr, nullptr);
       } else {

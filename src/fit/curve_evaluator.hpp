@@ -68,10 +68,12 @@ struct FitData {
   /// The contact region was found on the unloading samples before the observed pull-off
   /// (retract data without a baseline; fit_data.cpp), and noise is their second-difference noise.
   bool unloading_only = false;
-  /// The deepest retract force below the starting baseline [N] (<= 0), and whether it exceeds
-  /// the noise: the adhesive signal the start found (find_start).
+  /// The measured pull-off: the lowest retract force below the retract's baseline [N], and
+  /// whether it exceeds the noise - read from the data before the fit (retract_reading.hpp).
   double dip = 0.0;
   bool adhesive = false;
+  /// The retract's noise [N] the pull-off was judged against (third differences; retract_reading.hpp).
+  double retract_noise = 0.0;
   /// (P, a) data - a rig's load and contact radius, no displacement: `delta` holds the measured
   /// radius (an order of depth for the steps that sort by it), each sample's one residual is the
   /// model's force at its radius against the measured force.
@@ -124,6 +126,9 @@ class CurveEvaluator final : public ResidualStore {
   void curve(const CurveParameters<double>& p, double a, double* delta, double* P, double* ddelta,
              double* dP) const;
   double typical_radius() const { return a_typ_; }
+  /// Per sample, at the last evaluation: held in contact (FitData::contact 1) beyond the end of
+  /// the model's branch under its control, so placed at the end.
+  const std::vector<char>& clamped() const { return clamped_; }
 
  private:
   template <class J>
@@ -136,6 +141,7 @@ class CurveEvaluator final : public ResidualStore {
   std::vector<std::size_t> row_;
   std::vector<std::size_t> order_;  ///< samples sorted by delta
   std::vector<double> a_cache_;
+  std::vector<char> clamped_;
   double a_typ_ = 0.0;
   std::array<double, 4> start_cache_{0.0, 0.0, 0.0, 0.0};
   double cantilever_k_ = 0.0;

@@ -12,6 +12,7 @@
 #include "contact_steps.hpp"
 #include "fit_run.hpp"
 #include "fit_steps.hpp"
+#include "retract_reading.hpp"
 #include "layerjkr/error.hpp"
 #include "time_fit.hpp"
 
@@ -53,19 +54,37 @@ void require_supported(const CurveModel& model, const FitOptions& options, const
 }
 
 // The stiffness that lets the retract go, as the evaluator takes it: 0 for load control,
-// infinity for fixed grips.
-double control_stiffness(const FitOptions& options, const CurveData& curve) {
+// infinity for fixed grips. `automatic` without a known stiffness follows the data: fixed grips
+// where the contact holds past the force minimum (the reading's release), else load control.
+double control_stiffness(const FitOptions& options, const CurveData& curve, const detail::RetractReading& reading) {
   const double k = options.cantilever_stiffness.value_or(curve.spring_constant);
+  const bool held = reading.release == detail::Release::held_then_jump || reading.release == detail::Release::held_to_end ||
+                    reading.release == detail::Release::held_gradual;
   switch (options.retract_control) {
     case RetractControl::load: return 0.0;
     case RetractControl::fixed_grips: return std::numeric_limits<double>::infinity();
-    case RetractControl::automatic: return k > 0.0 ? k : 0.0;
+    case RetractControl::automatic:
+      return k > 0.0 ? k : held ? std::numeric_limits<double>::infinity() : 0.0;
     case RetractControl::cantilever: break;
   }
   if (!(k > 0.0))
     throw InputError(curve.source + ": retract control 'cantilever' needs the cantilever's spring constant, which "
                                     "the curve does not carry; give it (FitOptions::cantilever_stiffness [N/m])");
   return k;
+}
+
+// The notice that says which control the retract was fitted under and why.
+std::string control_notice(const FitOptions& options, const detail::RetractReading& reading, double k) {
+  const bool automatic = options.retract_control == RetractControl::automatic;
+  std::string control = std::isinf(k) ? "fixed grips" : k > 0.0 ? "cantilever (k = " + detail::short_number(k) + " N/m" +
+                                                                        (options.cantilever_stiffness ? ", given)" : ", the curve's)")
+                                                             : "load";
+  if (!automatic) return "retract control: " + control + " (as asked); ";
+  if (k > 0.0 && std::isfinite(k)) return "retract control: " + control + "; ";
+  if (std::isinf(k)) return "retract control: fixed grips, chosen from the data (the contact holds past the force minimum; " +
+                            std::string("--control load keeps load control); ");
+  return "retract control: load (no spring constant known" +
+         std::string(reading.release == detail::Release::gradual ? "" : "; the data show no contact past the force minimum") + "); ";
 }
 
 }  // namespace
@@ -104,9 +123,9 @@ namespace {
 constexpr double kWBoundFraction = 1e-12;
 constexpr int kRescueStarts = 8;
 
-FitSummary fit_once(const CurveData& curve, const Scene& scene, const FitOptions& options) {
-  FitSummary out = detail::steered_contact(options) ? detail::fit_steered(curve, scene, options)
-                                                    : detail::fit_core(curve, scene, options, false);
+FitSummary fit_once(const CurveData& curve, const Scene& scene, const FitOptions& options, bool hold_gradual_rise) {
+  FitSummary out = detail::steered_contact(options) ? detail::fit_steered(curve, scene, options, hold_gradual_rise)
+                                                    : detail::fit_core(curve, scene, options, false, hold_gradual_rise);
   if (!detail::steered_contact(options)) detail::report_fitted_contact(curve, options, &out);
   return out;
 }
@@ -118,35 +137,33 @@ double total_misfit(const FitSummary& s) {
   return sum;
 }
 
-// `automatic` control where no cantilever stiffness is known: load control, unless the retract
-// samples the load-controlled model lets go of stay in contact in the data (a JKR rig unloading
-// under displacement control past the force minimum): then fixed grips, where it follows every
-// sample better. The choice and its evidence are a notice.
-FitSummary fit_automatic(const CurveData& curve, const Scene& scene, const FitOptions& options) {
-  FitOptions o = options;
-  o.retract_control = RetractControl::load;
-  FitSummary load = fit_once(curve, scene, o);
-  if (!load.residual_structure && load.excluded_count == 0) return load;
-  o.retract_control = RetractControl::fixed_grips;
-  FitSummary grips;
+// A retract that returns to the baseline without a jump is a tail - or, on a thin layer under
+// fixed grips or a stiff lever, the contact's own branch, which can return to zero force
+// smoothly: the data alone cannot tell. Both readings are fitted; the branch is kept where its
+// residuals are noise and it follows every sample (the tail's too) better. Both fits' samples are
+// fixed before each solves, so neither objective moves; the choice and its evidence are a notice.
+FitSummary weigh_gradual_rise(const CurveData& data, const Scene& scene, const FitOptions& options, FitSummary tail) {
+  if (options.exclusion_sigmas == 0.0 || options.retract_control == RetractControl::load) return tail;
+  FitSummary held;
   try {
-    grips = fit_once(curve, scene, o);
+    held = fit_once(data, scene, options, true);
   } catch (const Error&) {
-    return load;
+    return tail;
   }
-  const double misfit_load = total_misfit(load), misfit_grips = total_misfit(grips);
+  const double m_tail = total_misfit(tail), m_held = total_misfit(held);
   const auto rms = [&](double m) {
-    return detail::short_number(std::sqrt(m / static_cast<double>(std::max<std::size_t>(1, load.P.size()))));
+    return detail::short_number(std::sqrt(m / static_cast<double>(std::max<std::size_t>(1, tail.P.size()))));
   };
-  if (!(misfit_grips < misfit_load)) {
-    load.notices.push_back("retract control: load (no spring constant known); fixed grips followed the samples no "
-                           "better (rms " + rms(misfit_grips) + " N against " + rms(misfit_load) + " N)");
-    return load;
+  const std::string evidence = "(rms over every sample " + rms(m_held) + " N held, against " + rms(m_tail) +
+                               " N with the tail excluded)";
+  if (held.converged && !held.residual_structure && m_held < m_tail) {
+    held.notices.push_back("the retract's gradual return to the baseline is the contact's own branch: held in "
+                           "contact, the model follows it as noise " + evidence);
+    return held;
   }
-  grips.notices.push_back("retract control: fixed grips, chosen from the data - the retract stays in contact past the "
-                          "force minimum, as under displacement control (rms over every sample " + rms(misfit_grips) +
-                          " N against " + rms(misfit_load) + " N under load control); --control load keeps load control");
-  return grips;
+  tail.notices.push_back("the retract's gradual return to the baseline is not the contact's branch: held in contact, "
+                         "the model does not follow it as noise " + evidence);
+  return tail;
 }
 
 }  // namespace
@@ -158,6 +175,7 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   if (!scene.profile) throw InputError("fit: the scene has no indenter profile");
   if (scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic || scene.adhesion.kinetics) {
     FitSummary out = detail::fit_in_time(curve, scene, options);
+    detail::judge_plausibility(&out);
     out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
     return out;
   }
@@ -166,13 +184,9 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   if (data.radius_only() && detail::steered_contact(options))
     throw InputError(data.source + ": (P, a) data have no displacement: no contact point to find and no indentation "
                                    "range to select (use contact_point fit and no ranges)");
-  const bool stiffness_known = options.cantilever_stiffness.value_or(data.spring_constant) > 0.0;
-  const std::vector<bool> retract = data.retract_mask();
-  const bool retract_fitted = options.branch != Branch::approach && !data.radius_only() &&
-                              std::find(retract.begin(), retract.end(), true) != retract.end();
-  FitSummary out = options.retract_control == RetractControl::automatic && !stiffness_known && retract_fitted
-                       ? fit_automatic(data, scene, options)
-                       : fit_once(data, scene, options);
+  FitSummary out = fit_once(data, scene, options, false);
+  if (out.retract_release == detail::to_string(detail::Release::gradual)) out = weigh_gradual_rise(data, scene, options, std::move(out));
+  detail::judge_plausibility(&out);
   if (const std::size_t dwell = curve.dwell_count(); dwell > 0)
     out.notices.push_back(std::to_string(dwell) + " dwell samples (segment 2: the indenter at rest) are not fitted: an "
                           "elastic model holds the force constant there; a relaxation law (medium.viscoelastic) fits them");
@@ -181,7 +195,7 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
 }
 
 FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const FitOptions& options,
-                            bool contact_given) {
+                            bool contact_given, bool hold_gradual_rise) {
 
   double span = 0.0, force_span = 0.0;
   FitData data = detail::select_fit_data(curve, options, &span, &force_span);
@@ -211,8 +225,15 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   out.notices.insert(out.notices.end(), resolved.notices.begin(), resolved.notices.end());
 
   std::vector<double> x(options.free.size(), 0.0);
-  const double k = control_stiffness(options, curve);
+  // What the retract shows - baseline, pull-off, contact, release, tail - from the data alone,
+  // once: the objective must not move under the fit.
+  detail::RetractReading reading = detail::read_retract(data, options, force_span, hold_gradual_rise);
+  const std::vector<double> given_weights = data.sqrt_weight;
+  detail::apply_reading(reading, options, data);
+  const double k = control_stiffness(options, curve, reading);
   data.cantilever = k > 0.0;
+  if (reading.release != detail::Release::none)
+    out.notices.push_back(control_notice(options, reading, k) + reading.rule);
   CurveEvaluator ev(*model, map, data, k);
   if (data.radius_driven) {
     if (map.is_free(FitParameter::delta0))
@@ -268,15 +289,20 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
                           " N below the baseline: refitted from " + std::to_string(kRescueStarts) + " more starts, w = " +
                           detail::short_number(w) + " J/m^2 after them");
   }
-  const std::vector<double> weights = data.sqrt_weight;
-  std::vector<bool> excluded = run.exclude_non_jkr();
+  detail::trim_held_to_model(reading, options, given_weights, data, ev, x, [&] { return run.resolve_in_place(); });
   if (options.baseline == Baseline::tilt) {
     run.detilt_baseline(&out);
-    data.sqrt_weight = weights;  // the exclusion is decided again on the detilted data
+    // The retract is read again on the detilted data, and the fit redone on what it decides.
+    reading = detail::read_retract(data, options, force_span, hold_gradual_rise);
+    data.sqrt_weight = given_weights;
+    detail::apply_reading(reading, options, data);
     ev.invalidate();
-    excluded = run.exclude_non_jkr();
+    run.resolve_in_place();
+    detail::trim_held_to_model(reading, options, given_weights, data, ev, x, [&] { return run.resolve_in_place(); });
   }
   run.record(&out);
+  std::vector<bool> excluded = reading.tail;
+  if (options.exclusion_sigmas == 0.0) excluded.assign(excluded.size(), false);
   out.excluded = excluded;
   out.excluded_count = static_cast<std::size_t>(std::count(excluded.begin(), excluded.end(), true));
   detail::assess_uncertainty(run, ev, map, x, options, data, &out);
@@ -290,9 +316,10 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   detail::diagnose_indentation(data, &out);
   detail::record_model_notes(*model, data, force_span, &out);  // after the fit: a grid may refine
   for (const auto& note : model->notes_at(physical_at_x())) out.warnings.push_back(note);
-  const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;
-  for (std::size_t i = 0; i < data.P.size(); ++i)
-    if (data.retract[i] && !(data.P[i] - P0 >= out.pull_off_force)) out.pull_off_force = data.P[i] - P0;  // NaN at first
+  out.retract_release = detail::to_string(reading.release);
+  out.pull_off_force = reading.pull_off.pull_off;  // the data's, whatever the fit did
+  out.pull_off_baseline = reading.pull_off.baseline;
+  out.pull_off_baseline_source = reading.pull_off.baseline_source;
   if (data.unloading_only)
     out.warnings.push_back("no baseline in the data: the contact region was found on the unloading samples before "
                            "the observed pull-off, the noise from their second differences" +

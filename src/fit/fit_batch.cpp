@@ -92,7 +92,9 @@ std::vector<BatchItem> run_batch(std::vector<BatchItem> items, Load load, Unread
             item.summary.P_fit = std::vector<double>();
             item.summary.excluded = std::vector<bool>();
           }
-          item.ok = true;
+          // A fit whose answer is absurd is a failed curve, with the reason (its summary kept).
+          item.ok = item.summary.failure.empty();
+          if (!item.ok) item.error = "the fit failed: " + item.summary.failure;
         }
       } catch (const std::exception& e) {  // one bad curve never stops the batch
         item.ok = false;

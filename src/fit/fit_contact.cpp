@@ -131,7 +131,7 @@ void report_fitted_contact(const CurveData& curve, const FitOptions& options, Fi
   r.samples_in_range = r.approach_samples;
 }
 
-FitSummary fit_steered(const CurveData& curve, const Scene& scene, const FitOptions& options) {
+FitSummary fit_steered(const CurveData& curve, const Scene& scene, const FitOptions& options, bool hold_gradual_rise) {
   const ContactPointMethod method = options.contact_point;
   const bool ranged = options.indentation_range || options.force_range;
   if (options.branch == Branch::retract)
@@ -156,7 +156,7 @@ FitSummary fit_steered(const CurveData& curve, const Scene& scene, const FitOpti
   double d_c = 0.0, P_c = 0.0;
   if (method == ContactPointMethod::fit) {
     // Fit, select, refit: the range is measured from the first fit's contact point.
-    const FitSummary first = fit_core(curve, scene, plain, false);
+    const FitSummary first = fit_core(curve, scene, plain, false, hold_gradual_rise);
     if (has(options, FitParameter::delta0)) d_c = first[FitParameter::delta0].value;
     if (has(options, FitParameter::P0)) P_c = first[FitParameter::P0].value;
   } else {
@@ -207,7 +207,7 @@ FitSummary fit_steered(const CurveData& curve, const Scene& scene, const FitOpti
   for (double& d : work.delta) d -= d_c;
   for (double& p : work.P) p -= P_c;
   if (plain.baseline_window) plain.baseline_window = Interval{plain.baseline_window->first - d_c, plain.baseline_window->second - d_c};
-  FitSummary s = fit_core(work, scene, plain, true);
+  FitSummary s = fit_core(work, scene, plain, true, hold_gradual_rise);
   for (double& d : s.delta) d += d_c;
   for (double& p : s.P) p += P_c;
   for (double& p : s.P_fit) p += P_c;

@@ -40,6 +40,24 @@ void diagnose_residuals(const FitData& data, double force_span, FitSummary* out)
   for (std::size_t i = 0; i < data.P.size(); ++i)
     if (data.sqrt_weight[i] > 0.0) kept.push_back(i);
   out->noise = third_difference_noise(data.P, kept);
+  // Noise in the displacement moves each sample along the curve: its force residual is the
+  // curve's slope times it (a rig's 50 nm against a film's contact stiffness of 2e4 N/m is 1 mN
+  // beside 2 uN of force noise). The displacement's own third differences measure it.
+  const double delta_noise = third_difference_noise(data.delta, kept);
+  if (delta_noise > 0.0 && kept.size() >= 3) {
+    double slope2 = 0.0;
+    std::size_t count = 0;
+    for (std::size_t k = 1; k + 1 < kept.size(); ++k) {
+      const std::size_t a = kept[k - 1], b = kept[k + 1];
+      const double dd = data.delta[b] - data.delta[a];
+      if (std::abs(dd) > 4.0 * delta_noise) {  // a step the noise does not dominate
+        const double slope = (out->P_fit[b] - out->P_fit[a]) / dd;
+        slope2 += slope * slope;
+        ++count;
+      }
+    }
+    if (count > 0) out->noise = std::hypot(out->noise, std::sqrt(slope2 / static_cast<double>(count)) * delta_noise);
+  }
   std::size_t runs = 0, above = 0, below = 0;
   int last = 0;
   for (std::size_t i : kept) {
@@ -130,6 +148,42 @@ void weigh_columns(const FitOptions& options, double force_span, FitData& data, 
   out->radius_noise_given = options.radius_noise.has_value();
   // Force residuals are divided by the force span: radius ones by sigma_a x span / sigma_P.
   data.a_scale = out->radius_noise * force_span / out->force_noise;
+}
+
+void judge_plausibility(FitSummary* out) {
+  std::string why;
+  for (const ParameterEstimate& e : out->parameters) {
+    const std::string name = to_string(e.parameter), value = short_number(e.value);
+    const bool modulus = e.parameter == FitParameter::E || e.parameter == FitParameter::K ||
+                         e.parameter == FitParameter::E_inf;
+    if (!std::isfinite(e.value))
+      why = name + " is not finite";
+    else if (modulus && !(e.value >= kPlausibleModulus[0] && e.value <= kPlausibleModulus[1]))
+      why = name + " = " + value + " Pa lies outside every physical modulus [" + short_number(kPlausibleModulus[0]) +
+            ", " + short_number(kPlausibleModulus[1]) + "] Pa";
+    else if (e.parameter == FitParameter::w && e.value > kPlausibleWork)
+      why = "w = " + value + " J/m^2 exceeds every physical work of adhesion (" + short_number(kPlausibleWork) + " J/m^2)";
+    if (!why.empty()) break;
+  }
+  if (why.empty() && !out->P.empty()) {
+    const auto [lo, hi] = std::minmax_element(out->P.begin(), out->P.end());
+    const bool above_floor = out->rms_residual > kNumericalFloor * (*hi - *lo);
+    // ...and with structure: residuals whose signs alternate as noise's do are noise the estimate
+    // missed, not a model that fails.
+    const bool structured = !(out->runs_z >= kStructuredRunsZ);
+    if (above_floor && structured && out->noise > 0.0 && out->rms_residual > kFailedRmsOverNoise * out->noise)
+      why = "the rms residual " + short_number(out->rms_residual) + " N is " + short_number(out->rms_residual / out->noise) +
+            " times the data's noise " + short_number(out->noise) + " N (more than " + short_number(kFailedRmsOverNoise) +
+            "): the model does not describe these data at all";
+    if (why.empty() && !std::isfinite(out->rms_residual)) why = "the rms residual is not finite";
+  }
+  if (why.empty()) return;
+  out->failure = why;
+  out->converged = false;
+  out->termination = "failed: " + why + " (Ceres: " + out->termination + ")";
+  out->identifiable = false;
+  out->identifiability_reason = "the fit failed: " + why;
+  out->warnings.push_back("the fit failed: " + why + "; no value it returned is a statement about the sample");
 }
 
 }  // namespace layerjkr::detail

@@ -53,9 +53,10 @@ std::string FitSummary::brief_report() const {
       << " N/m (from the samples off contact; the data were detilted)\n";
   if (baseline_offset != 0.0) o << "  baseline offset " << baseline_offset << " N subtracted (P0 not free)\n";
   if (std::isfinite(pull_off_force))
-    o << "  measured pull-off " << pull_off_force << " N (the lowest retract force, from the baseline)\n";
+    o << "  measured pull-off " << pull_off_force << " N (the lowest retract force, from the baseline "
+      << pull_off_baseline << " N: " << pull_off_baseline_source << ")\n";
   if (excluded_count > 0)
-    o << "  excluded " << excluded_count << " retract samples after the model's jump that had not "
+    o << "  excluded " << excluded_count << " retract samples after the release that had not "
       << "returned to the baseline (not JKR: peeling, necking, viscoelastic tail)\n";
   o << detail::contact_point_line(contact_point);
   if (std::isfinite(radius_noise))

@@ -33,9 +33,13 @@ class FitRun {
   /// Solves again from `count` perturbed starts (options.extra_starts when negative); keeps the
   /// lowest cost. A w at its bound restarts from the data-driven w where `w_from_start`.
   void try_extra_starts(int count = -1, bool w_from_start = false);
-  /// The rule of FitOptions::exclusion_sigmas: marks the retract samples the model has let go
-  /// of that have not returned to the baseline, and refits without them (weight 0).
+  /// Fits in time: the rule of FitOptions::exclusion_sigmas by the model - marks the retract
+  /// samples the model has let go of that have not returned to the baseline, and refits without
+  /// them (weight 0). Elastic fits read the tail from the data instead (retract_reading.hpp).
   std::vector<bool> exclude_non_jkr();
+  /// Solves again from x after the data (weights, forces) changed, in place; keeps x and the
+  /// old solve if the new one is not usable (false).
+  bool resolve_in_place();
   /// Baseline::tilt: the baseline's slope from the samples off contact, removed from the data,
   /// then one more solve; the slope and its error go into `out`.
   void detilt_baseline(FitSummary* out);
@@ -70,7 +74,6 @@ class FitRun {
   void hold_tail_start(std::size_t first, double band, std::vector<bool>* tail) const;
   std::unique_ptr<ceres::Problem> solve_from(std::vector<double>& xs, ceres::Solver::Summary* summary,
                                              int held) const;
-  bool resolve_in_place();
 
   ResidualModel& ev_;
   /// The problem's own scale: the cost of the best constant force (the weighted mean), from

@@ -17,9 +17,13 @@ namespace {
 // force_span / span [J/m^2]: far wider than any adhesion the curve can show.
 constexpr double kWBracketLow = 1e-12;
 constexpr double kWBracketHigh = 1e6;
+// An adhesive start is sought from the scene's stiffness and from these multiples of it (the
+// scene's first: it decides what is refused); each settles by itself, the best scan is kept.
+constexpr double kStartStiffnessFactors[] = {1.0, 0.1, 10.0};
 
 struct Start {
   double delta0 = 0.0, P0 = 0.0, stiffness_factor = 1.0, w = 0.0;
+  double cost = std::numeric_limits<double>::infinity();  ///< the scan's sum of squares at delta0 [N^2]
   std::size_t contact = 0;
   bool found = true;  ///< false: no trial put >= 3 samples in contact with a positive stiffness
 };
@@ -100,7 +104,8 @@ Start scan_start(const FitData& d, const MasterCurve& approach, const MasterCurv
   Start best;
   best.P0 = P0;
   if (!free_d0 || d.contact_given) {
-    trial(0.0, &best);
+    best.cost = trial(0.0, &best);
+    best.found = std::isfinite(best.cost);
     return best;
   }
   double best_cost = std::numeric_limits<double>::infinity();
@@ -125,6 +130,7 @@ Start scan_start(const FitData& d, const MasterCurve& approach, const MasterCurv
     count = 9;
   }
   best.found = std::isfinite(best_cost);
+  best.cost = best_cost;
   return best;
 }
 
@@ -138,86 +144,101 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
   // Unloading-only data hold no samples at rest: their shallowest quarter is the pull-off or a
   // tail, not a baseline, so P0 starts at 0 (the force's own zero).
   const double P0_start = map.is_free(FitParameter::P0) && !data.unloading_only ? data.baseline : 0.0;
-  // Alternate the contact-point scan (at the current w) and the adhesion estimate: w from
-  // the deepest force dip on retract, where the model's pull-off must match it.
-  double dip = 0.0;
-  for (std::size_t i = 0; i < data.P.size(); ++i)
-    if (data.retract[i]) dip = std::min(dip, data.P[i] - P0_start);
-  const bool adhesive_data =
-      dip < -std::max(kSignificantSigmas * data.noise, kSignificantForceFraction * force_span);
-  data.dip = dip;
-  data.adhesive = adhesive_data;
-  const bool estimate_w = map.is_free(FitParameter::w) && adhesive_data;
-  if (adhesive_data) {
-    // Retract samples are in contact until the observed pull-off: up to the first sample after
-    // the deepest force that is back above half the dip, or more than the significance band
-    // above the deepest force (P(delta) is flat at pull-off, so the deepest sample itself may
-    // come a few samples early, but only by noise; a force relaxing gradually - a necking
-    // tail - is not the JKR branch and is left to the model and the exclusion rule).
-    std::size_t deepest = data.P.size();
-    for (std::size_t i = 0; i < data.P.size(); ++i)
-      if (data.retract[i] && (deepest == data.P.size() || data.P[i] < data.P[deepest])) deepest = i;
-    const double band = std::max(kSignificantSigmas * data.noise, kSignificantForceFraction * force_span);
-    std::size_t jump = deepest;
-    while (jump < data.P.size() &&
-           (!data.retract[jump] || (data.P[jump] < P0_start + 0.5 * dip && data.P[jump] <= data.P[deepest] + band)))
-      ++jump;
-    data.contact.assign(data.P.size(), -1);
-    // Under a cantilever the tip stays on the branch past the deepest force, to where the
-    // model lets go: those samples are the model's to place (-1).
-    for (std::size_t i = 0; i < data.P.size(); ++i)
-      if (data.retract[i]) data.contact[i] = i <= deepest ? 1 : data.cantilever ? -1 : i < jump ? 1 : 0;
-  }
+  // Alternate the contact-point scan (at the current w) and the adhesion estimate: w from the
+  // measured pull-off (read from the data before the fit: data.dip, data.adhesive, data.contact),
+  // where the model's pull-off must match it.
+  const double dip = data.dip;
+  const bool estimate_w = map.is_free(FitParameter::w) && data.adhesive;
   const int stiffness_index = static_cast<int>(map.is_free(FitParameter::K) ? FitParameter::K : FitParameter::E);
-  for (int pass = 0; pass < 8; ++pass) {
-    CurveParameters<double> p;
-    double d0, P0;
-    map.physical(x.data(), &p, &d0, &P0);
-    const bool any_retract = std::find(data.retract.begin(), data.retract.end(), true) != data.retract.end();
-    const bool any_approach = std::find(data.retract.begin(), data.retract.end(), false) != data.retract.end();
-    const MasterCurve none{{std::numeric_limits<double>::infinity()}, {0.0}};
-    const Start start = scan_start(data, any_approach ? master_curve(ev, p, span, false) : none,
-                                   any_retract ? master_curve(ev, p, span, true) : none, map,
-                                   P0_start, span);
-    if (!start.found) {
-      // An all-tensile retract (w = 0 cannot produce it): put the contact point at the
-      // observed pull-off, keep the scene's stiffness, estimate w and scan again.
-      if (!(pass == 0 && estimate_w))
-        throw InputError(source + ": no contact region - no trial contact point puts three or more "
-                         "samples in contact with a positive stiffness" + no_contact_hint(data));
-      const auto deepest = std::min_element(data.P.begin(), data.P.end()) - data.P.begin();
-      map.ref[static_cast<int>(FitParameter::delta0)] = data.delta[static_cast<std::size_t>(deepest)];
-      map.ref[static_cast<int>(FitParameter::P0)] = P0_start;
+  // One start: alternate the scan and the w estimate from the map's current stiffness until both
+  // settle; returns the last scan's cost (infinite where no trial put samples in contact).
+  const auto start_from = [&]() -> double {
+    double cost = std::numeric_limits<double>::infinity();
+    for (int pass = 0; pass < 8; ++pass) {
+      CurveParameters<double> p;
+      double d0, P0;
+      map.physical(x.data(), &p, &d0, &P0);
+      const bool any_retract = std::find(data.retract.begin(), data.retract.end(), true) != data.retract.end();
+      const bool any_approach = std::find(data.retract.begin(), data.retract.end(), false) != data.retract.end();
+      const MasterCurve none{{std::numeric_limits<double>::infinity()}, {0.0}};
+      const Start start = scan_start(data, any_approach ? master_curve(ev, p, span, false) : none,
+                                     any_retract ? master_curve(ev, p, span, true) : none, map, P0_start, span);
+      cost = start.cost;
+      if (!start.found) {
+        // An all-tensile retract (w = 0 cannot produce it): put the contact point at the
+        // observed pull-off, keep the scene's stiffness, estimate w and scan again.
+        if (!(pass == 0 && estimate_w))
+          throw InputError(source + ": no contact region - no trial contact point puts three or more "
+                           "samples in contact with a positive stiffness" + no_contact_hint(data));
+        const auto deepest = std::min_element(data.P.begin(), data.P.end()) - data.P.begin();
+        map.ref[static_cast<int>(FitParameter::delta0)] = data.delta[static_cast<std::size_t>(deepest)];
+        map.ref[static_cast<int>(FitParameter::P0)] = P0_start;
+      }
+      if (start.found) {
+        map.ref[static_cast<int>(FitParameter::delta0)] = start.delta0;
+        map.ref[static_cast<int>(FitParameter::P0)] = start.P0;
+      }
+      if (map.is_free(FitParameter::K) || map.is_free(FitParameter::E)) {
+        map.ref[stiffness_index] *= start.stiffness_factor;
+        if (map.is_free(FitParameter::G) && !map.G_log) map.G_scale *= start.stiffness_factor;
+        if (map.is_free(FitParameter::G) && map.G_log) map.ref[static_cast<int>(FitParameter::G)] *= start.stiffness_factor;
+      }
+      // Without adhesion and shear term the curve's shape does not depend on the stiffness.
+      const bool settled = start.found && (std::abs(std::log(start.stiffness_factor)) < 0.01 || (p.s == 0.0 && p.G == 0.0));
+      if (!estimate_w && settled) break;
+      if (estimate_w && settled && pass >= 2) break;
+      if (!estimate_w) continue;
+      map.physical(x.data(), &p, &d0, &P0);
+      double lo = std::log(kWBracketLow * force_span / span), hi = std::log(kWBracketHigh * force_span / span);
+      for (int it = 0; it < 40; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        p.s = std::sqrt(std::exp(mid));
+        if (map.fixed.sigma0_per_w > 0.0 && !map.is_free(FitParameter::sigma0)) p.sigma0 = map.fixed.sigma0_per_w * p.s * p.s;
+        detail::BranchStart bs;
+        double P = 0.0, d;
+        const bool ok = ev.branch_start(p, detail::StartKind::pull_off, &bs);
+        if (ok) ev.curve(p, bs.a, &d, &P, nullptr, nullptr);
+        (ok && P > dip ? lo : hi) = mid;
+      }
+      map.s_scale = std::sqrt(std::exp(0.5 * (lo + hi)));
+      x[static_cast<std::size_t>(map.index(FitParameter::w))] = 1.0;
     }
-    if (start.found) {
-      map.ref[static_cast<int>(FitParameter::delta0)] = start.delta0;
-      map.ref[static_cast<int>(FitParameter::P0)] = start.P0;
-    }
-    if (map.is_free(FitParameter::K) || map.is_free(FitParameter::E)) {
-      map.ref[stiffness_index] *= start.stiffness_factor;
-      if (map.is_free(FitParameter::G) && !map.G_log) map.G_scale *= start.stiffness_factor;
-      if (map.is_free(FitParameter::G) && map.G_log) map.ref[static_cast<int>(FitParameter::G)] *= start.stiffness_factor;
-    }
-    // Without adhesion and shear term the curve's shape does not depend on the stiffness.
-    const bool settled = start.found && (std::abs(std::log(start.stiffness_factor)) < 0.01 || (p.s == 0.0 && p.G == 0.0));
-    if (!estimate_w && settled) break;
-    if (estimate_w && settled && pass >= 2) break;
-    if (!estimate_w) continue;
-    map.physical(x.data(), &p, &d0, &P0);
-    double lo = std::log(kWBracketLow * force_span / span), hi = std::log(kWBracketHigh * force_span / span);
-    for (int it = 0; it < 40; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      p.s = std::sqrt(std::exp(mid));
-      if (map.fixed.sigma0_per_w > 0.0 && !map.is_free(FitParameter::sigma0)) p.sigma0 = map.fixed.sigma0_per_w * p.s * p.s;
-      detail::BranchStart bs;
-      double P = 0.0, d;
-      const bool ok = ev.branch_start(p, detail::StartKind::pull_off, &bs);
-      if (ok) ev.curve(p, bs.a, &d, &P, nullptr, nullptr);
-      (ok && P > dip ? lo : hi) = mid;
-    }
-    map.s_scale = std::sqrt(std::exp(0.5 * (lo + hi)));
-    x[static_cast<std::size_t>(map.index(FitParameter::w))] = 1.0;
+    return cost;
+  };
+  const bool free_stiffness = map.is_free(FitParameter::K) || map.is_free(FitParameter::E);
+  if (!estimate_w || !free_stiffness) {
+    start_from();
+    return;
   }
+  // With adhesion the curve's shape depends on the stiffness, and the alternation can settle on a
+  // wrong pair from a scene far off (E 6x high from a start 3x high on a tension-only unloading).
+  // It starts from the scene's stiffness and from kStartStiffnessFactors times it; the start whose
+  // scan follows the data best is kept, so the start does not depend on the scene's guess.
+  const ParameterMap scene_map = map;
+  const std::vector<double> scene_x = x;
+  ParameterMap best_map = map;
+  std::vector<double> best_x = x;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (double factor : kStartStiffnessFactors) {
+    map = scene_map;
+    x = scene_x;
+    map.ref[stiffness_index] *= factor;
+    if (map.is_free(FitParameter::G) && !map.G_log) map.G_scale *= factor;
+    if (map.is_free(FitParameter::G) && map.G_log) map.ref[static_cast<int>(FitParameter::G)] *= factor;
+    double cost = std::numeric_limits<double>::infinity();
+    try {
+      cost = start_from();
+    } catch (const InputError&) {
+      if (factor == 1.0) throw;  // the scene's own start decides what is refused
+    }
+    if (cost < best_cost) {
+      best_cost = cost;
+      best_map = map;
+      best_x = x;
+    }
+  }
+  map = best_map;
+  x = best_x;
 }
 
 void find_radius_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std::vector<double>& x) {

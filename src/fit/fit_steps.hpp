@@ -74,6 +74,20 @@ double third_difference_noise(const std::vector<double>& v, const std::vector<st
 /// the fit is not called identifiable.
 void diagnose_residuals(const FitData& data, double force_span, FitSummary* out);
 
+/// Moduli (E, K, G, E_inf) a fit may return [Pa]: beyond them no material is meant, whatever the
+/// solver's tolerances say.
+constexpr double kPlausibleModulus[2] = {1e-3, 1e15};
+/// The largest work of adhesion a fit may return [J/m^2] (covalent bonds are a few J/m^2).
+constexpr double kPlausibleWork = 1e3;
+/// Residuals this many times the data's noise are no description of them.
+constexpr double kFailedRmsOverNoise = 100.0;
+
+/// Honest convergence (fit_diagnosis.cpp): a fit whose parameters leave every physical range
+/// (kPlausibleModulus, kPlausibleWork, a non-finite value) or whose rms residual is
+/// kFailedRmsOverNoise times the data's noise (out->noise; above rounding) has failed: converged
+/// false, FitSummary::failure says why, a warning says so and nothing is called identifiable.
+void judge_plausibility(FitSummary* out);
+
 /// The samples of options.branch, with their scales. Throws InputError for fewer samples
 /// than parameters, constant delta or P, or no contact region.
 FitData select_fit_data(const CurveData& curve, const FitOptions& options, double* span,

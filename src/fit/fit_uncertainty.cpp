@@ -171,7 +171,10 @@ std::string compute_error_bars(ceres::Problem* problem, double final_cost, const
   for (std::size_t i = 0; i < p_free; ++i)
     for (std::size_t j = 0; j <= i; ++j)
       if (!(w_held && (i == held_slot || j == held_slot))) {
-        const double r = C[i * p_free + j] / std::sqrt(C[i * p_free + i]) / std::sqrt(C[j * p_free + j]);
+        // A variance over its own two square roots is 1 but for the last bit: exactly 1 here.
+        const double r = i == j && C[i * p_free + i] > 0.0 && std::isfinite(C[i * p_free + i])
+                             ? 1.0
+                             : C[i * p_free + j] / std::sqrt(C[i * p_free + i]) / std::sqrt(C[j * p_free + j]);
         out->correlation[i][j] = out->correlation[j][i] = std::isfinite(r) ? std::clamp(r, -1.0, 1.0) : kNaN;
       }
   for (std::size_t j = 0; j < p_free; ++j) {

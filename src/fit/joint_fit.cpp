@@ -207,6 +207,7 @@ JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& sce
   for (std::size_t k = 0; k < parts.size(); ++k) diagnose_part(*parts[k], out, j.curve_begin[k], k, j.sources[k], &out);
   out.notices.push_back("start: each of the " + std::to_string(curves.size()) + " curves fitted alone; the shared "
                         "parameters at their " + std::string(shared.empty() ? "" : "geometric ") + "mean");
+  detail::judge_plausibility(&out);
   out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   return j;
 }

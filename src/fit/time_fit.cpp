@@ -11,6 +11,8 @@
 #include "time_evaluators.hpp"
 #include "time_fit.hpp"
 
+#include "retract_reading.hpp"
+
 namespace layerjkr::detail {
 namespace {
 
@@ -182,9 +184,10 @@ FitSummary fit_in_time(const CurveData& curve, const Scene& scene, const FitOpti
     out.notices.push_back(std::to_string(history) + " samples off the " + std::string(to_string(options.branch)) +
                           " branch enter as the history the force depends on, not as residuals");
   judge_law(map, x, scene, data, &out);
-  const double P0 = map.is_free(FitParameter::P0) ? map.value(FitParameter::P0, x.data()) : 0.0;
-  for (std::size_t i = 0; i < data.P.size(); ++i)
-    if (data.retract[i] && !(data.P[i] - P0 >= out.pull_off_force)) out.pull_off_force = data.P[i] - P0;
+  const PullOffMeasure pull_off = measure_pull_off(data, force_span);  // the data's, whatever the fit did
+  out.pull_off_force = pull_off.pull_off;
+  out.pull_off_baseline = pull_off.baseline;
+  out.pull_off_baseline_source = pull_off.baseline_source;
   return out;
 }
 

@@ -158,9 +158,9 @@ TEST_CASE("the retract control: typed, with the curve's own spring constant by d
     o.cantilever_stiffness.reset();
   });
   CHECK(same_fit(automatic, given));
-  // Without any stiffness, auto fits under load control and, since samples it lets go of stay in
-  // contact here, under fixed grips too: it keeps the one that follows every sample better and
-  // says so; cantilever refuses, naming the curve.
+  // Without any stiffness, the retract's gradual return after the force minimum is read both as a
+  // tail (load control) and as the branch held under fixed grips: auto keeps the one that follows
+  // every sample better and says so; cantilever refuses, naming the curve.
   c.spring_constant = 0.0;
   c.source = "retract.csv";
   const FitSummary load = fit_retract(c, kK, 3.0, [](FitOptions& o) { o.retract_control = RetractControl::load; });
@@ -175,8 +175,8 @@ TEST_CASE("the retract control: typed, with the curve's own spring constant by d
     return m;
   };
   CHECK(same_fit(fallback, misfit(grips) < misfit(load) ? grips : load));
-  REQUIRE_FALSE(fallback.notices.empty());
-  CHECK_THAT(fallback.notices.back(), Catch::Contains("retract control: "));
+  CHECK(std::any_of(fallback.notices.begin(), fallback.notices.end(),
+                    [](const std::string& n) { return n.find("retract control: ") != std::string::npos; }));
   INFO(given.brief_report() << load.brief_report());
   CHECK_FALSE(same_fit(load, given));
   CHECK_THROWS_WITH(fit_retract(c, kK, 3.0, [](FitOptions& o) { o.cantilever_stiffness.reset(); }),

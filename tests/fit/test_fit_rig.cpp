@@ -76,6 +76,43 @@ CurveData rig_curve(bool with_radius, double radius_noise, unsigned seed) {
   return c;
 }
 
+// The rigs of issue 40, where fits depended on the noise draw: loading from the zero-load contact
+// radius (the jump-in) to a_max, unloading to a_end, `n` samples each even in delta along the
+// stable branch, 2 uN of force noise and 50 nm of displacement noise.
+CurveData noisy_rig(const Scene& truth, double a_max, double a_end, unsigned seed) {
+  std::vector<double> radii;
+  for (int k = 0; k <= 3000; ++k) radii.push_back(a_max * (0.01 + 0.99 * k / 3000.0));
+  const CurveAnswer c = solve_curve(truth, radii);
+  std::vector<double> a, P, delta;
+  for (const AdhesiveState& st : c.states) {
+    a.push_back(st.a);
+    P.push_back(st.P);
+    delta.push_back(st.delta);
+  }
+  const std::size_t grips = static_cast<std::size_t>(std::min_element(delta.begin(), delta.end()) - delta.begin());
+  std::size_t zero = grips, end = grips;
+  while (zero + 1 < P.size() && P[zero] < 0.0) ++zero;
+  while (end + 1 < a.size() && a[end] < a_end) ++end;
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0.0, 1.0);
+  CurveData out;
+  out.source = "rig";
+  const auto sample = [&](std::size_t from, std::size_t to, int segment) {
+    for (int k = 0; k < 200; ++k) {
+      const double d = delta[from] + (delta[to] - delta[from]) * k / 199.0;
+      std::size_t j = std::min(from, to);
+      while (j + 1 < std::max(from, to) && delta[j + 1] < d) ++j;
+      const double f = (d - delta[j]) / (delta[j + 1] - delta[j]);
+      out.delta.push_back(d + 50e-9 * g(rng));
+      out.P.push_back(P[j] + f * (P[j + 1] - P[j]) + kNoise * g(rng));
+      out.segment.push_back(segment);
+    }
+  };
+  sample(zero, a.size() - 1, 0);
+  sample(a.size() - 1, end, 1);
+  return out;
+}
+
 FitOptions options(std::vector<FitParameter> free, RetractControl control) {
   FitOptions o;
   o.free = std::move(free);
@@ -102,16 +139,22 @@ TEST_CASE("a JKR rig unloaded under displacement control: automatic control sees
   const auto free = {FitParameter::E, FitParameter::w, FitParameter::delta0};
   const FitSummary automatic = fit(c, rig(3e5), options(free, RetractControl::automatic));  // a start 3x soft
   check_truth(automatic);
-  REQUIRE_FALSE(automatic.notices.empty());
-  CHECK_THAT(automatic.notices.back(), Catch::Contains("retract control: fixed grips, chosen from the data"));
+  const auto says = [](const FitSummary& s, const char* text) {
+    return std::any_of(s.notices.begin(), s.notices.end(), [&](const std::string& n) { return n.find(text) != std::string::npos; });
+  };
+  CHECK(says(automatic, "retract control: fixed grips, chosen from the data"));
+  CHECK(says(automatic, "is the contact's own branch"));
+  CHECK(automatic.excluded_count == 0);
   CHECK(automatic.rms_residual < 1.2 * kNoise);
-  // Load control, as asked: the model lets go at the pull-off while the data stay in contact -
-  // said, and never called identifiable.
+  // Load control, as asked: load control cannot hold the contact past the force minimum, so the
+  // rise after it is read as a tail and excluded - said - and E and w come from the samples down
+  // to the minimum, still right.
   const FitSummary load = fit(c, rig(3e5), options(free, RetractControl::load));
   INFO(load.brief_report());
-  CHECK(load.residual_structure);
-  CHECK_FALSE(load.identifiable);
-  CHECK(load.rms_residual > 10.0 * kNoise);
+  CHECK(says(load, "retract control: load (as asked)"));
+  CHECK(load.excluded_count > 0);
+  CHECK(std::abs(load[FitParameter::E].value - 1e6) < 3.0 * load[FitParameter::E].standard_error);
+  CHECK(std::abs(load[FitParameter::w].value - 0.05) < 3.0 * load[FitParameter::w].standard_error);
 }
 
 TEST_CASE("(P, a) data: a rig's load against its contact radius, no displacement, fits E and w", "[fit][rig]") {
@@ -145,4 +188,35 @@ TEST_CASE("delta,P,a data: each column's residuals weigh by its own noise, estim
   CHECK(given.force_noise == kNoise);
   CHECK(given.radius_noise_given);
   CHECK_THAT(given.brief_report(), Catch::Contains("noise: P 2e-06 N (given), a 1e-06 m (given)"));
+}
+
+TEST_CASE("JKR rigs under eight noise draws: every fit right from a start 2x soft, never 'no adhesion'", "[fit][rig]") {
+  // Issue 40: the same curves with 8 noise draws gave w = 0 and E 5-12 % high in 2-6 of 8 draws
+  // ("the data show no adhesion on this branch" beside a pull-off of -1.5 mN), because which
+  // samples counted and the retract's control moved with the fit.
+  const Scene half_space = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5e-3},
+      "medium": {"type": "half_space", "E": 1e6, "nu": 0.49}, "w": 0.05})");
+  const Scene start_half_space = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5e-3},
+      "medium": {"type": "half_space", "E": 5e5, "nu": 0.49}, "w": 0.02})");
+  Scene start_film = rig(5e5);
+  start_film.w = 0.02;
+  struct Rig {
+    const Scene* truth;
+    const Scene* start;
+    double a_max, a_end;  // a/h 0.5-4.5 on the film; unloading past the pull-off on the half-space
+  };
+  const Scene film = rig();
+  // Half-space: pull-off at a = 150 um, fixed grips at 95 um; film: the unloading ends at 60 um,
+  // before the load-controlled pull-off.
+  for (const Rig& r : {Rig{&half_space, &start_half_space, 4e-4, 1.05e-4}, Rig{&film, &start_film, 4.5e-4, 6e-5}})
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+      const CurveData c = noisy_rig(*r.truth, r.a_max, r.a_end, seed);
+      const FitSummary s = fit(c, *r.start, options({FitParameter::E, FitParameter::w, FitParameter::delta0}, RetractControl::automatic));
+      INFO((r.truth == &film ? "film" : "half-space") << ", seed " << seed << "\n" << s.brief_report());
+      CHECK(s.converged);
+      CHECK(std::abs(s[FitParameter::E].value - 1e6) < 3.0 * s[FitParameter::E].standard_error);
+      CHECK(std::abs(s[FitParameter::w].value - 0.05) < 3.0 * s[FitParameter::w].standard_error);
+      CHECK(s.brief_report().find("no adhesion") == std::string::npos);
+      CHECK(s.pull_off_force < -1e-3);
+    }
 }
