@@ -69,7 +69,7 @@ def _keep_finished(branch: str) -> Iterator[None]:
 
 
 def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: SceneLike, *,
-              free: Union[str, Sequence[str]] = ("E", "w", "delta0"), jobs: int = 1, branch: Branch = "approach",
+              free: Union[str, Sequence[str]] = ("E", "w", "delta0", "P0"), jobs: int = 1, branch: Branch = "approach",
               control: Control = "auto", spring_constant: Optional[float] = None,
               baseline: BaselineKind = "constant", window: Window = "all", window_fraction: float = 0.5,
               loss: Loss = "none", loss_scale: Optional[float] = None, starts: int = 0,
@@ -132,7 +132,7 @@ _with_fit_parameters(fit_batch)
 
 
 def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.PathLike[str]"]]], scene: SceneLike, *,
-              free: Union[str, Sequence[str]] = ("E", "w", "delta0"), jobs: int = 1, branch: Branch = "approach",
+              free: Union[str, Sequence[str]] = ("E", "w", "delta0", "P0"), jobs: int = 1, branch: Branch = "approach",
               control: Control = "auto", spring_constant: Optional[float] = None,
               baseline: BaselineKind = "constant", window: Window = "all", window_fraction: float = 0.5,
               loss: Loss = "none", loss_scale: Optional[float] = None, starts: int = 0, max_iterations: int = 200,

@@ -16,7 +16,7 @@ from ._fit_options import _array_inputs, _options, _provenance, _with_fit_parame
 
 
 def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
-        free: Union[str, Sequence[str]] = ("E", "w", "delta0"), segment: Optional[npt.ArrayLike] = None,
+        free: Union[str, Sequence[str]] = ("E", "w", "delta0", "P0"), segment: Optional[npt.ArrayLike] = None,
         branch: Branch = "approach", control: Control = "auto", spring_constant: Optional[float] = None,
         baseline: BaselineKind = "constant", window: Window = "all", window_fraction: float = 0.5,
         loss: Loss = "none", loss_scale: Optional[float] = None, starts: int = 0,

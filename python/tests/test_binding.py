@@ -217,7 +217,7 @@ def test_options_are_typed_keywords(source):
         layerjkr.fit_batch([(delta, P)], scene, jobs=0)
     r = layerjkr.fit(delta, P, scene, segment=segment, branch="retract", loss="huber", loss_scale=1e-9,
                      window="fraction", window_fraction=0.8, control="cantilever", spring_constant=0.05)
-    assert r.parameters == ("E", "w", "delta0") and r.as_dict()["branch"] == "retract"
+    assert r.parameters == ("E", "w", "delta0", "P0") and r.as_dict()["branch"] == "retract"
 
 
 def test_version_is_the_cmake_project_version(source):

@@ -166,6 +166,46 @@ FitSummary weigh_gradual_rise(const CurveData& data, const Scene& scene, const F
   return tail;
 }
 
+// P0 held at 0 (the data's zero, or the offset of the samples at rest removed) is an assumption
+// about the baseline: refitted with P0 free, a modulus or contact point that moves by more than
+// kFixedBaselineSigmas of its error bars says the assumption decides the answer (a QI curve's
+// drifting baseline: E 361 +- 76 Pa with P0 fixed, 39 kPa with it free). A warning then gives
+// both; nothing is changed.
+constexpr double kFixedBaselineSigmas = 3.0;
+
+void check_fixed_baseline(const CurveData& data, const Scene& scene, const FitOptions& options, FitSummary* out) {
+  if (data.radius_only() || std::find(options.free.begin(), options.free.end(), FitParameter::P0) != options.free.end())
+    return;
+  FitOptions o = options;
+  o.free.push_back(FitParameter::P0);
+  FitSummary with_P0;
+  try {
+    with_P0 = fit_once(data, scene, o, false);
+  } catch (const Error&) {
+    return;  // the data cannot say more about their baseline
+  }
+  if (!with_P0.converged || out->P.empty()) return;
+  // Noiseless data: error bars of rounding size say nothing about a baseline.
+  const auto [lo, hi] = std::minmax_element(out->P.begin(), out->P.end());
+  if (!(out->rms_residual > 1e-9 * (*hi - *lo))) return;
+  for (const ParameterEstimate& e : out->parameters) {
+    if (e.parameter == FitParameter::w) continue;  // w at its bound has no symmetric error bar
+    const ParameterEstimate& f = with_P0[e.parameter];
+    const double bar = std::max(e.standard_error, f.standard_error);
+    if (!(bar > 0.0) || !(std::abs(e.value - f.value) > kFixedBaselineSigmas * bar)) continue;
+    out->warnings.push_back("P0 is fixed at 0, and the answer depends on it: with P0 free, " + std::string(to_string(e.parameter)) +
+                            " = " + detail::short_number(f.value) + " +- " + detail::short_number(f.standard_error) + " (P0 = " +
+                            detail::short_number(with_P0[FitParameter::P0].value) + " N) against " +
+                            detail::short_number(e.value) + " +- " + detail::short_number(e.standard_error) +
+                            " here; the baseline is not what P0 = 0 assumes - free P0 (--free ...,P0)");
+    out->identifiable = false;
+    out->identifiability_reason = "the answer depends on the fixed baseline P0 = 0 (" + std::string(to_string(e.parameter)) +
+                                  " moves by " + detail::short_number(std::abs(e.value - f.value) / bar) +
+                                  " error bars with P0 free)";
+    return;
+  }
+}
+
 }  // namespace
 
 FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& options) {
@@ -187,6 +227,7 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   FitSummary out = fit_once(data, scene, options, false);
   if (out.retract_release == detail::to_string(detail::Release::gradual)) out = weigh_gradual_rise(data, scene, options, std::move(out));
   detail::judge_plausibility(&out);
+  if (out.converged) check_fixed_baseline(data, scene, options, &out);
   if (const std::size_t dwell = curve.dwell_count(); dwell > 0)
     out.notices.push_back(std::to_string(dwell) + " dwell samples (segment 2: the indenter at rest) are not fitted: an "
                           "elastic model holds the force constant there; a relaxation law (medium.viscoelastic) fits them");

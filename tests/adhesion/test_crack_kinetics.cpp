@@ -16,6 +16,7 @@
 #include "layerjkr/kinetics.hpp"
 #include "layerjkr/model_spec.hpp"
 #include "layerjkr/scene.hpp"
+#include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using namespace layerjkr;
 

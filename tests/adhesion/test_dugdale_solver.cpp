@@ -20,6 +20,7 @@
 #include "layerjkr/maugis_dugdale.hpp"
 #include "support/stack_media.hpp"
 #include "support/test_support.hpp"
+#include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using namespace layerjkr;
 using detail::DugdaleSolver;

@@ -14,6 +14,7 @@
 #include "layerjkr/exact_layer.hpp"
 #include "support/stack_media.hpp"
 #include "support/test_support.hpp"
+#include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using namespace layerjkr;
 using detail::DugdaleParts;

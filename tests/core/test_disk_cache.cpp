@@ -26,6 +26,7 @@
 #include "layerjkr/provenance.hpp"
 #include "support/stack_media.hpp"
 #include "support/temp_dir.hpp"
+#include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using namespace layerjkr;
 namespace fs = std::filesystem;

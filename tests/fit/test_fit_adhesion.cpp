@@ -29,6 +29,7 @@
 #include "layerjkr/simulate.hpp"
 #include "support/cli_support.hpp"
 #include "support/test_support.hpp"
+#include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using namespace layerjkr;
 using test::rel_err;

@@ -25,6 +25,7 @@
 #include "layerjkr/fit.hpp"
 #include "layerjkr/scene.hpp"
 #include "support/test_support.hpp"
+#include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using namespace layerjkr;
 using test::rel_err;

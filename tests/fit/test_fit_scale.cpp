@@ -11,6 +11,7 @@
 #include "layerjkr/error.hpp"
 #include "layerjkr/fit.hpp"
 #include "layerjkr/scene.hpp"
+#include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using namespace layerjkr;
 

@@ -10,6 +10,7 @@
 #include "layerjkr/exact_layer.hpp"
 #include "layerjkr/model.hpp"
 #include "models/layer_kernel.hpp"
+#include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using namespace layerjkr;
 

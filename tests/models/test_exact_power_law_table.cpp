@@ -10,6 +10,7 @@
 #include "layerjkr/exact_layer.hpp"
 #include "models/exact_power_law_table.hpp"
 #include "support/test_support.hpp"
+#include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using namespace layerjkr;
 using test::rel_err;

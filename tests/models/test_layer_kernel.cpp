@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "models/layer_kernel.hpp"
+#include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using layerjkr::detail::LayerKernelFunction;
 

@@ -10,6 +10,7 @@
 #include "models/layer_kernel.hpp"
 #include "models/stack_symbol.hpp"
 #include "support/stack_media.hpp"
+#include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using layerjkr::Base;
 using layerjkr::LayeredMedium;

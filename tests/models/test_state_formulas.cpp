@@ -6,6 +6,7 @@
 
 #include "models/state_formulas.hpp"
 #include "support/test_support.hpp"
+#include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using layerjkr::detail::ProfileAt;
 using layerjkr::detail::StateOf;

@@ -23,6 +23,7 @@
 #include "layerjkr/model_spec.hpp"
 #include "layerjkr/viscoelastic.hpp"
 #include "models/layer_kernel.hpp"
+#include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using namespace layerjkr;
 

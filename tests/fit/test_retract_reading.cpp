@@ -1,0 +1,238 @@
+// The retract read from its samples alone (src/fit/retract_reading.cpp): the baseline from the
+// free parts, the measured pull-off, the release and the tail - on hand-made retracts whose
+// answer is known - and the fit's honest convergence (judge_plausibility). The pull-off is one
+// number whatever the fit does.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "fit/fit_steps.hpp"
+#include "fit/retract_reading.hpp"
+#include "layerjkr/fit.hpp"
+#include "layerjkr/simulate.hpp"
+#include "support/catch_after_glog.hpp"
+
+using namespace layerjkr;
+using detail::FitData;
+using detail::Release;
+
+namespace {
+
+constexpr double kNoise = 1e-11;  // N
+
+// An approach of `free_n` samples at rest then a rise, and a retract of `retract` forces (in
+// acquisition order) shifted by `baseline`, with Gaussian noise; delta falls on retract.
+FitData curve(const std::vector<double>& retract, double baseline, unsigned seed = 1, int free_n = 30) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0.0, kNoise);
+  FitData d;
+  const auto add = [&](double delta, double P, bool r) {
+    d.delta.push_back(delta);
+    d.P.push_back(P + baseline + g(rng));
+    d.retract.push_back(r);
+    d.sqrt_weight.push_back(1.0);
+  };
+  for (int i = 0; i < free_n; ++i) add(1e-9 * i, 0.0, false);
+  for (int i = 0; i < 30; ++i) add(1e-9 * (free_n + i), 2e-11 * i * i, false);
+  for (std::size_t k = 0; k < retract.size(); ++k) add(1e-9 * (free_n + 30) - 1e-9 * static_cast<double>(k), retract[k], true);
+  return d;
+}
+
+// A retract from 1.8e-8 N falling linearly to -1e-8 N (the pull-off) in 40 samples, then `after`.
+std::vector<double> falling(const std::vector<double>& after) {
+  std::vector<double> r;
+  for (int k = 0; k < 40; ++k) r.push_back(1.8e-8 - 2.8e-8 * k / 39.0);
+  r.insert(r.end(), after.begin(), after.end());
+  return r;
+}
+
+std::vector<double> zeros(int n) { return std::vector<double>(static_cast<std::size_t>(n), 0.0); }
+
+detail::RetractReading read(const FitData& d) {
+  FitOptions o;
+  o.free = {FitParameter::E};
+  return detail::read_retract(d, o, 5e-8);
+}
+
+std::size_t retract_begin(const FitData& d) {
+  return static_cast<std::size_t>(std::find(d.retract.begin(), d.retract.end(), true) - d.retract.begin());
+}
+
+}  // namespace
+
+TEST_CASE("the pull-off is measured against the retract's free part, else the approach's, else zero", "[fit][retract_reading]") {
+  // A snap at the minimum back to a baseline of 3e-10 N: the retract's last tenth is at rest.
+  const FitData snap = curve(falling(zeros(30)), 3e-10);
+  const detail::PullOffMeasure m = detail::measure_pull_off(snap, 5e-8);
+  CHECK(m.has_baseline);
+  CHECK_THAT(m.baseline_source, Catch::Contains("last 7 samples of the retract"));
+  CHECK(m.baseline == Approx(3e-10).margin(3 * kNoise));
+  CHECK(m.pull_off == Approx(-1e-8).margin(4 * kNoise));
+  CHECK(m.noise == Approx(kNoise).epsilon(0.5));
+  CHECK(m.adhesive);
+  // The retract ends rising (still in contact): the approach's first tenth is the baseline.
+  std::vector<double> rising;
+  for (int k = 1; k <= 20; ++k) rising.push_back(-1e-8 + 2e-10 * k);
+  const detail::PullOffMeasure a = detail::measure_pull_off(curve(falling(rising), 3e-10), 5e-8);
+  CHECK_THAT(a.baseline_source, Catch::Contains("first"));
+  CHECK(a.baseline == Approx(3e-10).margin(3 * kNoise));
+  // Neither at rest (no approach, a retract rising to its end): the force's zero.
+  FitData none = curve(falling(rising), 3e-10, 1, 0);
+  none.delta.erase(none.delta.begin(), none.delta.begin() + 30);
+  none.P.erase(none.P.begin(), none.P.begin() + 30);
+  none.retract.erase(none.retract.begin(), none.retract.begin() + 30);
+  none.sqrt_weight.erase(none.sqrt_weight.begin(), none.sqrt_weight.begin() + 30);
+  const detail::PullOffMeasure z = detail::measure_pull_off(none, 5e-8);
+  CHECK_FALSE(z.has_baseline);
+  CHECK(z.baseline == 0.0);
+  CHECK_THAT(z.baseline_source, Catch::Contains("the force's zero"));
+}
+
+TEST_CASE("the release is read from the samples: a snap, a held branch, a contact held to the end, a tail", "[fit][retract_reading]") {
+  SECTION("a snap at the minimum: every later sample free, none excluded") {
+    const FitData d = curve(falling(zeros(30)), 0.0);
+    const detail::RetractReading r = read(d);
+    CHECK(r.release == Release::at_minimum);
+    CHECK(r.held_past_minimum == 0);
+    CHECK(r.tail_count == 0);
+    const std::size_t b = retract_begin(d);
+    for (std::size_t k = 0; k < 40; ++k) CHECK(r.contact[b + k] == 1);
+    for (std::size_t k = 40; k < 70; ++k) CHECK(r.contact[b + k] == 0);
+  }
+  SECTION("held past the minimum then released by a jump, with a tail after it") {
+    std::vector<double> after;
+    for (int k = 1; k <= 8; ++k) after.push_back(-1e-8 + 5e-10 * k);           // the branch, rising
+    for (int k = 1; k <= 6; ++k) after.push_back(-1e-9 * std::exp(-k / 2.0));  // after the jump: a tail
+    const std::vector<double> z = zeros(30);
+    after.insert(after.end(), z.begin(), z.end());
+    const FitData d = curve(falling(after), 0.0);
+    const detail::RetractReading r = read(d);
+    CHECK(r.release == Release::held_then_jump);
+    CHECK(r.held_past_minimum == 8);
+    CHECK(r.jump == Approx(6e-9 - 1e-9 * std::exp(-0.5)).margin(4 * kNoise));
+    CHECK(r.tail_count >= 3);
+    CHECK(r.tail_count <= 6);
+    const std::size_t b = retract_begin(d);
+    for (std::size_t k = 0; k < 48; ++k) CHECK(r.contact[b + k] == 1);
+    for (std::size_t k = 48; k < d.P.size() - b; ++k) CHECK(r.contact[b + k] == 0);
+  }
+  SECTION("the force rises past its minimum and ends far below the baseline: every sample in contact") {
+    std::vector<double> after;
+    for (int k = 1; k <= 20; ++k) after.push_back(-1e-8 + 2e-10 * k);  // ends at -6e-9 N
+    const detail::RetractReading r = read(curve(falling(after), 0.0));
+    CHECK(r.release == Release::held_to_end);
+    CHECK(r.held_past_minimum == 20);
+    CHECK(r.tail_count == 0);
+  }
+  SECTION("a gradual return to the baseline is a tail; read the other way, the branch held") {
+    std::vector<double> after;
+    for (int k = 1; k <= 15; ++k) after.push_back(-1e-8 * std::exp(-k / 4.0));  // steps shrink by 0.78
+    const std::vector<double> z = zeros(30);
+    after.insert(after.end(), z.begin(), z.end());
+    const FitData d = curve(falling(after), 0.0);
+    const detail::RetractReading tail = read(d);
+    CHECK(tail.release == Release::gradual);
+    CHECK(tail.tail_count >= 10);
+    CHECK_THAT(tail.rule, Catch::Contains("without a jump"));
+    FitOptions o;
+    o.free = {FitParameter::E};
+    const detail::RetractReading held = detail::read_retract(d, o, 5e-8, true);
+    CHECK(held.release == Release::held_gradual);
+    CHECK(held.tail_count == 0);
+    CHECK(held.held_past_minimum >= 10);
+  }
+  SECTION("the data end at the minimum: every retract sample in contact") {
+    const detail::RetractReading r = read(curve(falling({}), 0.0));
+    CHECK(r.release == Release::at_end);
+    CHECK(r.tail_count == 0);
+  }
+  SECTION("no force below the baseline beyond noise: the model places every sample") {
+    std::vector<double> r;
+    for (int k = 0; k < 40; ++k) r.push_back(1.8e-8 * (1.0 - k / 39.0));
+    const std::vector<double> z = zeros(30);
+    r.insert(r.end(), z.begin(), z.end());
+    const detail::RetractReading none = read(curve(r, 0.0));
+    CHECK(none.release == Release::none);
+    CHECK(none.contact.empty());
+  }
+}
+
+TEST_CASE("one measured pull-off: the same number whatever is free and wherever the fit starts", "[fit][retract_reading]") {
+  const Scene truth = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 1e-5},
+      "medium": {"type": "half_space", "E": 2e4, "nu": 0.5}, "w": 1e-4})");
+  SimulationOptions so;
+  so.max_indentation = 1e-6;
+  so.noise = 2e-11;
+  so.P0 = 5e-11;
+  const CurveData c = simulate_curve(truth, so);
+  double first = std::numeric_limits<double>::quiet_NaN();
+  for (double start : {0.1, 1.0, 10.0})
+    for (const auto& free : {std::vector<FitParameter>{FitParameter::E, FitParameter::w, FitParameter::delta0, FitParameter::P0},
+                             std::vector<FitParameter>{FitParameter::E, FitParameter::delta0}}) {
+      Scene s = truth;
+      s.medium.E *= start;
+      FitOptions o;
+      o.free = free;
+      o.branch = Branch::all;
+      const FitSummary f = fit(c, s, o);
+      INFO(f.brief_report());
+      if (std::isnan(first)) first = f.pull_off_force;
+      CHECK(f.pull_off_force == first);  // bit for bit: no fitted value enters it
+      CHECK(f.pull_off_baseline == Approx(5e-11).margin(2e-11));
+      CHECK(f.pull_off_force == Approx(-1.5 * M_PI * 1e-4 * 1e-5).epsilon(0.02));
+    }
+}
+
+TEST_CASE("absurd parameters or residuals far above the noise are a failed fit, never converged", "[fit][plausibility]") {
+  FitSummary s;
+  s.converged = true;
+  s.identifiable = true;
+  s.termination = "Function tolerance reached";
+  ParameterEstimate E;
+  E.parameter = FitParameter::E;
+  E.value = 1.86e42;
+  E.standard_error = 1.0;
+  s.parameters.push_back(E);
+  detail::judge_plausibility(&s);
+  CHECK_FALSE(s.converged);
+  CHECK_FALSE(s.identifiable);
+  CHECK_THAT(s.failure, Catch::Contains("E = 1.86e+42 Pa lies outside every physical modulus"));
+  CHECK_THAT(s.brief_report(), Catch::StartsWith("layerjkr fit: NOT converged") && Catch::Contains("failed: E = 1.86e+42"));
+  BatchItem item;
+  item.ok = false;  // fit_batch's verdict on such a summary, with its reason
+  item.summary = s;
+  CHECK(batch_quality(item) == "failed");
+
+  FitSummary w = FitSummary();
+  w.converged = true;
+  ParameterEstimate work;
+  work.parameter = FitParameter::w;
+  work.value = 1.7e33;
+  w.parameters.push_back(work);
+  detail::judge_plausibility(&w);
+  CHECK_THAT(w.failure, Catch::Contains("exceeds every physical work of adhesion"));
+
+  // Residuals 1e3 times the noise: failed with structure (few runs), kept without it (residuals
+  // that alternate as noise does are noise the estimate missed).
+  for (const double runs_z : {-30.0, 0.3}) {
+    FitSummary r;
+    r.converged = true;
+    r.P = {0.0, 1.0};
+    r.noise = 1e-3;
+    r.rms_residual = 1.0;
+    r.runs_z = runs_z;
+    detail::judge_plausibility(&r);
+    CHECK(r.converged == (runs_z > 0.0));
+    if (runs_z < 0.0) CHECK_THAT(r.failure, Catch::Contains("1000 times the data's noise"));
+  }
+  FitSummary fine;
+  fine.converged = true;
+  fine.P = {0.0, 1.0};
+  fine.noise = 1e-3;
+  fine.rms_residual = 1.1e-3;
+  fine.runs_z = -30.0;
+  detail::judge_plausibility(&fine);
+  CHECK(fine.converged);
+  CHECK(fine.failure.empty());
+}
