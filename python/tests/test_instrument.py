@@ -163,3 +163,19 @@ def test_a_nanoscope_file_reads_whole_in_ranges_and_by_position(instrument_dir):
                 assert same_curve(f[i], whole[i]) and f.curve_number(i) == whole[i]["index"]
         a, b = n // 3, n // 3 + max(1, n // 4)
         assert same_curves(layerjkr.read_instrument(path, curves=(a, b)), whole[a:b])
+
+
+def test_the_default_fit_of_a_qi_curve_frees_its_baseline_or_warns(source):
+    # Issue 40: with P0 fixed the bundled QI map's curve 1 gave E 100x below the P0-free fit, and
+    # only warnings about w were shown. The default frees P0; fixing it says what it costs.
+    path = source / "data/instrument" / QI
+    c = layerjkr.read_instrument(path, curves=(1, 2))[0]
+    scene = str(source / "data/scenes/hertz_R40nm.json")
+    with_P0 = layerjkr.fit(c["delta"], c["P"], scene, segment=c["segment"], free="E,w,delta0,P0")
+    default = layerjkr.fit(c["delta"], c["P"], scene, segment=c["segment"])
+    assert default.parameters == with_P0.parameters
+    assert default.values["E"] == with_P0.values["E"]
+    with pytest.warns(layerjkr.ModelWarning, match="P0 is fixed at 0, and the answer depends on it: with P0 free, E ="):
+        fixed = layerjkr.fit(c["delta"], c["P"], scene, segment=c["segment"], free="E,w,delta0")
+    assert abs(fixed.values["E"] - with_P0.values["E"]) > 3 * with_P0.errors["E"]
+    assert not fixed.identifiable
