@@ -261,6 +261,8 @@ struct FitSummary {
   /// which of these, in words (empty without retract samples).
   double pull_off_baseline = std::numeric_limits<double>::quiet_NaN();
   std::string pull_off_baseline_source;
+  /// The baseline came from samples at rest (false: the force's zero, where none is).
+  bool pull_off_baseline_measured = false;
   /// How the retract let go of the contact, read from the data before the fit (docs/fitting.md,
   /// "Rules decided from the data"): empty without adhesion on the retract, else e.g. "a jump at
   /// the force minimum", "held past the force minimum, then a jump", "held to the end",

@@ -167,10 +167,10 @@ FitSummary weigh_gradual_rise(const CurveData& data, const Scene& scene, const F
 }
 
 // P0 held at 0 (the data's zero, or the offset of the samples at rest removed) is an assumption
-// about the baseline: refitted with P0 free, a modulus or contact point that moves by more than
-// kFixedBaselineSigmas of its error bars says the assumption decides the answer (a QI curve's
-// drifting baseline: E 361 +- 76 Pa with P0 fixed, 39 kPa with it free). A warning then gives
-// both; nothing is changed.
+// about the baseline: refitted with P0 free, a P0 beyond 5 of its standard errors from the one
+// assumed and a modulus or contact point that moves by more than kFixedBaselineSigmas of its error
+// bars say the assumption decides the answer (a QI curve's drifting baseline: E 361 +- 76 Pa with
+// P0 fixed, 39 kPa with it free). A warning then gives both; nothing is changed.
 constexpr double kFixedBaselineSigmas = 3.0;
 
 void check_fixed_baseline(const CurveData& data, const Scene& scene, const FitOptions& options, FitSummary* out) {
@@ -184,7 +184,13 @@ void check_fixed_baseline(const CurveData& data, const Scene& scene, const FitOp
   } catch (const Error&) {
     return;  // the data cannot say more about their baseline
   }
-  if (!with_P0.converged || out->P.empty()) return;
+  // Nested fits: freeing P0 can only lower the cost. One that ends higher stopped in another
+  // minimum (a tension-only unloading's P0 taking up the adhesion) and says nothing here.
+  if (!with_P0.converged || out->P.empty() || with_P0.final_cost > out->final_cost) return;
+  // The data must say the baseline is elsewhere - the free P0 beyond kSignificantSigmas of its
+  // error from the one assumed (0, or the offset removed) - before the answer's move is blamed on it.
+  const ParameterEstimate& P0 = with_P0[FitParameter::P0];
+  if (!(std::abs(P0.value - out->baseline_offset) > detail::kSignificantSigmas * P0.standard_error)) return;
   // Noiseless data: error bars of rounding size say nothing about a baseline.
   const auto [lo, hi] = std::minmax_element(out->P.begin(), out->P.end());
   if (!(out->rms_residual > 1e-9 * (*hi - *lo))) return;
@@ -195,7 +201,8 @@ void check_fixed_baseline(const CurveData& data, const Scene& scene, const FitOp
     if (!(bar > 0.0) || !(std::abs(e.value - f.value) > kFixedBaselineSigmas * bar)) continue;
     out->warnings.push_back("P0 is fixed at 0, and the answer depends on it: with P0 free, " + std::string(to_string(e.parameter)) +
                             " = " + detail::short_number(f.value) + " +- " + detail::short_number(f.standard_error) + " (P0 = " +
-                            detail::short_number(with_P0[FitParameter::P0].value) + " N) against " +
+                            detail::short_number(P0.value) + " N, " + detail::short_number(std::abs(P0.value - out->baseline_offset) / P0.standard_error) +
+                            " standard errors from the baseline assumed) against " +
                             detail::short_number(e.value) + " +- " + detail::short_number(e.standard_error) +
                             " here; the baseline is not what P0 = 0 assumes - free P0 (--free ...,P0)");
     out->identifiable = false;
@@ -204,6 +211,47 @@ void check_fixed_baseline(const CurveData& data, const Scene& scene, const FitOp
                                   " error bars with P0 free)";
     return;
   }
+}
+
+// Data with no sample at rest (tension-only unloading) do not fix their baseline: a free P0 can
+// take up the adhesion the data show - P0 at the pull-off force, w at 0, a shifted Hertz curve -
+// with residuals as small as the JKR curve's at the force's zero (a 25 um sphere's tension-only
+// unloading: E 22 % low, "identifiable: yes"). Where the fitted P0 lies away from the force's
+// zero, the curve is fitted again with P0 held there, from its own data-driven start; if that
+// fits as well (deviance below kUpperBoundDeviance) or better, the data cannot tell the two
+// apart: a warning gives the other answer and nothing is called identifiable.
+void check_baseline_trade(const CurveData& data, const Scene& scene, const FitOptions& options, FitSummary* out) {
+  const bool free_P0 = std::find(options.free.begin(), options.free.end(), FitParameter::P0) != options.free.end();
+  const bool free_w = std::find(options.free.begin(), options.free.end(), FitParameter::w) != options.free.end();
+  if (!free_P0 || !free_w || out->pull_off_baseline_measured || !(out->pull_off_force < 0.0)) return;
+  const ParameterEstimate& P0 = (*out)[FitParameter::P0];
+  if (!(std::abs(P0.value) > detail::kSignificantSigmas * (std::isfinite(P0.standard_error) ? P0.standard_error : 0.0)))
+    return;
+  FitOptions o = options;
+  o.free.erase(std::find(o.free.begin(), o.free.end(), FitParameter::P0));
+  o.remove_offset = false;
+  FitSummary at_zero;
+  try {
+    at_zero = fit_once(data, scene, o, false);
+  } catch (const Error&) {
+    return;
+  }
+  const std::size_t n = at_zero.points - at_zero.excluded_count;
+  if (!(out->final_cost > 0.0) || n <= out->parameters.size()) return;
+  const double deviance = 2.0 * (at_zero.final_cost - out->final_cost) * static_cast<double>(n - out->parameters.size()) /
+                          (2.0 * out->final_cost);
+  if (!(deviance < detail::kUpperBoundDeviance)) return;  // the data prefer the fitted baseline
+  std::string other;
+  for (const ParameterEstimate& e : at_zero.parameters)
+    other += std::string(other.empty() ? "" : ", ") + to_string(e.parameter) + " = " + detail::short_number(e.value);
+  const std::string text =
+      "with no sample at rest the data do not fix their baseline: P0 = " + detail::short_number(P0.value) + " N fits, and " +
+      (deviance < 0.0 ? "P0 = 0 fits better" : "so does P0 = 0") + " with " + other + " (deviance " +
+      detail::short_number(deviance) + (deviance < 0.0 ? "; this fit stopped in another minimum" : "") +
+      "): P0 trades with w and the modulus";
+  out->warnings.push_back(text + "; fix P0 (a baseline removed beforehand) or give samples at rest");
+  out->identifiable = false;
+  out->identifiability_reason = text;
 }
 
 }  // namespace
@@ -228,6 +276,7 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   if (out.retract_release == detail::to_string(detail::Release::gradual)) out = weigh_gradual_rise(data, scene, options, std::move(out));
   detail::judge_plausibility(&out);
   if (out.converged) check_fixed_baseline(data, scene, options, &out);
+  if (out.converged) check_baseline_trade(data, scene, options, &out);
   if (const std::size_t dwell = curve.dwell_count(); dwell > 0)
     out.notices.push_back(std::to_string(dwell) + " dwell samples (segment 2: the indenter at rest) are not fitted: an "
                           "elastic model holds the force constant there; a relaxation law (medium.viscoelastic) fits them");
@@ -361,6 +410,7 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   out.pull_off_force = reading.pull_off.pull_off;  // the data's, whatever the fit did
   out.pull_off_baseline = reading.pull_off.baseline;
   out.pull_off_baseline_source = reading.pull_off.baseline_source;
+  out.pull_off_baseline_measured = reading.pull_off.has_baseline;
   if (data.unloading_only)
     out.warnings.push_back("no baseline in the data: the contact region was found on the unloading samples before "
                            "the observed pull-off, the noise from their second differences" +

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -154,6 +156,10 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
   // settle; returns the last scan's cost (infinite where no trial put samples in contact).
   const auto start_from = [&]() -> double {
     double cost = std::numeric_limits<double>::infinity();
+    // The last pass that found a start: a later w estimate that leaves no trial in contact (a
+    // tension-only unloading with P0 free) falls back to it rather than refusing the curve.
+    std::optional<std::pair<ParameterMap, std::vector<double>>> last_found;
+    double last_cost = cost;
     for (int pass = 0; pass < 8; ++pass) {
       CurveParameters<double> p;
       double d0, P0;
@@ -164,6 +170,12 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
       const Start start = scan_start(data, any_approach ? master_curve(ev, p, span, false) : none,
                                      any_retract ? master_curve(ev, p, span, true) : none, map, P0_start, span);
       cost = start.cost;
+      if (!start.found && last_found) {
+        map = last_found->first;
+        x = last_found->second;
+        cost = last_cost;
+        break;
+      }
       if (!start.found) {
         // An all-tensile retract (w = 0 cannot produce it): put the contact point at the
         // observed pull-off, keep the scene's stiffness, estimate w and scan again.
@@ -182,6 +194,10 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
         map.ref[stiffness_index] *= start.stiffness_factor;
         if (map.is_free(FitParameter::G) && !map.G_log) map.G_scale *= start.stiffness_factor;
         if (map.is_free(FitParameter::G) && map.G_log) map.ref[static_cast<int>(FitParameter::G)] *= start.stiffness_factor;
+      }
+      if (start.found) {
+        last_found.emplace(map, x);
+        last_cost = start.cost;
       }
       // Without adhesion and shear term the curve's shape does not depend on the stiffness.
       const bool settled = start.found && (std::abs(std::log(start.stiffness_factor)) < 0.01 || (p.s == 0.0 && p.G == 0.0));

@@ -188,6 +188,7 @@ FitSummary fit_in_time(const CurveData& curve, const Scene& scene, const FitOpti
   out.pull_off_force = pull_off.pull_off;
   out.pull_off_baseline = pull_off.baseline;
   out.pull_off_baseline_source = pull_off.baseline_source;
+  out.pull_off_baseline_measured = pull_off.has_baseline;
   return out;
 }
 
