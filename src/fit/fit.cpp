@@ -174,7 +174,9 @@ FitSummary weigh_gradual_rise(const CurveData& data, const Scene& scene, const F
 constexpr double kFixedBaselineSigmas = 3.0;
 
 void check_fixed_baseline(const CurveData& data, const Scene& scene, const FitOptions& options, FitSummary* out) {
-  if (data.radius_only() || std::find(options.free.begin(), options.free.end(), FitParameter::P0) != options.free.end())
+  // A contact-point method measured the baseline from the samples at rest, and P0 holds it.
+  if (data.radius_only() || options.contact_point != ContactPointMethod::fit ||
+      std::find(options.free.begin(), options.free.end(), FitParameter::P0) != options.free.end())
     return;
   FitOptions o = options;
   o.free.push_back(FitParameter::P0);
