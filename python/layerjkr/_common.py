@@ -58,8 +58,18 @@ def _json_value(value: Any) -> Any:
 
 
 def _segments(segment: npt.ArrayLike) -> List[int]:
-    """Segment labels 0, 1 or 2; a non-integer label (0.5) is refused with its value, not cast."""
+    """Segment labels 0, 1 or 2; a non-integer label (0.5) is refused with its value, not cast.
+
+    Vectorised for numeric arrays (a Python loop over a curve's labels cost three times the fit
+    itself); other inputs are checked label by label."""
     values = np.asarray(segment).ravel()
+    if values.dtype.kind in "iu":
+        return values.astype(np.int64).tolist()
+    if values.dtype.kind == "f":
+        bad = ~np.isfinite(values)
+        bad[~bad] = values[~bad] != np.floor(values[~bad])
+        if not bad.any():
+            return values.astype(np.int64).tolist()
     out = []
     for i, v in enumerate(values.tolist()):
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v) or v != int(v):

@@ -2,7 +2,7 @@
 curve (simulate)."""
 from __future__ import annotations
 
-from typing import Any, List, Literal, NamedTuple, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Literal, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -79,10 +79,15 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
         if not hint:
             raise
         raise type(e)(str(e) + hint) from None
-    inputs = _array_inputs(d, p, seg)
-    if tt is not None:
-        inputs.append(_core.record_bytes("t (float64 array)", tt))
-    result = FitResult(s, options.branch, _provenance(s_, options, None, inputs))
+    t_fitted = None if tt is None else tt.copy()  # _float64 may return the caller's own array
+
+    def record() -> Dict[str, Any]:  # made when the result's provenance is first asked for
+        inputs = _array_inputs(d, p, seg)
+        if t_fitted is not None:
+            inputs.append(_core.record_bytes("t (float64 array)", t_fitted))
+        return _provenance(s_, options, None, inputs)
+
+    result = FitResult(s, options.branch, record)
     _warn(result.warnings, 2)
     return result
 

@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -101,7 +101,8 @@ class FitResult:
     __slots__ = ("_fields", "_params", "_corr", "_delta", "_P", "_P_fit", "_excluded", "_brief", "_branch",
                  "_provenance", "_t")
 
-    def __init__(self, s: Any, branch: str, provenance: Optional[Dict[str, Any]] = None) -> None:
+    def __init__(self, s: Any, branch: str,
+                 provenance: Union[None, Dict[str, Any], Callable[[], Dict[str, Any]]] = None) -> None:
         self._fields = {k: getattr(s, k) for k in ("converged", "termination", "iterations", "model", "family",
                                                      "rms_residual", "excluded_count", "pull_off_force",
                                                      "baseline_slope", "baseline_slope_stderr", "baseline_offset",
@@ -123,6 +124,7 @@ class FitResult:
         self._provenance = provenance if provenance is not None else {}
 
     def __getstate__(self) -> Any:
+        self.provenance  # a record made on demand is made before it travels
         return {k: getattr(self, k) for k in self.__slots__}
 
     def __setstate__(self, state: Any) -> None:
@@ -307,7 +309,10 @@ class FitResult:
         float64 arrays the library fitted (``"delta (float64 array)"``, ``"P (float64 array)"``,
         ``"segment (int64 array)"``: native little-endian, C order, so
         ``hashlib.sha256(np.ascontiguousarray(delta, dtype=np.float64).tobytes())`` gives it).
-        The nested dicts of a batch's results are shared between them: do not change them."""
+        The nested dicts of a batch's results are shared between them: do not change them.
+        Made when first asked for (hashing the inputs cost a fifth of a small fit)."""
+        if callable(self._provenance):
+            self._provenance = self._provenance()
         return self._provenance
 
     def as_dict(self) -> Dict[str, Any]:
