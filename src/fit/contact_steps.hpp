@@ -41,4 +41,21 @@ FitSummary fit_steered(const CurveData& curve, const Scene& scene, const FitOpti
 FitSummary fit_core(const CurveData& curve, const Scene& scene, const FitOptions& options, bool contact_given,
                     bool hold_gradual_rise = false);
 
+/// fit() of an elastic curve without its dwell: fit_steered or fit_core, and the contact point
+/// reported (fit_second_readings.cpp).
+FitSummary fit_once(const CurveData& curve, const Scene& scene, const FitOptions& options, bool hold_gradual_rise);
+
+/// A retract that returns to the baseline without a jump, fitted again with the return held in
+/// contact; the reading whose residuals are noise and follow every sample better is returned,
+/// with a notice giving both rms values.
+FitSummary weigh_gradual_rise(const CurveData& data, const Scene& scene, const FitOptions& options, FitSummary tail);
+
+/// With P0 fixed: a warning, and no identifiability, where the data put P0 elsewhere (kSignificantSigmas)
+/// and freeing it moves a parameter by more than 3 error bars.
+void check_fixed_baseline(const CurveData& data, const Scene& scene, const FitOptions& options, FitSummary* out);
+
+/// With P0 and w free and no sample at rest: a warning, and no identifiability, where P0 held at
+/// the force's zero fits as well or better (P0 trading with the adhesion).
+void check_baseline_trade(const CurveData& data, const Scene& scene, const FitOptions& options, FitSummary* out);
+
 }  // namespace layerjkr::detail

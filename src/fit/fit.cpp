@@ -1,5 +1,6 @@
 // fit(): the model, the parameter map and the summary; the steps are in fit_data.cpp,
-// fit_start.cpp, fit_run.cpp (the Ceres solves) and fit_uncertainty.cpp.
+// retract_reading.cpp, fit_start.cpp, fit_run.cpp (the Ceres solves), fit_uncertainty.cpp and
+// fit_second_readings.cpp.
 #include "layerjkr/fit.hpp"
 
 #include <algorithm>
@@ -123,139 +124,6 @@ namespace {
 constexpr double kWBoundFraction = 1e-12;
 constexpr int kRescueStarts = 8;
 
-FitSummary fit_once(const CurveData& curve, const Scene& scene, const FitOptions& options, bool hold_gradual_rise) {
-  FitSummary out = detail::steered_contact(options) ? detail::fit_steered(curve, scene, options, hold_gradual_rise)
-                                                    : detail::fit_core(curve, scene, options, false, hold_gradual_rise);
-  if (!detail::steered_contact(options)) detail::report_fitted_contact(curve, options, &out);
-  return out;
-}
-
-// Sum of squared force residuals over every sample, excluded ones too [N^2].
-double total_misfit(const FitSummary& s) {
-  double sum = 0.0;
-  for (std::size_t i = 0; i < s.P.size(); ++i) sum += (s.P[i] - s.P_fit[i]) * (s.P[i] - s.P_fit[i]);
-  return sum;
-}
-
-// A retract that returns to the baseline without a jump is a tail - or, on a thin layer under
-// fixed grips or a stiff lever, the contact's own branch, which can return to zero force
-// smoothly: the data alone cannot tell. Both readings are fitted; the branch is kept where its
-// residuals are noise and it follows every sample (the tail's too) better. Both fits' samples are
-// fixed before each solves, so neither objective moves; the choice and its evidence are a notice.
-FitSummary weigh_gradual_rise(const CurveData& data, const Scene& scene, const FitOptions& options, FitSummary tail) {
-  if (options.exclusion_sigmas == 0.0 || options.retract_control == RetractControl::load) return tail;
-  FitSummary held;
-  try {
-    held = fit_once(data, scene, options, true);
-  } catch (const Error&) {
-    return tail;
-  }
-  const double m_tail = total_misfit(tail), m_held = total_misfit(held);
-  const auto rms = [&](double m) {
-    return detail::short_number(std::sqrt(m / static_cast<double>(std::max<std::size_t>(1, tail.P.size()))));
-  };
-  const std::string evidence = "(rms over every sample " + rms(m_held) + " N held, against " + rms(m_tail) +
-                               " N with the tail excluded)";
-  if (held.converged && !held.residual_structure && m_held < m_tail) {
-    held.notices.push_back("the retract's gradual return to the baseline is the contact's own branch: held in "
-                           "contact, the model follows it as noise " + evidence);
-    return held;
-  }
-  tail.notices.push_back("the retract's gradual return to the baseline is not the contact's branch: held in contact, "
-                         "the model does not follow it as noise " + evidence);
-  return tail;
-}
-
-// P0 held at 0 (the data's zero, or the offset of the samples at rest removed) is an assumption
-// about the baseline: refitted with P0 free, a P0 beyond 5 of its standard errors from the one
-// assumed and a modulus or contact point that moves by more than kFixedBaselineSigmas of its error
-// bars say the assumption decides the answer (a QI curve's drifting baseline: E 361 +- 76 Pa with
-// P0 fixed, 39 kPa with it free). A warning then gives both; nothing is changed.
-constexpr double kFixedBaselineSigmas = 3.0;
-
-void check_fixed_baseline(const CurveData& data, const Scene& scene, const FitOptions& options, FitSummary* out) {
-  // A contact-point method measured the baseline from the samples at rest, and P0 holds it.
-  if (data.radius_only() || options.contact_point != ContactPointMethod::fit ||
-      std::find(options.free.begin(), options.free.end(), FitParameter::P0) != options.free.end())
-    return;
-  FitOptions o = options;
-  o.free.push_back(FitParameter::P0);
-  FitSummary with_P0;
-  try {
-    with_P0 = fit_once(data, scene, o, false);
-  } catch (const Error&) {
-    return;  // the data cannot say more about their baseline
-  }
-  // Nested fits: freeing P0 can only lower the cost. One that ends higher stopped in another
-  // minimum (a tension-only unloading's P0 taking up the adhesion) and says nothing here.
-  if (!with_P0.converged || out->P.empty() || with_P0.final_cost > out->final_cost) return;
-  // The data must say the baseline is elsewhere - the free P0 beyond kSignificantSigmas of its
-  // error from the one assumed (0, or the offset removed) - before the answer's move is blamed on it.
-  const ParameterEstimate& P0 = with_P0[FitParameter::P0];
-  if (!(std::abs(P0.value - out->baseline_offset) > detail::kSignificantSigmas * P0.standard_error)) return;
-  // Noiseless data: error bars of rounding size say nothing about a baseline.
-  const auto [lo, hi] = std::minmax_element(out->P.begin(), out->P.end());
-  if (!(out->rms_residual > 1e-9 * (*hi - *lo))) return;
-  for (const ParameterEstimate& e : out->parameters) {
-    if (e.parameter == FitParameter::w) continue;  // w at its bound has no symmetric error bar
-    const ParameterEstimate& f = with_P0[e.parameter];
-    const double bar = std::max(e.standard_error, f.standard_error);
-    if (!(bar > 0.0) || !(std::abs(e.value - f.value) > kFixedBaselineSigmas * bar)) continue;
-    out->warnings.push_back("P0 is fixed at 0, and the answer depends on it: with P0 free, " + std::string(to_string(e.parameter)) +
-                            " = " + detail::short_number(f.value) + " +- " + detail::short_number(f.standard_error) + " (P0 = " +
-                            detail::short_number(P0.value) + " N, " + detail::short_number(std::abs(P0.value - out->baseline_offset) / P0.standard_error) +
-                            " standard errors from the baseline assumed) against " +
-                            detail::short_number(e.value) + " +- " + detail::short_number(e.standard_error) +
-                            " here; the baseline is not what P0 = 0 assumes - free P0 (--free ...,P0)");
-    out->identifiable = false;
-    out->identifiability_reason = "the answer depends on the fixed baseline P0 = 0 (" + std::string(to_string(e.parameter)) +
-                                  " moves by " + detail::short_number(std::abs(e.value - f.value) / bar) +
-                                  " error bars with P0 free)";
-    return;
-  }
-}
-
-// Data with no sample at rest (tension-only unloading) do not fix their baseline: a free P0 can
-// take up the adhesion the data show - P0 at the pull-off force, w at 0, a shifted Hertz curve -
-// with residuals as small as the JKR curve's at the force's zero (a 25 um sphere's tension-only
-// unloading: E 22 % low, "identifiable: yes"). Where the fitted P0 lies away from the force's
-// zero, the curve is fitted again with P0 held there, from its own data-driven start; if that
-// fits as well (deviance below kUpperBoundDeviance) or better, the data cannot tell the two
-// apart: a warning gives the other answer and nothing is called identifiable.
-void check_baseline_trade(const CurveData& data, const Scene& scene, const FitOptions& options, FitSummary* out) {
-  const bool free_P0 = std::find(options.free.begin(), options.free.end(), FitParameter::P0) != options.free.end();
-  const bool free_w = std::find(options.free.begin(), options.free.end(), FitParameter::w) != options.free.end();
-  if (!free_P0 || !free_w || out->pull_off_baseline_measured || !(out->pull_off_force < 0.0)) return;
-  const ParameterEstimate& P0 = (*out)[FitParameter::P0];
-  if (!(std::abs(P0.value) > detail::kSignificantSigmas * (std::isfinite(P0.standard_error) ? P0.standard_error : 0.0)))
-    return;
-  FitOptions o = options;
-  o.free.erase(std::find(o.free.begin(), o.free.end(), FitParameter::P0));
-  o.remove_offset = false;
-  FitSummary at_zero;
-  try {
-    at_zero = fit_once(data, scene, o, false);
-  } catch (const Error&) {
-    return;
-  }
-  const std::size_t n = at_zero.points - at_zero.excluded_count;
-  if (!(out->final_cost > 0.0) || n <= out->parameters.size()) return;
-  const double deviance = 2.0 * (at_zero.final_cost - out->final_cost) * static_cast<double>(n - out->parameters.size()) /
-                          (2.0 * out->final_cost);
-  if (!(deviance < detail::kUpperBoundDeviance)) return;  // the data prefer the fitted baseline
-  std::string other;
-  for (const ParameterEstimate& e : at_zero.parameters)
-    other += std::string(other.empty() ? "" : ", ") + to_string(e.parameter) + " = " + detail::short_number(e.value);
-  const std::string text =
-      "with no sample at rest the data do not fix their baseline: P0 = " + detail::short_number(P0.value) + " N fits, and " +
-      (deviance < 0.0 ? "P0 = 0 fits better" : "so does P0 = 0") + " with " + other + " (deviance " +
-      detail::short_number(deviance) + (deviance < 0.0 ? "; this fit stopped in another minimum" : "") +
-      "): P0 trades with w and the modulus";
-  out->warnings.push_back(text + "; fix P0 (a baseline removed beforehand) or give samples at rest");
-  out->identifiable = false;
-  out->identifiability_reason = text;
-}
-
 }  // namespace
 
 FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& options) {
@@ -274,11 +142,11 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   if (data.radius_only() && detail::steered_contact(options))
     throw InputError(data.source + ": (P, a) data have no displacement: no contact point to find and no indentation "
                                    "range to select (use contact_point fit and no ranges)");
-  FitSummary out = fit_once(data, scene, options, false);
-  if (out.retract_release == detail::to_string(detail::Release::gradual)) out = weigh_gradual_rise(data, scene, options, std::move(out));
+  FitSummary out = detail::fit_once(data, scene, options, false);
+  if (out.retract_release == detail::to_string(detail::Release::gradual)) out = detail::weigh_gradual_rise(data, scene, options, std::move(out));
   detail::judge_plausibility(&out);
-  if (out.converged) check_fixed_baseline(data, scene, options, &out);
-  if (out.converged) check_baseline_trade(data, scene, options, &out);
+  if (out.converged) detail::check_fixed_baseline(data, scene, options, &out);
+  if (out.converged) detail::check_baseline_trade(data, scene, options, &out);
   if (const std::size_t dwell = curve.dwell_count(); dwell > 0)
     out.notices.push_back(std::to_string(dwell) + " dwell samples (segment 2: the indenter at rest) are not fitted: an "
                           "elastic model holds the force constant there; a relaxation law (medium.viscoelastic) fits them");

@@ -2,7 +2,7 @@
 least_squares on the same arrays, interleaved in one process (issue 40's per-curve target:
 layerjkr >= 3x faster). Prints a Markdown table of medians.
 
-    PYTHONPATH=build/python /usr/bin/python3 bench/python_fit_vs_scipy.py [REPEATS]
+    PYTHONPATH=build/python /usr/bin/python3 python/bench/fit_vs_scipy.py [REPEATS]
 
 The curve: an approach of 500 samples, 100 before contact, a 20 nm paraboloid on a 2 kPa
 half-space (nu 0.5) to 1 um, 5 pN of force noise, the data shifted so that the contact point is
