@@ -22,6 +22,7 @@ constexpr std::size_t kRestFraction = 10;
 bool at_rest(const FitData& data, const std::vector<std::size_t>& idx, double noise) {
   if (idx.size() < kMinRestSamples || !(noise > 0.0)) return false;
   std::vector<double> P;
+  P.reserve(idx.size());
   for (std::size_t i : idx) P.push_back(data.P[i]);
   const double mid = median(P);
   for (double& v : P) v = std::abs(v - mid);
@@ -34,6 +35,7 @@ bool at_rest(const FitData& data, const std::vector<std::size_t>& idx, double no
 
 double median_of(const FitData& data, const std::vector<std::size_t>& idx) {
   std::vector<double> P;
+  P.reserve(idx.size());
   for (std::size_t i : idx) P.push_back(data.P[i]);
   return median(P);
 }
@@ -70,6 +72,7 @@ PullOffMeasure measure_pull_off(const FitData& data, double force_span) {
                         " of the " + (rest == &tail_part ? "retract" : "approach") + ", at rest";
     // Samples at rest measure the noise directly; a steep curve inflates its third differences.
     std::vector<double> dev;
+    dev.reserve(rest->size());
     for (std::size_t i : *rest) dev.push_back(std::abs(data.P[i] - m.baseline));
     const double spread = kMadToSigma * median(dev);
     if (spread > floor) m.noise = std::min(m.noise, spread);
