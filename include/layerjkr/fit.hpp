@@ -84,20 +84,21 @@ struct FitOptions {
   /// What controls the retract. Under a cantilever of stiffness k the tip follows the adhesive
   /// branch beyond the load-controlled pull-off until dP/d delta = -k, then jumps free; under
   /// load control it jumps at the pull-off, under fixed grips at the minimum of delta.
-  /// `automatic` uses a cantilever where its stiffness is known, else load control - or fixed
-  /// grips where the data show it: when the load-controlled fit leaves retract samples it lets go
-  /// of in contact in the data (excluded, or residuals that are not noise), the fit is redone under
-  /// fixed grips and kept if it follows every sample better (a JKR rig unloading under
-  /// displacement control past the force minimum); a notice says which and why;
+  /// `automatic` uses a cantilever where its stiffness is known, else follows the data: fixed
+  /// grips where the retract holds the contact past its force minimum (the release read from the
+  /// samples before the fit, docs/fitting.md "Rules decided from the data"), else load control; a
+  /// return to the baseline without a jump is fitted both as a tail and as the held branch, and
+  /// the reading whose residuals are noise and follow every sample better is kept; a notice says
+  /// which and why;
   /// `cantilever` requires the stiffness (the fit throws InputError naming the curve without it).
   RetractControl retract_control = RetractControl::automatic;
   /// The cantilever's stiffness [N/m], finite and > 0; nullopt: the curve's own
   /// CurveData::spring_constant (an instrument file's; 0 there means unknown).
   std::optional<double> cantilever_stiffness;
-  /// Retract samples after the model's jump that have not yet returned to the baseline
-  /// (|P - P0| > exclusion_sigmas x the noise of the shallowest quarter of the samples) are
-  /// not JKR: they are excluded from the fit, counted and reported (FitSummary::excluded).
-  /// 0 keeps every sample.
+  /// Retract samples after the release (read from the data before the fit) that have not yet
+  /// returned to the retract's measured baseline (|P - baseline| > exclusion_sigmas x the
+  /// retract's noise) are not JKR: they are excluded from the fit, counted and reported
+  /// (FitSummary::excluded). 0 keeps every sample.
   double exclusion_sigmas = 3.0;
   /// The noise of each fitted column when a curve carries measured contact radii (delta,P,a):
   /// force [N] and radius [m], finite and > 0; unset: estimated from the data (the second
@@ -243,8 +244,8 @@ struct FitSummary {
   /// A fit in time: each sample's time [s] (aligned with delta, P); empty otherwise.
   std::vector<double> t;
   /// Per sample (aligned with delta, P): excluded by the rule of FitOptions::exclusion_sigmas
-  /// (the retract samples the model has let go of, up to the first back at the baseline: a
-  /// necking tail, peeling, a viscoelastic tail after the observed pull-off).
+  /// (the retract samples after the release, up to the first back at the baseline: a necking
+  /// tail, peeling, a viscoelastic tail after the observed pull-off).
   std::vector<bool> excluded;
   std::size_t excluded_count = 0;
   /// Baseline::tilt: the baseline's slope [N/m] and its standard error (0 without).

@@ -153,8 +153,8 @@ class FitResult:
 
     @property
     def excluded(self) -> npt.NDArray[np.bool_]:
-        """Per sample: a retract sample after the model's jump that is not JKR, excluded from
-        the fit (empty in a batch)."""
+        """Per sample: a retract sample after the release that is not JKR (a tail not yet back
+        at the baseline), excluded from the fit (empty in a batch)."""
         return self._excluded
 
     @property

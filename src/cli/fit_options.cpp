@@ -148,7 +148,7 @@ void add_fit_options(CLI::App& c, FitArguments& a) {
                "Retract samples used: all | pull-off (largest force to the force minimum) | fraction:F (the top F "
                "of the unloading force range)");
   c.add_option("--control", a.control,
-               "Retract control: auto (cantilever when the spring constant is known, else load) | load | "
+               "Retract control: auto (cantilever when the spring constant is known, else read from the data: grips where the contact holds past the force minimum, else load) | load | "
                "cantilever | grips");
   c.add_option("--contact-point", a.contact_point,
                "Contact point on approach: fit (delta0 fitted, default) | threshold (baseline + 5 sigma) | rov "
