@@ -17,20 +17,26 @@ constexpr std::size_t kMinRestSamples = 3;
 // The free part is the first (approach) or last (retract) tenth of a branch's samples.
 constexpr std::size_t kRestFraction = 10;
 
-// Samples at rest: no trend beyond 3 noise sigmas over their span of delta and a spread (MAD)
-// of at most twice the noise.
-bool at_rest(const FitData& data, const std::vector<std::size_t>& idx, double noise) {
+// A baseline may drift by this fraction of the force span over its part and still be at rest:
+// real free parts carry virtual deflection and slow noise the third differences do not see (an
+// Asylum map: a trend of 1.7 nN over the retract's last tenth, 4 times the third-difference
+// noise, 0.07 % of its 2.3 uN span), while a part still in contact changes by a good part of it.
+constexpr double kRestDrift = 0.01;
+
+// Samples at rest: no trend beyond 3 noise sigmas (or the drift allowed, [N]) over their span of
+// delta and a spread (MAD) of at most twice the noise (or the drift allowed).
+bool at_rest(const FitData& data, const std::vector<std::size_t>& idx, double noise, double drift) {
   if (idx.size() < kMinRestSamples || !(noise > 0.0)) return false;
   std::vector<double> P;
   P.reserve(idx.size());
   for (std::size_t i : idx) P.push_back(data.P[i]);
   const double mid = median(P);
   for (double& v : P) v = std::abs(v - mid);
-  if (kMadToSigma * median(P) > 2.0 * noise) return false;
+  if (kMadToSigma * median(P) > std::max(2.0 * noise, drift)) return false;
   const LineFit line = fit_line(data.delta, data.P, idx);
   if (!(line.sxx > 0.0)) return true;
   const auto [lo, hi] = std::minmax_element(idx.begin(), idx.end(), [&](auto i, auto j) { return data.delta[i] < data.delta[j]; });
-  return std::abs(line.slope) * (data.delta[*hi] - data.delta[*lo]) <= 3.0 * noise;
+  return std::abs(line.slope) * (data.delta[*hi] - data.delta[*lo]) <= std::max(3.0 * noise, drift);
 }
 
 double median_of(const FitData& data, const std::vector<std::size_t>& idx) {
@@ -62,9 +68,17 @@ PullOffMeasure measure_pull_off(const FitData& data, double force_span) {
   const std::size_t na = std::max(kMinRestSamples, approach.size() / kRestFraction);
   std::vector<std::size_t> head_part;
   if (approach.size() > na) head_part.assign(approach.begin(), approach.begin() + static_cast<std::ptrdiff_t>(na));
-  const std::vector<std::size_t>* rest = after_minimum && at_rest(data, tail_part, m.noise) ? &tail_part
-                                         : at_rest(data, head_part, m.noise)                ? &head_part
-                                                                                            : nullptr;
+  // At rest strictly (noise alone), or within the drift allowed where both free parts are and
+  // agree on their level: a curve in contact at its end (a rig near its grips limit) changes
+  // slowly there too, but never sits at the level of the approach's start.
+  const double drift = kRestDrift * force_span;
+  const bool tail_drifts = after_minimum && at_rest(data, tail_part, m.noise, drift);
+  const bool head_drifts = at_rest(data, head_part, m.noise, drift);
+  const bool agree = tail_drifts && head_drifts &&
+                     std::abs(median_of(data, tail_part) - median_of(data, head_part)) <= drift;
+  const bool tail_rests = after_minimum && (at_rest(data, tail_part, m.noise, 0.0) || agree);
+  const bool head_rests = at_rest(data, head_part, m.noise, 0.0) || agree;
+  const std::vector<std::size_t>* rest = tail_rests ? &tail_part : head_rests ? &head_part : nullptr;
   if (rest) {
     m.baseline = median_of(data, *rest);
     m.has_baseline = true;
