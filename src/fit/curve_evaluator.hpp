@@ -72,8 +72,6 @@ struct FitData {
   /// whether it exceeds the noise - read from the data before the fit (retract_reading.hpp).
   double dip = 0.0;
   bool adhesive = false;
-  /// The retract's noise [N] the pull-off was judged against (third differences; retract_reading.hpp).
-  double retract_noise = 0.0;
   /// (P, a) data - a rig's load and contact radius, no displacement: `delta` holds the measured
   /// radius (an order of depth for the steps that sort by it), each sample's one residual is the
   /// model's force at its radius against the measured force.

@@ -277,10 +277,7 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
   detail::record_model_notes(*model, data, force_span, &out);  // after the fit: a grid may refine
   for (const auto& note : model->notes_at(physical_at_x())) out.warnings.push_back(note);
   out.retract_release = detail::to_string(reading.release);
-  out.pull_off_force = reading.pull_off.pull_off;  // the data's, whatever the fit did
-  out.pull_off_baseline = reading.pull_off.baseline;
-  out.pull_off_baseline_source = reading.pull_off.baseline_source;
-  out.pull_off_baseline_measured = reading.pull_off.has_baseline;
+  detail::record_pull_off(reading.pull_off, &out);  // the data's, whatever the fit did
   if (data.unloading_only)
     out.warnings.push_back("no baseline in the data: the contact region was found on the unloading samples before "
                            "the observed pull-off, the noise from their second differences" +

@@ -18,6 +18,13 @@ double median(std::vector<double> v) {
   return *mid;
 }
 
+double linear_trend(const FitData& data, const std::vector<std::size_t>& idx) {
+  const LineFit line = fit_line(data.delta, data.P, idx);
+  if (!(line.sxx > 0.0)) return 0.0;
+  const auto [lo, hi] = std::minmax_element(idx.begin(), idx.end(), [&](auto i, auto j) { return data.delta[i] < data.delta[j]; });
+  return std::abs(line.slope) * (data.delta[*hi] - data.delta[*lo]);
+}
+
 double second_difference_noise(const std::vector<double>& P, const std::vector<std::size_t>& idx) {
   if (idx.size() < 3) return 0.0;
   std::vector<double> d2;
@@ -48,10 +55,7 @@ bool flat_at_rest(const FitData& data, const std::vector<std::size_t>& by_delta,
   if (2 * approach < idx.size()) return false;
   std::iota(all.begin(), all.end(), std::size_t{0});
   if (data.noise > 2.0 * third_difference_noise(data.P, all)) return false;
-  const LineFit line = fit_line(data.delta, data.P, idx);
-  if (!(line.sxx > 0.0)) return true;
-  const auto [lo, hi] = std::minmax_element(idx.begin(), idx.end(), [&](auto i, auto j) { return data.delta[i] < data.delta[j]; });
-  return std::abs(line.slope) * (data.delta[*hi] - data.delta[*lo]) <= 3.0 * data.noise;
+  return linear_trend(data, idx) <= 3.0 * data.noise;
 }
 
 // A short contact at the end of a long approach (a QI curve: 12 of 500 samples rising 90 pN over

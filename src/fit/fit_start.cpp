@@ -152,6 +152,12 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
   const double dip = data.dip;
   const bool estimate_w = map.is_free(FitParameter::w) && data.adhesive;
   const int stiffness_index = static_cast<int>(map.is_free(FitParameter::K) ? FitParameter::K : FitParameter::E);
+  // The stiffness reference times f, and a free G's scale with it (the curve's shape stays).
+  const auto scale_stiffness = [&](double f) {
+    map.ref[stiffness_index] *= f;
+    if (map.is_free(FitParameter::G) && !map.G_log) map.G_scale *= f;
+    if (map.is_free(FitParameter::G) && map.G_log) map.ref[static_cast<int>(FitParameter::G)] *= f;
+  };
   // One start: alternate the scan and the w estimate from the map's current stiffness until both
   // settle; returns the last scan's cost (infinite where no trial put samples in contact).
   const auto start_from = [&]() -> double {
@@ -190,11 +196,7 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
         map.ref[static_cast<int>(FitParameter::delta0)] = start.delta0;
         map.ref[static_cast<int>(FitParameter::P0)] = start.P0;
       }
-      if (map.is_free(FitParameter::K) || map.is_free(FitParameter::E)) {
-        map.ref[stiffness_index] *= start.stiffness_factor;
-        if (map.is_free(FitParameter::G) && !map.G_log) map.G_scale *= start.stiffness_factor;
-        if (map.is_free(FitParameter::G) && map.G_log) map.ref[static_cast<int>(FitParameter::G)] *= start.stiffness_factor;
-      }
+      if (map.is_free(FitParameter::K) || map.is_free(FitParameter::E)) scale_stiffness(start.stiffness_factor);
       if (start.found) {
         last_found.emplace(map, x);
         last_cost = start.cost;
@@ -238,9 +240,7 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
   for (double factor : kStartStiffnessFactors) {
     map = scene_map;
     x = scene_x;
-    map.ref[stiffness_index] *= factor;
-    if (map.is_free(FitParameter::G) && !map.G_log) map.G_scale *= factor;
-    if (map.is_free(FitParameter::G) && map.G_log) map.ref[static_cast<int>(FitParameter::G)] *= factor;
+    scale_stiffness(factor);
     double cost = std::numeric_limits<double>::infinity();
     try {
       cost = start_from();

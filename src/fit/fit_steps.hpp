@@ -40,6 +40,10 @@ double contact_slope(const FitData& data);
 /// else the sign conventions and a baseline offset to check.
 std::string no_contact_hint(const FitData& data);
 
+/// The change [N] of the least-squares line of P against delta through the samples idx, over
+/// their span of delta (0 where delta does not vary): how far a part that should be at rest trends.
+double linear_trend(const FitData& data, const std::vector<std::size_t>& idx);
+
 /// Noise [N] of samples on a smooth curve, from the MAD of their second differences in
 /// acquisition order (samples idx of P): a trend (a necking tail, the unloading curve itself)
 /// cancels, white noise of sigma gives differences of sigma sqrt(6). 0 for fewer than 3 samples.

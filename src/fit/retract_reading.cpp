@@ -6,7 +6,6 @@
 #include <cmath>
 #include <numeric>
 
-#include "core/line_fit.hpp"
 #include "core/short_number.hpp"
 #include "fit_steps.hpp"
 
@@ -23,27 +22,32 @@ constexpr std::size_t kRestFraction = 10;
 // noise, 0.07 % of its 2.3 uN span), while a part still in contact changes by a good part of it.
 constexpr double kRestDrift = 0.01;
 
-// Samples at rest: no trend beyond 3 noise sigmas (or the drift allowed, [N]) over their span of
-// delta and a spread (MAD) of at most twice the noise (or the drift allowed).
-bool at_rest(const FitData& data, const std::vector<std::size_t>& idx, double noise, double drift) {
-  if (idx.size() < kMinRestSamples || !(noise > 0.0)) return false;
+// A candidate free part, measured once: its level (median), spread (MAD sigma) and linear trend
+// over its span of delta, all [N]; `valid` false for fewer than kMinRestSamples samples.
+struct Part {
+  bool valid = false;
+  double level = 0.0, spread = 0.0, trend = 0.0;
+};
+
+Part measure_part(const FitData& data, const std::vector<std::size_t>& idx) {
+  Part part;
+  if (idx.size() < kMinRestSamples) return part;
   std::vector<double> P;
   P.reserve(idx.size());
   for (std::size_t i : idx) P.push_back(data.P[i]);
-  const double mid = median(P);
-  for (double& v : P) v = std::abs(v - mid);
-  if (kMadToSigma * median(P) > std::max(2.0 * noise, drift)) return false;
-  const LineFit line = fit_line(data.delta, data.P, idx);
-  if (!(line.sxx > 0.0)) return true;
-  const auto [lo, hi] = std::minmax_element(idx.begin(), idx.end(), [&](auto i, auto j) { return data.delta[i] < data.delta[j]; });
-  return std::abs(line.slope) * (data.delta[*hi] - data.delta[*lo]) <= std::max(3.0 * noise, drift);
+  part.level = median(P);
+  for (double& v : P) v = std::abs(v - part.level);
+  part.spread = kMadToSigma * median(P);
+  part.trend = linear_trend(data, idx);
+  part.valid = true;
+  return part;
 }
 
-double median_of(const FitData& data, const std::vector<std::size_t>& idx) {
-  std::vector<double> P;
-  P.reserve(idx.size());
-  for (std::size_t i : idx) P.push_back(data.P[i]);
-  return median(P);
+// At rest: no trend beyond 3 noise sigmas (or the drift allowed, [N]) over its span of delta and
+// a spread of at most twice the noise (or the drift allowed).
+bool at_rest(const Part& part, double noise, double drift) {
+  return part.valid && noise > 0.0 && part.spread <= std::max(2.0 * noise, drift) &&
+         part.trend <= std::max(3.0 * noise, drift);
 }
 
 std::string samples(std::size_t n) { return std::to_string(n) + (n == 1 ? " sample" : " samples"); }
@@ -72,30 +76,35 @@ PullOffMeasure measure_pull_off(const FitData& data, double force_span) {
   // agree on their level: a curve in contact at its end (a rig near its grips limit) changes
   // slowly there too, but never sits at the level of the approach's start.
   const double drift = kRestDrift * force_span;
-  const bool tail_drifts = after_minimum && at_rest(data, tail_part, m.noise, drift);
-  const bool head_drifts = at_rest(data, head_part, m.noise, drift);
-  const bool agree = tail_drifts && head_drifts &&
-                     std::abs(median_of(data, tail_part) - median_of(data, head_part)) <= drift;
-  const bool tail_rests = after_minimum && (at_rest(data, tail_part, m.noise, 0.0) || agree);
-  const bool head_rests = at_rest(data, head_part, m.noise, 0.0) || agree;
-  const std::vector<std::size_t>* rest = tail_rests ? &tail_part : head_rests ? &head_part : nullptr;
+  const Part tail = after_minimum ? measure_part(data, tail_part) : Part{};
+  const Part head = measure_part(data, head_part);
+  const bool agree = at_rest(tail, m.noise, drift) && at_rest(head, m.noise, drift) &&
+                     std::abs(tail.level - head.level) <= drift;
+  const bool tail_rests = at_rest(tail, m.noise, 0.0) || agree;
+  const bool head_rests = at_rest(head, m.noise, 0.0) || agree;
+  const Part* rest = tail_rests ? &tail : head_rests ? &head : nullptr;
   if (rest) {
-    m.baseline = median_of(data, *rest);
+    const bool from_tail = rest == &tail;
+    m.baseline = rest->level;
     m.has_baseline = true;
-    m.baseline_source = "the median of the " + std::string(rest == &tail_part ? "last " : "first ") + samples(rest->size()) +
-                        " of the " + (rest == &tail_part ? "retract" : "approach") + ", at rest";
+    m.baseline_source = "the median of the " + std::string(from_tail ? "last " : "first ") +
+                        samples(from_tail ? tail_part.size() : head_part.size()) + " of the " +
+                        (from_tail ? "retract" : "approach") + ", at rest";
     // Samples at rest measure the noise directly; a steep curve inflates its third differences.
-    std::vector<double> dev;
-    dev.reserve(rest->size());
-    for (std::size_t i : *rest) dev.push_back(std::abs(data.P[i] - m.baseline));
-    const double spread = kMadToSigma * median(dev);
-    if (spread > floor) m.noise = std::min(m.noise, spread);
+    if (rest->spread > floor) m.noise = std::min(m.noise, rest->spread);
   } else {
     m.baseline_source = "the force's zero: neither the end of the retract nor the start of the approach is at rest";
   }
   m.pull_off = data.P[m.minimum] - m.baseline;
   m.adhesive = m.pull_off < -std::max(kSignificantSigmas * m.noise, floor);
   return m;
+}
+
+void record_pull_off(const PullOffMeasure& m, FitSummary* out) {
+  out->pull_off_force = m.pull_off;
+  out->pull_off_baseline = m.baseline;
+  out->pull_off_baseline_source = m.baseline_source;
+  out->pull_off_baseline_measured = m.has_baseline;
 }
 
 const char* to_string(Release r) {
@@ -233,7 +242,6 @@ void apply_reading(const RetractReading& reading, const FitOptions& options, Fit
   data.contact = reading.contact;
   data.dip = reading.pull_off.any_retract ? reading.pull_off.pull_off : 0.0;
   data.adhesive = reading.pull_off.adhesive;
-  data.retract_noise = reading.pull_off.noise;
   if (options.exclusion_sigmas > 0.0)
     for (std::size_t i = 0; i < data.P.size(); ++i)
       if (reading.tail[i]) data.sqrt_weight[i] = 0.0;

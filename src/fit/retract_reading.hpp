@@ -39,6 +39,9 @@ struct PullOffMeasure {
 
 PullOffMeasure measure_pull_off(const FitData& data, double force_span);
 
+/// The measure into the summary's pull_off_force, pull_off_baseline(_source, _measured).
+void record_pull_off(const PullOffMeasure& m, FitSummary* out);
+
 /// How the retract lets go of the contact, read from its samples after the force minimum.
 enum class Release {
   none,            ///< no adhesion shown: the model places every retract sample
@@ -98,7 +101,7 @@ void trim_held_to_model(RetractReading& reading, const FitOptions& options, cons
                         const std::function<bool()>& resolve);
 
 /// Applies a reading: the contact flags, weight 0 for the tail (unless exclusion_sigmas is 0),
-/// and the measured pull-off and its noise into data.dip, data.adhesive, data.retract_noise.
+/// and the measured pull-off into data.dip and data.adhesive.
 void apply_reading(const RetractReading& reading, const FitOptions& options, FitData& data);
 
 }  // namespace layerjkr::detail

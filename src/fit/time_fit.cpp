@@ -8,10 +8,9 @@
 #include "fit_run.hpp"
 #include "fit_steps.hpp"
 #include "layerjkr/error.hpp"
+#include "retract_reading.hpp"
 #include "time_evaluators.hpp"
 #include "time_fit.hpp"
-
-#include "retract_reading.hpp"
 
 namespace layerjkr::detail {
 namespace {
@@ -184,11 +183,7 @@ FitSummary fit_in_time(const CurveData& curve, const Scene& scene, const FitOpti
     out.notices.push_back(std::to_string(history) + " samples off the " + std::string(to_string(options.branch)) +
                           " branch enter as the history the force depends on, not as residuals");
   judge_law(map, x, scene, data, &out);
-  const PullOffMeasure pull_off = measure_pull_off(data, force_span);  // the data's, whatever the fit did
-  out.pull_off_force = pull_off.pull_off;
-  out.pull_off_baseline = pull_off.baseline;
-  out.pull_off_baseline_source = pull_off.baseline_source;
-  out.pull_off_baseline_measured = pull_off.has_baseline;
+  record_pull_off(measure_pull_off(data, force_span), &out);  // the data's, whatever the fit did
   return out;
 }
 
