@@ -204,7 +204,7 @@ struct FitSummary {
   std::string termination;  ///< Ceres' termination message (prefixed by "failed: ..." on a failure)
   /// Empty, or why the fit failed although the solver may have stopped normally: a modulus
   /// outside [1e-3, 1e15] Pa, w above 1e3 J/m^2, a non-finite value, or an rms residual 100 times
-  /// the data's noise. fit-map reports such a curve as failed, with this reason.
+  /// the data's noise and half the forces' spread about their mean. fit-map reports such a curve as failed, with this reason.
   std::string failure;
   /// Trust-region iterations summed over the solves that produced the result (the solve from the
   /// start, or the winning extra start, then the refits after exclusion, detilt and holding w).

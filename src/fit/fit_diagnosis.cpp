@@ -22,6 +22,22 @@ constexpr std::size_t kMinRunsSamples = 20;
 // The least noise a column's weight assumes, as a fraction of its span.
 constexpr double kNoiseFloor = 1e-6;
 
+// The rms of P about its mean over the samples not excluded: the residual of the best constant.
+double spread_about_mean(const std::vector<double>& P, const std::vector<bool>& excluded) {
+  double sum = 0.0, ss = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (i >= excluded.size() || !excluded[i]) {
+      sum += P[i];
+      ++n;
+    }
+  if (n == 0) return 0.0;
+  const double mean = sum / static_cast<double>(n);
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (i >= excluded.size() || !excluded[i]) ss += (P[i] - mean) * (P[i] - mean);
+  return std::sqrt(ss / static_cast<double>(n));
+}
+
 }  // namespace
 
 double third_difference_noise(const std::vector<double>& v, const std::vector<std::size_t>& idx) {
@@ -171,10 +187,14 @@ void judge_plausibility(FitSummary* out) {
     // ...and with structure: residuals whose signs alternate as noise's do are noise the estimate
     // missed, not a model that fails.
     const bool structured = !(out->runs_z >= kStructuredRunsZ);
-    if (above_floor && structured && out->noise > 0.0 && out->rms_residual > kFailedRmsOverNoise * out->noise)
+    const double spread = spread_about_mean(out->P, out->excluded);
+    if (above_floor && structured && out->noise > 0.0 && out->rms_residual > kFailedRmsOverNoise * out->noise &&
+        out->rms_residual > kFailedShareOfSpread * spread)
       why = "the rms residual " + short_number(out->rms_residual) + " N is " + short_number(out->rms_residual / out->noise) +
             " times the data's noise " + short_number(out->noise) + " N (more than " + short_number(kFailedRmsOverNoise) +
-            "): the model does not describe these data at all";
+            ") and " + short_number(100.0 * out->rms_residual / spread) + " % of the forces' own spread about their mean " +
+            short_number(spread) + " N (more than " + short_number(100.0 * kFailedShareOfSpread) +
+            " %): the model does not describe these data at all";
     if (why.empty() && !std::isfinite(out->rms_residual)) why = "the rms residual is not finite";
   }
   if (why.empty()) return;

@@ -83,12 +83,17 @@ void diagnose_residuals(const FitData& data, double force_span, FitSummary* out)
 constexpr double kPlausibleModulus[2] = {1e-3, 1e15};
 /// The largest work of adhesion a fit may return [J/m^2] (covalent bonds are a few J/m^2).
 constexpr double kPlausibleWork = 1e3;
-/// Residuals this many times the data's noise are no description of them.
+/// Residuals this many times the data's noise, and ...
 constexpr double kFailedRmsOverNoise = 100.0;
+/// ... this share of the data's own spread about their mean (the model explains less than 3/4 of
+/// the force's variance), are no description of them. Both: a high-SNR curve a model follows to
+/// 2 % of its span is hundreds of noise sigmas off and still described (SOFA's Asylum maps).
+constexpr double kFailedShareOfSpread = 0.5;
 
 /// Honest convergence (fit_diagnosis.cpp): a fit whose parameters leave every physical range
 /// (kPlausibleModulus, kPlausibleWork, a non-finite value) or whose rms residual is
-/// kFailedRmsOverNoise times the data's noise (out->noise; above rounding) has failed: converged
+/// kFailedRmsOverNoise times the data's noise (out->noise; above rounding) and kFailedShareOfSpread
+/// of the fitted samples' spread about their mean has failed: converged
 /// false, FitSummary::failure says why, a warning says so and nothing is called identifiable.
 void judge_plausibility(FitSummary* out);
 
@@ -124,6 +129,15 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
 void find_radius_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std::vector<double>& x);
 
 class FitRun;
+
+/// The unscaled covariance (J^T J)^-1 of the free parameters [x units^2, row-major p x p] from the
+/// Jacobian at the last evaluation of `ev`, as ceres::Covariance's DENSE_SVD gives it: singular
+/// values of J whose ratio to the largest is below sqrt(min_reciprocal_condition) are dropped
+/// (`truncate`: a pseudo-inverse) or make it fail (false). held_slot (>= p: none) gets a zero row
+/// and column, as a SubsetManifold does. Accuracy: that of a Householder QR and a Jacobi SVD of its
+/// p x p triangle, a few ulps times the condition number.
+bool svd_covariance(const ResidualModel& ev, std::size_t held_slot, bool truncate, double min_reciprocal_condition,
+                    std::vector<double>* C);
 
 /// Standard errors, correlations and the identifiability verdict at the run's solution x (the
 /// summary already recorded). A w without adhesive signal (at 0, or indistinguishable from it

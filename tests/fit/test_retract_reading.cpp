@@ -226,6 +226,20 @@ TEST_CASE("absurd parameters or residuals far above the noise are a failed fit, 
     CHECK(r.converged == (runs_z > 0.0));
     if (runs_z < 0.0) CHECK_THAT(r.failure, Catch::Contains("1000 times the data's noise"));
   }
+  // A high-SNR curve a model follows to 2 % of its span (SOFA's Asylum maps under Hertz: 100-470
+  // noise sigmas, 2-7 % of the span) is described, with structure: not a failed fit.
+  FitSummary close;
+  close.converged = true;
+  close.P = {0.0, 0.25, 0.5, 0.75, 1.0};  // spread about the mean 0.354
+  close.noise = 1e-4;
+  close.rms_residual = 0.02;
+  close.runs_z = -30.0;
+  detail::judge_plausibility(&close);
+  CHECK(close.converged);
+  close.rms_residual = 0.2;  // 57 % of the spread: no better than a constant's residual
+  detail::judge_plausibility(&close);
+  CHECK_FALSE(close.converged);
+  CHECK_THAT(close.failure, Catch::Contains("% of the forces' own spread about their mean"));
   FitSummary fine;
   fine.converged = true;
   fine.P = {0.0, 1.0};
