@@ -57,25 +57,28 @@ def _json_value(value: Any) -> Any:
     raise TypeError("scene: a value of type %s cannot be written as JSON" % type(value).__name__)
 
 
-def _segments(segment: npt.ArrayLike) -> List[int]:
-    """Segment labels 0, 1 or 2; a non-integer label (0.5) is refused with its value, not cast.
+def _segments(segment: npt.ArrayLike) -> npt.NDArray[np.int64]:
+    """Segment labels 0, 1 or 2 as an int64 array; a non-integer label (0.5) is refused with its
+    value, not cast. The library checks that each label is 0, 1 or 2.
 
     Vectorised for numeric arrays (a Python loop over a curve's labels cost three times the fit
-    itself); other inputs are checked label by label."""
+    itself, and a list's conversion to the library a tenth of it); other inputs are checked label
+    by label."""
     values = np.asarray(segment).ravel()
-    if values.dtype.kind in "iu":
-        return values.astype(np.int64).tolist()
+    if values.dtype.kind == "i" or (values.dtype.kind == "u" and (values.size == 0 or values.max() < 2**31)):
+        return values.astype(np.int64)
     if values.dtype.kind == "f":
         bad = ~np.isfinite(values)
-        bad[~bad] = values[~bad] != np.floor(values[~bad])
+        bad[~bad] = (values[~bad] != np.floor(values[~bad])) | (np.abs(values[~bad]) >= 2**31)
         if not bad.any():
-            return values.astype(np.int64).tolist()
+            return values.astype(np.int64)
     out = []
     for i, v in enumerate(values.tolist()):
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v) or v != int(v):
+        if (isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v) or v != int(v)
+                or abs(v) >= 2**31):
             raise InputError("segment[%d] = %r is not a segment label; valid values: 0 (approach), 1 (retract), 2 (dwell)" % (i, v))
         out.append(int(v))
-    return out
+    return np.array(out, dtype=np.int64)
 
 
 def _warn(messages: Sequence[str], stacklevel: int) -> None:

@@ -118,7 +118,7 @@ def _with_fit_parameters(function: Callable[..., Any]) -> None:
 
 
 def _array_inputs(delta: npt.NDArray[np.float64], P: npt.NDArray[np.float64],
-                  segment: Optional[List[int]]) -> List[Any]:
+                  segment: Optional[npt.NDArray[np.int64]]) -> List[Any]:
     inputs = [_core.record_bytes("delta (float64 array)", delta), _core.record_bytes("P (float64 array)", P)]
     if segment is not None:
         inputs.append(_core.record_bytes("segment (int64 array)", np.asarray(segment, dtype=np.int64)))

@@ -89,6 +89,14 @@ class _Parameter(NamedTuple):
     reason: str
 
 
+_SUMMARY_FIELDS = ("converged", "termination", "iterations", "model", "family", "rms_residual", "excluded_count",
+                   "pull_off_force", "baseline_slope", "baseline_slope_stderr", "baseline_offset", "points",
+                   "points_in_contact", "identifiable", "identifiability_known", "identifiability_reason",
+                   "identifiability", "unidentifiable", "no_move_reason", "warnings", "notices", "initial_cost",
+                   "final_cost", "solve_seconds", "contact_point", "noise", "runs_z", "residual_structure",
+                   "force_noise", "radius_noise", "force_noise_given", "radius_noise_given")
+
+
 class FitResult:
     """A fitted curve (the library's FitSummary): estimates with standard errors, their
     covariance and correlation, identifiability, warnings, and the data with the fitted curve.
@@ -98,64 +106,79 @@ class FitResult:
     (version, scene, options, the inputs' SHA-256). Picklable (plain Python and numpy values).
     """
 
-    __slots__ = ("_fields", "_params", "_corr", "_delta", "_P", "_P_fit", "_excluded", "_brief", "_branch",
-                 "_provenance", "_t")
+    __slots__ = ("_s", "_f", "_params", "_corr", "_arrays", "_brief_text", "_branch", "_provenance")
 
     def __init__(self, s: Any, branch: str,
                  provenance: Union[None, Dict[str, Any], Callable[[], Dict[str, Any]]] = None) -> None:
-        self._fields = {k: getattr(s, k) for k in ("converged", "termination", "iterations", "model", "family",
-                                                     "rms_residual", "excluded_count", "pull_off_force",
-                                                     "baseline_slope", "baseline_slope_stderr", "baseline_offset",
-                                                     "points",
-                                                     "points_in_contact", "identifiable", "identifiability_known",
-                                                     "identifiability_reason", "identifiability", "unidentifiable", "no_move_reason",
-                                                     "warnings", "notices", "initial_cost", "final_cost",
-                                                     "solve_seconds", "contact_point", "noise", "runs_z",
-                                                     "residual_structure", "force_noise", "radius_noise",
-                                                     "force_noise_given", "radius_noise_given")}
+        # The library's summary is kept and read when a field is first asked for: a map's fit
+        # of a few hundred microseconds is not to pay for the fields and arrays no one reads.
+        self._s = s
+        self._f: Optional[Dict[str, Any]] = None
+        self._arrays: Optional[Dict[str, Any]] = None
+        self._brief_text: Optional[str] = None
         self._params = {p.name: _Parameter(p.value, p.standard_error, p.initial, p.at_bound, p.identifiable,
                                               p.upper_bound, p.reason)
                         for p in s.parameters}
         self._corr = s.correlation
-        self._delta, self._P, self._P_fit, self._excluded = s.delta, s.P, s.P_fit, s.excluded
-        self._t = s.t
-        self._brief = s.brief_report()
         self._branch = branch
         self._provenance = provenance if provenance is not None else {}
 
+    @property
+    def _fields(self) -> Dict[str, Any]:
+        if self._f is None:
+            self._f = {k: getattr(self._s, k) for k in _SUMMARY_FIELDS}
+        return self._f
+
+    def _field(self, name: str) -> Any:
+        return self._f[name] if self._f is not None else getattr(self._s, name)
+
+    def _array(self, name: str) -> Any:
+        if self._arrays is None:
+            s = self._s
+            self._arrays = {"delta": s.delta, "P": s.P, "P_fit": s.P_fit, "excluded": s.excluded, "t": s.t}
+        return self._arrays[name]
+
+    @property
+    def _brief(self) -> str:
+        if self._brief_text is None:
+            self._brief_text = self._s.brief_report()
+        return self._brief_text
+
     def __getstate__(self) -> Any:
         self.provenance  # a record made on demand is made before it travels
-        return {k: getattr(self, k) for k in self.__slots__}
+        self._fields, self._array("delta"), self._brief  # ...and so is every field read lazily
+        return {k: getattr(self, k) for k in self.__slots__ if k != "_s"}
 
     def __setstate__(self, state: Any) -> None:
+        object.__setattr__(self, "_s", None)
         for k, v in state.items():
             object.__setattr__(self, k, v)
 
     @property
     def delta(self) -> npt.NDArray[np.float64]:
         """The fitted branch's approach samples [m], in acquisition order (empty in a batch)."""
-        return self._delta
+        return self._array("delta")
 
     @property
     def P(self) -> npt.NDArray[np.float64]:
         """The fitted branch's force samples [N] (empty in a batch)."""
-        return self._P
+        return self._array("P")
 
     @property
     def t(self) -> npt.NDArray[np.float64]:
         """A fit in time: each sample's time [s] (aligned with ``delta``); empty otherwise."""
-        return getattr(self, "_t", np.empty(0))
+        return self._array("t")
 
     @property
     def P_fit(self) -> npt.NDArray[np.float64]:
         """The fitted model at the same samples [N] (empty in a batch)."""
-        return self._P_fit
+        return self._array("P_fit")
 
     @property
     def excluded(self) -> npt.NDArray[np.bool_]:
         """Per sample: a retract sample after the release that is not JKR (a tail not yet back
         at the baseline), excluded from the fit (empty in a batch)."""
-        return self._excluded
+        return self._array("excluded")
 
     @property
     def parameters(self) -> Tuple[str, ...]:
@@ -211,18 +234,18 @@ class FitResult:
         bound, was computed). False if the data cannot separate some parameters (see
         :attr:`unidentifiable`) or if that is unknown (:attr:`identifiability_known` is False);
         :attr:`identifiability_reason` says which and why."""
-        return self._fields["identifiable"]
+        return self._field("identifiable")
 
     @property
     def identifiability_known(self) -> bool:
         """False when identifiability could not be decided (the covariance failed or was not
         computed)."""
-        return self._fields["identifiability_known"]
+        return self._field("identifiability_known")
 
     @property
     def identifiability_reason(self) -> str:
         """Why the fit is not identifiable, or why that is unknown; empty when identifiable."""
-        return self._fields["identifiability_reason"]
+        return self._field("identifiability_reason")
 
     @property
     def reasons(self) -> Dict[str, str]:
@@ -232,54 +255,54 @@ class FitResult:
     @property
     def no_move_reason(self) -> str:
         """Why the solver did not move from its start (empty when it did)."""
-        return self._fields["no_move_reason"]
+        return self._field("no_move_reason")
 
     @property
     def unidentifiable(self) -> List[str]:
         """The groups of parameters the data cannot separate."""
-        return list(self._fields["unidentifiable"])
+        return list(self._field("unidentifiable"))
 
     @property
     def converged(self) -> bool:
         """Whether the solver converged."""
-        return self._fields["converged"]
+        return self._field("converged")
 
     @property
     def warnings(self) -> List[str]:
         """The fit's warnings (also emitted as :class:`ModelWarning` by :func:`fit`)."""
-        return list(self._fields["warnings"])
+        return list(self._field("warnings"))
 
     @property
     def notices(self) -> List[str]:
         """What the fit records but does not warn about (never a :class:`ModelWarning`): a
         numerical error far below what matters, a documented approximation, a reader's choice."""
-        return list(self._fields["notices"])
+        return list(self._field("notices"))
 
     @property
     def model(self) -> str:
         """The contact model that was fitted."""
-        return self._fields["model"]
+        return self._field("model")
 
     @property
     def family(self) -> str:
         """How the model was evaluated: "foundation", "hertz", "tabulated" or "dugdale"
         (a Dugdale law solved on the medium per parameter vector; docs/fitting.md)."""
-        return self._fields["family"]
+        return self._field("family")
 
     @property
     def iterations(self) -> int:
         """Solver iterations."""
-        return self._fields["iterations"]
+        return self._field("iterations")
 
     @property
     def termination(self) -> str:
         """The solver's termination message."""
-        return self._fields["termination"]
+        return self._field("termination")
 
     @property
     def rms_residual(self) -> float:
         """Root-mean-square force residual [N]."""
-        return self._fields["rms_residual"]
+        return self._field("rms_residual")
 
     @property
     def contact_point(self) -> Dict[str, Any]:
@@ -288,7 +311,7 @@ class FitResult:
         method's uncertainty; NaN when delta0 was fixed with "fit"); ``baseline`` [N] the
         method found (NaN for "fit"); ``range_reference`` [m], the point the ranges were
         measured from (NaN without a range); ``approach_samples`` and ``samples_in_range``."""
-        return dict(self._fields["contact_point"])
+        return dict(self._field("contact_point"))
 
     @property
     def residuals(self) -> npt.NDArray[np.float64]:

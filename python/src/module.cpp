@@ -15,6 +15,7 @@
 #include <condition_variable>
 #include <exception>
 #include <mutex>
+#include <limits>
 #include <optional>
 #include <string>
 #include <thread>
@@ -31,6 +32,8 @@ using namespace layerjkr;
 namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+/// Segment labels: a numpy int64 array passes without a Python object per sample.
+using Labels = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
 
 // The layerjkr.Error hierarchy: DomainError and InputError are also ValueErrors,
 // NumericalError an ArithmeticError, so generic handlers catch them too.
@@ -161,18 +164,30 @@ CsvOptions csv_options(const std::string& units, std::optional<double> spring_co
 }
 
 // One curve from arrays: delta, P, optional segment labels and times.
-CurveData curve_of(const Array& delta, const Array& P, const std::optional<std::vector<int>>& segment,
+CurveData curve_of(const Array& delta, const Array& P, const std::optional<Labels>& segment,
                    const std::optional<Array>& t, const std::string& source) {
   CurveData c;
   c.delta = to_vector(delta, "delta");
   c.P = to_vector(P, "P");
   c.source = source;
-  if (segment) c.segment = *segment;
+  if (segment) {
+    if (segment->ndim() != 1)
+      throw InputError("segment must be a 1-D array; got " + std::to_string(segment->ndim()) + " dimensions");
+    const auto labels = segment->unchecked<1>();
+    c.segment.resize(static_cast<std::size_t>(labels.shape(0)));
+    for (py::ssize_t i = 0; i < labels.shape(0); ++i) {
+      const std::int64_t v = labels(i);
+      if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+        throw InputError("segment[" + std::to_string(i) + "] = " + std::to_string(v) +
+                         " is not a segment label; valid values: 0 (approach), 1 (retract), 2 (dwell)");
+      c.segment[static_cast<std::size_t>(i)] = static_cast<int>(v);
+    }
+  }
   if (t) c.t = to_vector(*t, "t");
   return c;
 }
 
-FitSummary fit_arrays(const Array& delta, const Array& P, const std::optional<std::vector<int>>& segment,
+FitSummary fit_arrays(const Array& delta, const Array& P, const std::optional<Labels>& segment,
                       const std::optional<Array>& t, const Scene& scene, const FitOptions& options) {
   const CurveData c = curve_of(delta, P, segment, t, "array");
   py::gil_scoped_release release;
@@ -180,7 +195,7 @@ FitSummary fit_arrays(const Array& delta, const Array& P, const std::optional<st
 }
 
 // Curves as (delta, P, segment, t) tuples, fitted jointly: (joint summary, curve_begin, sources, alone).
-py::tuple fit_joint_arrays(const std::vector<std::tuple<Array, Array, std::optional<std::vector<int>>, std::optional<Array>>>& curves,
+py::tuple fit_joint_arrays(const std::vector<std::tuple<Array, Array, std::optional<Labels>, std::optional<Array>>>& curves,
                            const Scene& scene, const FitOptions& options) {
   std::vector<CurveData> cs;
   for (std::size_t k = 0; k < curves.size(); ++k) {

@@ -107,7 +107,7 @@ class CurveEvaluator final : public ResidualStore {
   /// model cannot be evaluated there (a radius outside the model's domain).
   bool evaluate(const double* x, bool jacobian) override;
   /// Forget cached residuals (after the data's weights changed).
-  void invalidate() override { have_cache_ = false; }
+  void invalidate() override { have_cache_ = have_saved_ = false; }
   /// Number of samples (residual groups).
   std::size_t points() const override { return row_.size() - 1; }
   /// Row where sample i's residuals start, and how many rows it has.
@@ -131,6 +131,8 @@ class CurveEvaluator final : public ResidualStore {
  private:
   template <class J>
   bool sweep(const double* x, bool jacobian);
+  /// Exchanges the cached evaluation with the one kept aside (buffers swap, nothing is copied).
+  void swap_saved();
 
   const CurveModel& model_;
   const ParameterMap& map_;
@@ -145,6 +147,14 @@ class CurveEvaluator final : public ResidualStore {
   double cantilever_k_ = 0.0;
   std::vector<double> x_cache_;
   bool have_cache_ = false, have_jac_ = false, cache_ok_ = false, reuse_radii_ = false;
+  /// The last evaluation with a Jacobian, kept aside when a step is tried beyond it: Ceres ends on
+  /// a rejected step, and the solution's report and covariance then need no sweep of their own.
+  struct Saved {
+    std::vector<double> x, r, J, P_fit;
+    std::vector<char> detached, clamped;
+    std::size_t contact_count = 0;
+  } saved_;
+  bool have_saved_ = false;
 };
 
 }  // namespace layerjkr::detail

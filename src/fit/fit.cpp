@@ -216,7 +216,9 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
     e.initial = map.value(q, x.data());
     out.parameters.push_back(e);
   }
-  // A start outside the model's domain is a data problem.
+  // A start outside the model's domain is a data problem. With the Jacobian: the solve's first
+  // iteration asks for it at this point, and gets it from the cache.
+  if (!ev.evaluate(x.data(), true)) ev.invalidate();
   if (!ev.evaluate(x.data(), false))
     throw InputError(curve.source + ": the model cannot be evaluated at the data-driven start "
                                     "(the indentation exceeds the model's range of radii)");

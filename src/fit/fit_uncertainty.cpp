@@ -132,23 +132,33 @@ void report_correlated_pairs(const std::vector<bool>& separable, const Parameter
       }
 }
 
-// Standard errors (scaled by the residual variance) and correlations from ceres::Covariance.
+// Standard errors (scaled by the residual variance) and correlations from the covariance:
+// svd_covariance, or ceres::Covariance where a robust loss corrects the Jacobian.
 // Returns why the covariance could not be computed, or "" when it was.
-std::string compute_error_bars(ceres::Problem* problem, double final_cost, const ParameterMap& map,
-                               std::vector<double>& x, const FitOptions& options, std::size_t residuals,
-                               const Conditioning& cond, std::size_t held_slot, FitSummary* out) {
+std::string compute_error_bars(ceres::Problem* problem, const ResidualModel& ev, double final_cost,
+                               const ParameterMap& map, std::vector<double>& x, const FitOptions& options,
+                               std::size_t residuals, const Conditioning& cond, std::size_t held_slot,
+                               FitSummary* out) {
   const std::size_t p_free = x.size();
   const bool w_held = held_slot < p_free;
-  if (w_held && !problem->HasManifold(x.data()))
-    problem->SetManifold(x.data(), new ceres::SubsetManifold(static_cast<int>(p_free), {static_cast<int>(held_slot)}));
-  ceres::Covariance::Options co;
-  co.algorithm_type = ceres::DENSE_SVD;
   const bool deficient = std::find(cond.separable.begin(), cond.separable.end(), false) != cond.separable.end();
-  co.null_space_rank = deficient ? -1 : 0;
-  co.min_reciprocal_condition_number = kCovarianceMinReciprocalCondition;
-  ceres::Covariance cov(co);
-  std::vector<const double*> blocks{x.data()};
-  if (!cov.Compute(blocks, problem)) {
+  std::vector<double> C(p_free * p_free);
+  bool computed;
+  if (options.loss == LossType::none) {
+    computed = svd_covariance(ev, held_slot, deficient, kCovarianceMinReciprocalCondition, &C);
+  } else {
+    if (w_held && !problem->HasManifold(x.data()))
+      problem->SetManifold(x.data(), new ceres::SubsetManifold(static_cast<int>(p_free), {static_cast<int>(held_slot)}));
+    ceres::Covariance::Options co;
+    co.algorithm_type = ceres::DENSE_SVD;
+    co.null_space_rank = deficient ? -1 : 0;
+    co.min_reciprocal_condition_number = kCovarianceMinReciprocalCondition;
+    ceres::Covariance cov(co);
+    std::vector<const double*> blocks{x.data()};
+    computed = cov.Compute(blocks, problem);
+    if (computed) cov.GetCovarianceBlock(x.data(), x.data(), C.data());
+  }
+  if (!computed) {
     // Why, as ceres::Covariance judged it: the unscaled J^T J's reciprocal condition number and
     // its smallest eigenvector (computed only here: a fit whose covariance succeeds pays nothing).
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> raw(cond.JtJ);
@@ -161,8 +171,6 @@ std::string compute_error_bars(ceres::Problem* problem, double final_cost, const
     if (!weakest.empty()) why += " in the direction of " + weakest;
     return why;
   }
-  std::vector<double> C(p_free * p_free);
-  cov.GetCovarianceBlock(x.data(), x.data(), C.data());
   const double dof = static_cast<double>(residuals - p_free + (w_held ? 1 : 0));
   const double s2 = 2.0 * final_cost / dof;  // scaled by the residual variance
   // Symmetric by construction: C from ceres may differ from its transpose in the last bit. Each
@@ -210,7 +218,7 @@ std::string assess_once(FitRun& run, ResidualModel& ev, const ParameterMap& map,
   else if (residuals <= p_free)
     not_computed = "no degrees of freedom are left for the error bars";
   else if (!only_w_held)
-    failed = compute_error_bars(run.problem(), run.final_cost(), map, x, options, residuals, cond, held_slot, out);
+    failed = compute_error_bars(run.problem(), ev, run.final_cost(), map, x, options, residuals, cond, held_slot, out);
   const std::string& why = failed.empty() ? not_computed : failed;
   for (std::size_t j = 0; j < p_free; ++j) {
     ParameterEstimate& e = out->parameters[j];
