@@ -39,10 +39,11 @@ CurveEvaluator::CurveEvaluator(const CurveModel& model, const ParameterMap& map,
   row_.assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i)
     row_[i + 1] = row_[i] + 1 + (data.radius_driven || data.a.empty() || std::isnan(data.a[i]) ? 0 : 1);
-  order_.resize(n);
-  std::iota(order_.begin(), order_.end(), std::size_t{0});
-  std::stable_sort(order_.begin(), order_.end(),
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t i, std::size_t j) { return data.delta[i] < data.delta[j]; });
+  for (std::size_t i : order) branch_order_[data.retract[i] ? 1 : 0].push_back(i);
   a_cache_.assign(n, 0.0);
   P_fit_.assign(n, 0.0);
   // A radius where delta ~ the data's span seeds every later search.
@@ -245,11 +246,11 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
 
   for (int branch = 0; branch < 2; ++branch) {
     const bool retract = branch == 1;
-    bool any = false;
-    for (std::size_t i : order_) any = any || data_.retract[i] == retract;
-    if (!any) continue;
-    bool forced = false;
-    for (std::size_t i : order_) forced = forced || (data_.retract[i] == retract && !data_.contact.empty() && data_.contact[i] >= 0);
+    const std::vector<std::size_t>& samples = branch_order_[branch];
+    if (samples.empty()) continue;
+    const bool forced = !data_.contact.empty() && std::any_of(samples.begin(), samples.end(), [&](std::size_t i) {
+      return data_.contact[i] >= 0;
+    });
     const StartKind kind = !retract                       ? (forced ? StartKind::fixed_grips : StartKind::zero_load)
                            : std::isinf(cantilever_k_)     ? StartKind::fixed_grips
                            : cantilever_k_ > 0.0           ? StartKind::cantilever
@@ -259,8 +260,7 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
     if (!branch_start(p, kind, &start)) return false;
     start_cache_[static_cast<int>(kind)] = start.a;
     double lo = start.a;
-    for (std::size_t i : order_) {
-      if (data_.retract[i] != retract) continue;
+    for (std::size_t i : samples) {
       const double t = data_.delta[i] - delta0;
       const double sw = data_.sqrt_weight[i];
       const std::size_t r0 = row_[i];

@@ -139,7 +139,7 @@ class CurveEvaluator final : public ResidualStore {
   const FitData& data_;
   std::size_t n_free_;
   std::vector<std::size_t> row_;
-  std::vector<std::size_t> order_;  ///< samples sorted by delta
+  std::array<std::vector<std::size_t>, 2> branch_order_;  ///< the approach's and the retract's, each sorted by delta
   std::vector<double> a_cache_;
   std::vector<char> clamped_;
   double a_typ_ = 0.0;

@@ -216,14 +216,14 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
     e.initial = map.value(q, x.data());
     out.parameters.push_back(e);
   }
-  // A start outside the model's domain is a data problem. With the Jacobian: the solve's first
-  // iteration asks for it at this point, and gets it from the cache.
-  if (!ev.evaluate(x.data(), true)) ev.invalidate();
+  detail::FitRun run(ev, map, options, data, x);
+  // A start outside the model's domain is a data problem. With the Jacobian where Ceres' first
+  // iteration asks for it at this point next (a linear fit needs the residuals only).
+  if (!run.linear_candidate() && !ev.evaluate(x.data(), true)) ev.invalidate();
   if (!ev.evaluate(x.data(), false))
     throw InputError(curve.source + ": the model cannot be evaluated at the data-driven start "
                                     "(the indentation exceeds the model's range of radii)");
 
-  detail::FitRun run(ev, map, options, data, x);
   // A model built per parameter vector meets its accuracy target at the start and again at the
   // solution, solving once more if it had to refine there.
   const auto physical_at_x = [&] {

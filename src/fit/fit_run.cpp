@@ -128,8 +128,9 @@ std::unique_ptr<ceres::Problem> FitRun::solve_from(std::vector<double>& xs, cere
 }
 
 void FitRun::solve() {
-  const bool first = !problem_;
-  problem_ = solve_from(x_, &summary_, held_);
+  const bool first = !solved_;
+  solved_ = true;
+  if (!(linear_candidate() && solve_linear())) problem_ = solve_from(x_, &summary_, held_);
   if (!finite_solve(summary_)) {
     const std::string loss = options_.loss == LossType::none
                                  ? std::string()

@@ -30,6 +30,10 @@ class FitRun {
   /// its gradient is not finite at the start or at the solution (a solve that reports
   /// convergence on NaN is a failure, never a result).
   void solve();
+  /// The model is linear in the free parameters as far as their kinds tell (one stiffness, E or
+  /// K, that scales a non-adhesive model, and P0; least squares; one curve; nothing held): solve()
+  /// then tries the exact linear least-squares solution first (fit_linear.cpp).
+  bool linear_candidate() const;
   /// Solves again from `count` perturbed starts (options.extra_starts when negative); keeps the
   /// lowest cost. A w at its bound restarts from the data-driven w where `w_from_start`.
   void try_extra_starts(int count = -1, bool w_from_start = false);
@@ -74,6 +78,10 @@ class FitRun {
   void hold_tail_start(std::size_t first, double band, std::vector<bool>* tail) const;
   std::unique_ptr<ceres::Problem> solve_from(std::vector<double>& xs, ceres::Solver::Summary* summary,
                                              int held) const;
+  // The linear least-squares solution from the model's force at x (one evaluation), kept if the
+  // model's own evaluation there agrees with the linear prediction at every sample; otherwise
+  // x is restored and false returned (Ceres solves from the same start as without it).
+  bool solve_linear();
 
   ResidualModel& ev_;
   /// The problem's own scale: the cost of the best constant force (the weighted mean), from
@@ -86,6 +94,7 @@ class FitRun {
   ceres::Solver::Summary summary_;
   std::unique_ptr<ceres::Problem> problem_;
   int held_ = -1;
+  bool solved_ = false;  ///< solve() has run once (the first solve's termination is kept)
   int iterations_ = 0;  ///< summed over the solves that produced x (record() reports it)
   bool moved_ = true;
   ceres::TerminationType first_termination_ = ceres::CONVERGENCE;
