@@ -237,6 +237,7 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
   ParameterMap best_map = map;
   std::vector<double> best_x = x;
   double best_cost = std::numeric_limits<double>::infinity();
+  std::optional<InputError> scene_refusal;
   for (double factor : kStartStiffnessFactors) {
     map = scene_map;
     x = scene_x;
@@ -244,8 +245,11 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
     double cost = std::numeric_limits<double>::infinity();
     try {
       cost = start_from();
-    } catch (const InputError&) {
-      if (factor == 1.0) throw;  // the scene's own start decides what is refused
+    } catch (const InputError& e) {
+      // A start that fails from the scene's stiffness (no stable branch for a film 10x too
+      // soft) may succeed from another: the curve is refused only when every start fails, with
+      // the scene's own reason.
+      if (factor == 1.0) scene_refusal.emplace(e);
     }
     if (cost < best_cost) {
       best_cost = cost;
@@ -253,6 +257,7 @@ void find_start(FitData& data, ParameterMap& map, const CurveEvaluator& ev, std:
       best_x = x;
     }
   }
+  if (!std::isfinite(best_cost) && scene_refusal) throw *scene_refusal;
   map = best_map;
   x = best_x;
 }

@@ -380,3 +380,53 @@ TEST_CASE("tension-only data with P0 free: a baseline the data do not fix is nev
   CHECK(s.pull_off_force == Approx(u.P_pull_off).epsilon(0.01));
   CHECK_FALSE(s.pull_off_baseline_measured);
 }
+
+TEST_CASE("a tension-only unloading gets one answer from starts 0.1x to 10x: the scene's stiffness refuses nothing",
+          "[fit][start]") {
+  // Issue 40's robustness benchmark: on a 1 um bonded film a start 0.1x or 0.3x soft found no
+  // stable branch at the scene's own stiffness and refused the curve, although the starts from
+  // other stiffnesses found it; a refusal must not depend on the guess.
+  const auto scene = [](double f) {
+    return parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 1e-5}, "medium": {"type": "layer", "E": )" +
+                       format_double(2e4 * f) + R"(, "nu": 0.49, "h": 1e-6, "base": "bonded"}, "model": "exact", "w": )" +
+                       format_double(1e-4 * f) + "}");
+  };
+  std::vector<double> radii;
+  for (int k = 0; k <= 2000; ++k) radii.push_back(0.2e-6 + 7.8e-6 * k / 2000.0);
+  const CurveAnswer truth = solve_curve(scene(1.0), radii);
+  std::size_t pull_off = 0;  // load control lets go at the force minimum
+  for (std::size_t i = 0; i < truth.states.size(); ++i)
+    if (truth.states[i].P < truth.states[pull_off].P) pull_off = i;
+  const double P_po = -truth.states[pull_off].P;
+  std::size_t start = pull_off;
+  while (start + 1 < truth.states.size() && truth.states[start].P < -0.74 * P_po) ++start;
+  std::mt19937_64 rng(8);
+  std::normal_distribution<double> g(0.0, 0.003 * P_po);
+  CurveData c;
+  c.source = "tension";
+  for (int k = 0; k < 45; ++k) {  // unloading from 0.74 of the pull-off force to it, even in radius
+    const AdhesiveState& s = truth.states[start - (start - pull_off) * static_cast<std::size_t>(k) / 44];
+    c.delta.push_back(s.delta);
+    c.P.push_back(s.P + g(rng));
+  }
+  const double step = (c.delta.front() - c.delta.back()) / 44.0;
+  for (int k = 1; k <= 15; ++k) {  // a necking tail relaxing to zero without a jump
+    c.delta.push_back(c.delta[44] - step * k);
+    c.P.push_back(-P_po * std::exp(-k / 4.0) + g(rng));
+  }
+  c.segment.assign(c.P.size(), 1);
+  FitOptions o;
+  o.free = {FitParameter::E, FitParameter::w, FitParameter::delta0};
+  o.branch = Branch::retract;
+  const FitSummary reference = fit(c, scene(1.0), o);
+  REQUIRE(reference.converged);
+  for (double f : {0.1, 0.3, 3.0, 10.0}) {
+    INFO("start " << f << "x");
+    FitSummary s;
+    REQUIRE_NOTHROW(s = fit(c, scene(f), o));
+    CHECK(s.converged);
+    for (std::size_t j = 0; j < s.parameters.size(); ++j)
+      CHECK(std::abs(s.parameters[j].value - reference.parameters[j].value) <=
+            1e-6 * std::abs(reference.parameters[j].value) + 1e-3 * reference.parameters[j].standard_error);
+  }
+}
