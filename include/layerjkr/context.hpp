@@ -36,6 +36,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace layerjkr {
 namespace detail {
@@ -46,13 +47,18 @@ struct ContextAccess;
 ///
 /// Each entry is one file named by a hash of what it depends on (its kind, the library's
 /// version, the medium's dimensionless signature and the discretisation), holding that key
-/// in full and a CRC-32: a file that is damaged, truncated, of another version or of another
-/// key is ignored (and rebuilt), never trusted. Writes go to a temporary file in the same
-/// directory that is then renamed, so concurrent processes see a whole file or none, and two
-/// processes that build the same entry both write the same bytes. When the directory passes
-/// max_bytes, the least recently used entries are removed. A directory that cannot be created,
-/// read or written costs the rebuild only: answers never fail because of the cache (the
-/// failures are counted in CacheStats::disk_errors).
+/// in full and an HMAC-SHA-256 under this user's own key (32 random bytes in the folder's
+/// layerjkr-cache.key, mode 0600): a file that is damaged, truncated, of another version or key,
+/// or written by anyone else - even with a checksum recomputed - is ignored (and rebuilt), never
+/// trusted. The folder is made private (0700); an existing one owned by another user or writable
+/// by others is not used unless `shared` is set. Entries are opened without following links or
+/// blocking and read only when they are this user's regular files of an entry's size (at most
+/// 1 GiB). Writes go to a temporary file in the same directory that is then renamed, so
+/// concurrent processes see a whole file or none. When the directory passes max_bytes, the
+/// least recently used entries are removed - only files of an entry's name that start with the
+/// cache's mark, never a user's own. A directory that cannot be created, read or written costs
+/// the rebuild only: answers never fail because of the cache (the failures are counted in
+/// CacheStats::disk_errors, the reasons in CacheStats::disk_notices).
 struct DiskCacheOptions {
   /// false: nothing is read or written.
   bool enabled = false;
@@ -61,10 +67,14 @@ struct DiskCacheOptions {
   std::string directory;
   /// Size bound of the directory's entries [bytes], >= 1 MiB.
   std::uint64_t max_bytes = std::uint64_t{512} << 20;
+  /// Use a directory owned by another user or writable by others (a group's cache). Entries
+  /// are still authenticated by this user's key, so only this user's own are ever loaded.
+  bool shared = false;
 
   /// The options of Context::global(): enabled unless LAYERJKR_CACHE is "off" (or "0",
   /// "false", "no"); LAYERJKR_CACHE_DIR names the directory, LAYERJKR_CACHE_MAX_MB the bound
-  /// [MiB]. Throws InputError naming the variable for a value it cannot use.
+  /// [MiB], LAYERJKR_CACHE_SHARED=on sets `shared`. Throws InputError naming the variable for a
+  /// value it cannot use.
   static DiskCacheOptions from_environment();
   /// The directory after resolving an empty one; empty if neither variable is set.
   std::string resolved_directory() const;
@@ -84,6 +94,8 @@ struct CacheStats {
   std::size_t disk_misses = 0;       ///< entries looked for there and built
   std::size_t disk_writes = 0;       ///< entries written there
   std::size_t disk_errors = 0;       ///< reads or writes that failed (the entry was built instead)
+  /// Why the disk cache is off, or which entries it refused and rebuilt (the first few, distinct).
+  std::vector<std::string> disk_notices;
 };
 
 class Context {
@@ -104,6 +116,9 @@ class Context {
   /// says why in CacheStats::disk_errors). Never destroyed, so models may be used from static
   /// destructors and detached threads.
   static Context& global();
+  /// The global Context if something has used it, else nullptr: nothing is made (the CLI asks
+  /// at exit for the disk cache's notices).
+  static const Context* global_if_made();
 
   /// Drops every cached entry in memory (not on disk). Models and solvers built before keep
   /// what they hold and give bit-identical results; later requests rebuild or load (with the

@@ -314,7 +314,12 @@ int main(int argc, char** argv) {
   // Past RLIMIT_FSIZE a write fails with EFBIG, which the writers report, instead of a core dump.
   std::signal(SIGXFSZ, SIG_IGN);
   try {
-    return run_main(argc, argv);
+    const int rc = run_main(argc, argv);
+    // Why the disk cache was off, or which entries it refused (a folder others can write, a
+    // forged entry): the user's to know, after the answer and only with one (exit 0).
+    if (const layerjkr::Context* c = layerjkr::Context::global_if_made(); c && rc == 0)
+      for (const std::string& note : c->stats().disk_notices) std::fprintf(stderr, "layerjkr: note: %s\n", note.c_str());
+    return rc;
   } catch (const std::exception& e) {  // setting up the parser itself failed
     return fail(1, std::string("internal error: ") + e.what());
   }

@@ -1,5 +1,7 @@
 #include "layerjkr/context.hpp"
 
+#include <atomic>
+
 #include "core/context_caches.hpp"
 #include "core/gsl_support.hpp"
 #include "layerjkr/error.hpp"
@@ -14,6 +16,10 @@ Context::Context(const DiskCacheOptions& disk) : caches_(std::make_unique<Caches
 
 Context::~Context() = default;
 
+namespace {
+std::atomic<const Context*> g_global{nullptr};
+}
+
 Context& Context::global() {
   // Leaked on purpose: models built from it may still be used by static destructors or
   // detached threads after main returns.
@@ -26,6 +32,7 @@ Context& Context::global() {
       return c;
     }
   }();
+  g_global.store(instance);
   return *instance;
 }
 
@@ -36,6 +43,8 @@ void Context::clear() {
   caches_->dugdale_tables.clear();
   caches_->uniform_betas.clear();
 }
+
+const Context* Context::global_if_made() { return g_global.load(); }
 
 CacheStats Context::stats() const {
   CacheStats s;
@@ -48,6 +57,7 @@ CacheStats Context::stats() const {
   s.disk_misses = caches_->disk->misses();
   s.disk_writes = caches_->disk->writes();
   s.disk_errors = caches_->disk->errors();
+  s.disk_notices = caches_->disk->notices();
   return s;
 }
 

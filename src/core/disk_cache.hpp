@@ -7,17 +7,24 @@
 // version or a damaged file reads as a miss:
 //
 //   "layerjkr-cache\n\0" (16 bytes) | u32 format | u32 len, version | u32 len, kind |
-//   u64 n, key doubles | u64 m, payload doubles | u32 CRC-32 of everything before it
+//   u64 n, key doubles | u64 m, payload doubles | HMAC-SHA-256 of everything before it
 //
 // little-endian as this machine writes (the format field's byte order tells another machine's
-// file apart). Writes: mkstemp in the directory, write, rename over the name (atomic on POSIX
+// file apart). The HMAC's key is 32 random bytes in the folder's layerjkr-cache.key, a 0600 file
+// of this user's made on first use: an entry someone else edited or wrote - even with a
+// checksum recomputed - fails it and is rebuilt. The folder is made 0700; one owned by another
+// user or writable by others is not used unless DiskCacheOptions::shared says so. Entries are
+// opened without following links or blocking, and read only when regular, this user's and of an
+// entry's size. Writes: mkstemp in the directory, write, rename over the name (atomic on POSIX
 // filesystems), then trim the directory to its bound by removing the entries least recently
-// used (a load touches the file's mtime). Nothing here throws on I/O: a failure is counted and
-// the caller builds the entry.
+// used (a load touches the file's mtime) - only files of an entry's name that carry the cache's
+// magic. Nothing here throws on I/O: a failure is counted, a refusal noted, and the caller
+// builds the entry.
 #pragma once
 
 #include <atomic>
 #include <memory>
+#include <mutex>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -51,13 +58,24 @@ class DiskCache {
   std::size_t errors() const { return errors_; }
   /// Count a failure that happened before the store existed (a bad environment).
   void count_error() const { ++errors_; }
+  /// Why the store is off, or which entries it refused (distinct, the first few).
+  std::vector<std::string> notices() const;
+  /// Adds a notice.
+  void note(const std::string& message) const;
 
  private:
   void trim() const;
+  bool prepare_directory(bool shared);
+  bool load_key();
+  /// The entry's HMAC-SHA-256 under key_ (32 bytes), empty on failure.
+  std::string mac(const std::string& bytes) const;
 
   std::string directory_;
+  std::string key_;
   std::uint64_t max_bytes_ = 0;
   mutable std::atomic<std::size_t> hits_{0}, misses_{0}, writes_{0}, errors_{0};
+  mutable std::mutex notes_mutex_;
+  mutable std::vector<std::string> notes_;
 };
 
 /// The object stored under (kind, key) in `disk`, or the one `build` makes (then stored). T is

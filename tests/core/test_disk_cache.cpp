@@ -10,7 +10,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -92,7 +94,8 @@ TEST_CASE("disk cache: a second Context loads the stack's kernel and table piece
   const CacheStats s2 = second->stats();
   CHECK(s2.disk_hits == s1.disk_writes);
   CHECK(s2.disk_writes == 0);
-  for (const fs::path& p : files(dir.path())) CHECK(p.extension() == ".bin");  // no temporary file left
+  for (const fs::path& p : files(dir.path()))  // no temporary file left: entries and the key
+    CHECK((p.extension() == ".bin" || p.filename() == "layerjkr-cache.key"));
 }
 
 TEST_CASE("disk cache: damaged, truncated and foreign entries are rebuilt, never trusted", "[disk_cache]") {
@@ -137,6 +140,7 @@ TEST_CASE("disk cache: a damaged kernel file gives the same answers, rebuilt and
   const std::vector<NonAdhesiveState> uncached = answers(std::make_shared<Context>());
   (void)answers(std::make_shared<Context>(in(dir.path())));
   for (const fs::path& p : files(dir.path())) {  // every entry's payload damaged behind a valid-looking header
+    if (p.extension() != ".bin") continue;
     std::fstream f(p, std::ios::in | std::ios::out | std::ios::binary);
     f.seekp(static_cast<std::streamoff>(fs::file_size(p) / 2));
     f.put('\x7f');
@@ -178,7 +182,7 @@ TEST_CASE("disk cache: concurrent processes and threads writing the same entries
   const auto after = std::make_shared<Context>(in(dir.path()));
   CHECK(identical(answers(after), uncached));
   CHECK(after->stats().disk_writes == 0);
-  for (const fs::path& p : files(dir.path())) CHECK(p.extension() == ".bin");
+  for (const fs::path& p : files(dir.path())) CHECK((p.extension() == ".bin" || p.filename() == "layerjkr-cache.key"));
 }
 
 TEST_CASE("disk cache: the size bound holds, the least recently used entries go first", "[disk_cache]") {
@@ -197,7 +201,7 @@ TEST_CASE("disk cache: the size bound holds, the least recently used entries go 
     CHECK(cache.load("bound", {0.0}));
   }
   std::uint64_t total = 0;
-  for (const fs::path& p : files(dir.path())) total += fs::file_size(p);
+  for (const fs::path& p : files(dir.path())) total += fs::file_size(p);  // the key's 32 bytes included
   CHECK(total <= (std::uint64_t{1} << 20));
   CHECK(cache.load("bound", {0.0}));
   CHECK(cache.load("bound", {11.0}));
@@ -248,4 +252,164 @@ TEST_CASE("disk cache: LAYERJKR_CACHE, LAYERJKR_CACHE_DIR and LAYERJKR_CACHE_MAX
   with_env("HOME", "/home/someone");
   CHECK(DiskCacheOptions::from_environment().resolved_directory() == "/home/someone/.cache/layerjkr");
   CHECK_FALSE(DiskCacheOptions{}.enabled);  // a Context made without options keeps nothing on disk
+}
+
+namespace {
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
+bool has_notice(const detail::DiskCache& cache, const std::string& part) {
+  for (const std::string& n : cache.notices())
+    if (n.find(part) != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("disk cache: an entry someone else wrote or edited is rebuilt, even with its checksum recomputed",
+          "[disk_cache][trust]") {
+  // Issue 41: with a CRC-32 anyone who could write the folder changed everyone's answers (a
+  // pull-off's delta changed sign). Entries now carry an HMAC under this user's own key.
+  const test::TempDir dir, other;
+  const detail::DiskCache cache(in(dir.path()));
+  REQUIRE(cache.enabled());
+  const std::vector<double> key{0.49, 2.0}, payload{1.0, 2.0, 3.0};
+  cache.store("test-kind", key, payload);
+  REQUIRE(cache.load("test-kind", key) == payload);
+  const std::string path = cache.path_of("test-kind", key);
+  // Edited: a payload double changed, and the old format's CRC-32 of everything before the tail
+  // recomputed over it (what an attacker could do to the old format).
+  std::string forged = read_bytes(path);
+  const double evil = -2.0;
+  std::memcpy(forged.data() + forged.size() - 32 - 2 * sizeof(double), &evil, sizeof evil);
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << forged;
+  CHECK_FALSE(cache.load("test-kind", key));
+  CHECK(has_notice(cache, "its authentication failed"));
+  // Written whole by another cache (another user's key), copied in under the same name.
+  const detail::DiskCache theirs(in(other.path()));
+  theirs.store("test-kind", key, {9.0, 9.0, 9.0});
+  fs::copy_file(theirs.path_of("test-kind", key), path, fs::copy_options::overwrite_existing);
+  CHECK_FALSE(cache.load("test-kind", key));
+  cache.store("test-kind", key, payload);
+  CHECK(cache.load("test-kind", key) == payload);
+}
+
+TEST_CASE("disk cache: a folder others can write or another user owns is not used unless shared",
+          "[disk_cache][trust]") {
+  const test::TempDir dir;
+  const fs::path open_dir = dir.path() / "open";
+  fs::create_directory(open_dir);
+  fs::permissions(open_dir, fs::perms::all);  // 0777
+  const detail::DiskCache refused(in(open_dir));
+  CHECK_FALSE(refused.enabled());
+  CHECK(has_notice(refused, "is writable by others (mode 0777)"));
+  CHECK(has_notice(refused, "LAYERJKR_CACHE_SHARED=1"));
+  DiskCacheOptions shared = in(open_dir);
+  shared.shared = true;
+  const detail::DiskCache opted_in(shared);
+  CHECK(opted_in.enabled());
+  // A new folder is made private.
+  const detail::DiskCache made(in(dir.path() / "new" / "cache"));
+  REQUIRE(made.enabled());
+  CHECK((fs::status(dir.path() / "new" / "cache").permissions() & fs::perms::all) == fs::perms::owner_all);
+  CHECK((fs::status(dir.path() / "new" / "cache" / "layerjkr-cache.key").permissions() & fs::perms::all) ==
+        (fs::perms::owner_read | fs::perms::owner_write));
+  // A key others can read is no key.
+  fs::permissions(dir.path() / "new" / "cache" / "layerjkr-cache.key", fs::perms::others_read, fs::perm_options::add);
+  const detail::DiskCache exposed(in(dir.path() / "new" / "cache"));
+  CHECK_FALSE(exposed.enabled());
+  CHECK(has_notice(exposed, "is not a private 32-byte file"));
+  if (::geteuid() == 0) {  // only root can give a folder to another user
+    const fs::path theirs = dir.path() / "theirs";
+    fs::create_directory(theirs);
+    fs::permissions(theirs, fs::perms::owner_all, fs::perm_options::replace);
+    REQUIRE(::chown(theirs.c_str(), 65534, 65534) == 0);
+    const detail::DiskCache foreign(in(theirs));
+    CHECK_FALSE(foreign.enabled());
+    CHECK(has_notice(foreign, "belongs to uid 65534, not this user"));
+  }
+}
+
+TEST_CASE("disk cache: a FIFO, a link or a sparse 8 GiB file at an entry's name is neither waited on nor read",
+          "[disk_cache][trust]") {
+  const test::TempDir dir;
+  const detail::DiskCache cache(in(dir.path()));
+  const std::vector<double> key{1.0};
+  const std::string path = cache.path_of("test-kind", key);
+  REQUIRE(::mkfifo(path.c_str(), 0600) == 0);  // opened before its type was checked: every run hung
+  CHECK_FALSE(cache.load("test-kind", key));
+  CHECK(has_notice(cache, "is not a regular file"));
+  fs::remove(path);
+  {
+    const int fd = ::open(path.c_str(), O_CREAT | O_WRONLY, 0600);
+    REQUIRE(fd >= 0);
+    REQUIRE(::ftruncate(fd, static_cast<off_t>(std::int64_t{8} << 30)) == 0);  // sparse: no disk used
+    ::close(fd);
+  }
+  CHECK_FALSE(cache.load("test-kind", key));  // read whole before: bad_alloc under a 2 GiB limit
+  CHECK(has_notice(cache, "holds 8589934592 bytes"));
+  fs::remove(path);
+  const test::TempDir elsewhere;
+  cache.store("test-kind", key, {1.0});
+  fs::rename(path, elsewhere.path() / "real.bin");
+  fs::create_symlink(elsewhere.path() / "real.bin", path);
+  CHECK_FALSE(cache.load("test-kind", key));
+  CHECK(has_notice(cache, "is a symbolic link"));
+  if (::geteuid() == 0) {
+    fs::remove(path);
+    cache.store("test-kind", key, {1.0});
+    REQUIRE(::chown(path.c_str(), 65534, 65534) == 0);
+    CHECK_FALSE(cache.load("test-kind", key));
+    CHECK(has_notice(cache, "belongs to uid 65534"));
+  }
+}
+
+TEST_CASE("disk cache: trimming removes only the cache's own files", "[disk_cache][trust]") {
+  // Before, trimming deleted any *.bin.* older than an hour and the user's own *.bin files over
+  // the bound, in whatever folder LAYERJKR_CACHE_DIR named.
+  const test::TempDir dir;
+  const detail::DiskCache cache(in(dir.path(), std::uint64_t{1} << 20));
+  const auto user_file = [&](const std::string& name, std::size_t bytes) {
+    std::ofstream(dir.path() / name, std::ios::binary) << std::string(bytes, 'u');
+    const timespec old[2] = {{1000, 0}, {1000, 0}};  // older than every entry and than an hour
+    ::utimensat(AT_FDCWD, (dir.path() / name).c_str(), old, 0);
+  };
+  const std::vector<std::string> users{"thesis.bin", "notes.bin.backup", "layer-kernel-0123456789abcdef.bin",
+                                       "layer-kernel-0123456789abcdef.bin.AbCdEf"};
+  for (const std::string& name : users) user_file(name, 300000);
+  // A writer of ours that died an hour ago: its temporary file carries the magic.
+  const std::string dead = cache.path_of("test-kind", {42.0}) + ".Zz0000";
+  std::ofstream(dead, std::ios::binary) << std::string("layerjkr-cache\n", 16) << "partial";
+  const timespec old[2] = {{1000, 0}, {1000, 0}};
+  ::utimensat(AT_FDCWD, dead.c_str(), old, 0);
+  const std::vector<double> payload(20000, 1.5);  // 160 kB an entry
+  for (int k = 0; k < 12; ++k) cache.store("bound", {static_cast<double>(k)}, payload);
+  for (const std::string& name : users) {
+    INFO(name);
+    CHECK(fs::exists(dir.path() / name));
+  }
+  CHECK_FALSE(fs::exists(dead));
+  std::uint64_t ours = 0;
+  for (const fs::path& p : files(dir.path()))
+    if (std::find(users.begin(), users.end(), p.filename().string()) == users.end()) ours += fs::file_size(p);
+  CHECK(ours <= (std::uint64_t{1} << 20));
+}
+
+TEST_CASE("disk cache: LAYERJKR_CACHE_SHARED, and the Context's notices", "[disk_cache][trust]") {
+  ::setenv("LAYERJKR_CACHE_SHARED", "on", 1);
+  CHECK(DiskCacheOptions::from_environment().shared);
+  ::setenv("LAYERJKR_CACHE_SHARED", "sometimes", 1);
+  CHECK_THROWS_WITH(DiskCacheOptions::from_environment(), Catch::Contains("LAYERJKR_CACHE_SHARED = 'sometimes'"));
+  ::unsetenv("LAYERJKR_CACHE_SHARED");
+  CHECK_FALSE(DiskCacheOptions::from_environment().shared);
+  const test::TempDir dir;
+  fs::permissions(dir.path(), fs::perms::all);
+  const Context context(in(dir.path()));
+  const CacheStats s = context.stats();
+  CHECK(s.disk_errors >= 1);
+  REQUIRE_FALSE(s.disk_notices.empty());
+  CHECK_THAT(s.disk_notices.front(), Catch::Contains("disk cache off") && Catch::Contains("writable by others"));
 }
