@@ -21,8 +21,18 @@
 namespace layerjkr {
 
 struct SimulationOptions {
+  /// The most samples a branch may have, and the most a dwell may add (at the approach's
+  /// sampling interval): bounds on memory a typo (--dwell 1e7) could otherwise exhaust.
+  static constexpr std::size_t kMaxPointsPerBranch = 100000;
+  static constexpr std::size_t kMaxDwellSamples = 1000000;
+  /// Speeds [m/s] the curve in time accepts: 1 fm/s to 1 km/s (beyond, the times overflow or
+  /// underflow long before any instrument is reached).
+  static constexpr double kSpeedRange[2] = {1e-15, 1e3};
+  /// The largest force noise [N]: its Gaussian samples (within ~40 sigma) stay finite.
+  static constexpr double kMaxNoise = 1e300 / 64.0;
+
   Branch branch = Branch::all;        ///< approach, retract, or both (approach first)
-  std::size_t points_per_branch = 500;  ///< >= 2
+  std::size_t points_per_branch = 500;  ///< in [2, kMaxPointsPerBranch]
   /// Turning point: the approach at the deepest point [m] relative to first contact
   /// (> 0). Samples are evenly spaced in delta.
   double max_indentation = 0.0;
@@ -31,15 +41,15 @@ struct SimulationOptions {
   double free_fraction = 0.5;
   double delta0 = 0.0;  ///< contact-point offset added to every delta [m]
   double P0 = 0.0;      ///< force baseline added to every P [N]
-  double noise = 0.0;   ///< standard deviation of Gaussian force noise [N], >= 0
+  double noise = 0.0;   ///< standard deviation of Gaussian force noise [N], in [0, kMaxNoise]
   std::uint64_t seed = 1;
   bool with_radius = false;  ///< also return the contact radius (a JKR rig's a column)
-  /// The indenter's approach speed [m/s], finite and >= 0: > 0 samples the curve in time (t from 0
-  /// at the first sample; needed by a relaxing medium and by crack kinetics); 0: no time.
+  /// The indenter's approach speed [m/s], 0 or in kSpeedRange: > 0 samples the curve in time (t
+  /// from 0 at the first sample; needed by a relaxing medium and by crack kinetics); 0: no time.
   double speed = 0.0;
-  double retract_speed = 0.0;  ///< [m/s], >= 0 (0: the approach's speed)
+  double retract_speed = 0.0;  ///< [m/s], 0 (the approach's speed) or in kSpeedRange
   /// A rest at the deepest point [s], >= 0 (needs speed): dwell samples (segment 2) at the
-  /// approach's sampling interval.
+  /// approach's sampling interval, at most kMaxDwellSamples of them.
   double dwell = 0.0;
   /// What drives a retract with crack kinetics: fixed_grips (the indenter follows the ramp) or
   /// cantilever (the base of a lever of cantilever_stiffness [N/m] follows it; the tip is at

@@ -137,7 +137,7 @@ def simulate(scene: SceneLike, *, max_indentation: float, speed: float = 0.0, re
     dwell : float, default 0
         A rest at the deepest point [s] (dwell samples, segment 2; needs ``speed``).
     points : int, default 500
-        Samples per branch, >= 2.
+        Samples per branch, in [2, 100000].
     free_fraction : float, default 0.5
         Fraction of ``max_indentation`` sampled off contact, >= 0.
     noise : float, default 0
@@ -169,11 +169,16 @@ def simulate(scene: SceneLike, *, max_indentation: float, speed: float = 0.0, re
     DomainError
         An option outside its range (named).
     """
+    n, seed_ = _integer("points", points), _integer("seed", seed)
+    if not 2 <= n <= _core.MAX_POINTS_PER_BRANCH:
+        raise InputError("points = %d is invalid; valid range: [2, %d]" % (n, _core.MAX_POINTS_PER_BRANCH))
+    if not 0 <= seed_ < 2**64:
+        raise InputError("seed = %d is invalid; valid range: [0, 2**64 - 1]" % seed_)
     o = _core.simulation_options(
         max_indentation=_number("max_indentation", max_indentation), speed=_number("speed", speed),
         retract_speed=_number("retract_speed", retract_speed), dwell=_number("dwell", dwell),
-        points=_integer("points", points), free_fraction=_number("free_fraction", free_fraction),
-        noise=_number("noise", noise), seed=_integer("seed", seed), with_radius=bool(with_radius),
+        points=n, free_fraction=_number("free_fraction", free_fraction),
+        noise=_number("noise", noise), seed=seed_, with_radius=bool(with_radius),
         branch=_text("branch", branch), delta0=_number("delta0", delta0), P0=_number("P0", P0),
         control=_text("control", control), stiffness=0.0 if stiffness is None else _number("stiffness", stiffness))
     t, d, p, a, seg, source = _core.simulate(_as_scene(scene), o)

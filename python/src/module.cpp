@@ -580,6 +580,7 @@ PYBIND11_MODULE(_core, m) {
         return fitted_scene(parse_scene(scene_json, "the fit's scene"), estimates);
       }, py::arg("scene_json"), py::arg("values"));
   m.def("fit_joint", &fit_joint_arrays, py::arg("curves"), py::arg("scene"), py::arg("options"));
+  m.attr("MAX_POINTS_PER_BRANCH") = SimulationOptions::kMaxPointsPerBranch;
   py::class_<SimulationOptions>(m, "SimulationOptions", "The library's SimulationOptions; make them with simulation_options().");
   m.def("simulation_options", &simulation_options, py::kw_only(), py::arg("max_indentation"), py::arg("speed"),
         py::arg("retract_speed"), py::arg("dwell"), py::arg("points"), py::arg("free_fraction"), py::arg("noise"),

@@ -104,3 +104,19 @@ def test_exception_messages_print_control_characters_escaped():
         layerjkr.scene({"indenter": {"shape": "\x1b]0;owned\x07", "R": 1e-5},
                         "medium": {"type": "half_space", "E": 1e6, "nu": 0.5}})
     assert "\x1b" not in str(e.value) and "\\x1b]0;owned\\x07" in str(e.value)
+
+
+@pytest.mark.parametrize("options, says", [
+    (dict(points=-1), r"points = -1 is invalid; valid range: \[2, 100000\]"),
+    (dict(points=10**9), r"points = 1000000000 is invalid"),
+    (dict(seed=-1), r"seed = -1 is invalid; valid range: \[0, 2\*\*64 - 1\]"),
+    (dict(speed=1e-6, dwell=1e9), r"dwell = 1000000000 is invalid"),
+    (dict(noise=1e308), r"noise = 1e\+308 is invalid"),
+    (dict(speed=1e-316), r"speed = 1e-316 is invalid"),
+])
+def test_simulate_bounds_its_options_before_the_work(options, says):
+    # Issue 41: raw pybind TypeErrors for points=-1 and seed=-1, MemoryError for points=10**9
+    # and dwell=1e9, inf forces and nan times for the noise and speed: all ValueErrors now.
+    scene = {"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "half_space", "E": 2000, "nu": 0.5}}
+    with pytest.raises(ValueError, match=says):
+        layerjkr.simulate(scene, max_indentation=1e-6, **options)

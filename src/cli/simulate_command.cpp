@@ -3,6 +3,7 @@
 
 #include <iostream>
 
+#include "files.hpp"
 #include "limits.hpp"
 #include "output_file.hpp"
 #include "layerjkr/error.hpp"
@@ -37,7 +38,7 @@ void add_simulate_options(CLI::App& c, SimulateArguments& a) {
 
 int run_simulate(const SimulateArguments& a, const std::string& command_line) {
   SimulationOptions o = a.options;
-  check_count("--points", a.points, 2, kMaxPoints);
+  check_count("--points", a.points, 2, static_cast<long long>(SimulationOptions::kMaxPointsPerBranch));
   o.points_per_branch = static_cast<std::size_t>(a.points);
   o.branch = parse_enum<Branch>(a.branch, "--branch");
   o.control = parse_enum<RetractControl>(a.control, "--control");
@@ -53,6 +54,7 @@ int run_simulate(const SimulateArguments& a, const std::string& command_line) {
                                                                                    : e.parameter()) +
                      " = " + format_double(e.value()) + " is invalid: " + e.what());
   }
+  if (!a.out.empty() && a.out != "-") check_not_input(a.out, "--out", {a.scene});
   const Scene scene = load_scene(a.scene);
   const CurveData c = simulate_curve(scene, o);  // before the output is opened: a failure writes nothing
   const bool timed = !c.t.empty(), radius = !c.a.empty();

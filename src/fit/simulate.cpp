@@ -17,15 +17,28 @@ namespace layerjkr {
 
 void SimulationOptions::validate() const {
   const char* fn = "SimulationOptions";
-  if (points_per_branch < 2)
-    throw DomainError(fn, "points_per_branch", static_cast<double>(points_per_branch), ">= 2");
+  if (points_per_branch < 2 || points_per_branch > kMaxPointsPerBranch)
+    throw DomainError(fn, "points_per_branch", static_cast<double>(points_per_branch),
+                      "[2, " + std::to_string(kMaxPointsPerBranch) + "]");
   detail::require_positive(fn, "max_indentation", max_indentation);
   detail::require_non_negative(fn, "free_fraction", free_fraction);
   detail::require_finite(fn, "delta0", delta0);
   detail::require_finite(fn, "P0", P0);
-  detail::require_non_negative(fn, "noise", noise);
-  for (const auto& [name, v] : {std::pair{"speed", speed}, {"retract_speed", retract_speed}, {"dwell", dwell}})
-    if (!(v >= 0.0 && std::isfinite(v))) throw DomainError(fn, name, v, std::string("finite and >= 0 [") + (name[0] == 'd' ? "s]" : "m/s]"));
+  if (!(noise >= 0.0 && noise <= kMaxNoise)) throw DomainError(fn, "noise", noise, "[0, " + format_double(kMaxNoise) + "] N");
+  const std::string speeds = "0 or [" + format_double(kSpeedRange[0]) + ", " + format_double(kSpeedRange[1]) + "] m/s";
+  for (const auto& [name, v] : {std::pair{"speed", speed}, {"retract_speed", retract_speed}})
+    if (!(v == 0.0 || (v >= kSpeedRange[0] && v <= kSpeedRange[1]))) throw DomainError(fn, name, v, speeds);
+  if (!(dwell >= 0.0 && std::isfinite(dwell))) throw DomainError(fn, "dwell", dwell, "finite and >= 0 [s]");
+  if (speed > 0.0 && dwell > 0.0) {
+    // The dwell's samples come at the approach's interval: bounded before any is made.
+    const double dt = (1.0 + free_fraction) * max_indentation / (speed * static_cast<double>(points_per_branch - 1));
+    const double most = static_cast<double>(kMaxDwellSamples) * dt;
+    if (!(dwell / dt <= static_cast<double>(kMaxDwellSamples)))
+      throw DomainError(fn, "dwell", dwell,
+                        "[0, " + format_double(most) + "] s: at the approach's sampling interval " + format_double(dt) +
+                            " s a longer dwell takes more than " + std::to_string(kMaxDwellSamples) +
+                            " samples (fewer points or a faster approach sample it more coarsely)");
+  }
   if ((retract_speed > 0.0 || dwell > 0.0) && !(speed > 0.0))
     throw DomainError(fn, retract_speed > 0.0 ? "retract_speed" : "dwell", retract_speed > 0.0 ? retract_speed : dwell,
                       "used only with a speed > 0 (the curve in time)");
@@ -188,7 +201,10 @@ CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
     if (const auto po = sol.pull_off()) d_release = po->delta;
   const double d_max = d_contact + o.max_indentation;
   if (kinetics) d_release = kinetic_release(sol, scene, o, d_max, d_release);
-  const double lo = d_contact - o.free_fraction * o.max_indentation;
+  // A relaxing medium's history must start out of contact: its contact starts at delta = 0 (w
+  // = 0), which the solution's smallest radius puts a rounding error above (1e-24 m).
+  const double lo = relaxes ? std::min(d_contact - o.free_fraction * o.max_indentation, 0.0)
+                            : d_contact - o.free_fraction * o.max_indentation;
   const double lo_r = d_release - o.free_fraction * (d_max - d_release);
   const std::vector<Sample> samples = ramp(lo, d_max, lo_r, o);
   const std::vector<Answer> answers = relaxes    ? relaxing(samples, sol, scene.medium.relaxation, o.with_radius)
@@ -207,6 +223,12 @@ CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
     c.segment.push_back(s.segment);
     if (o.speed > 0.0) c.t.push_back(s.t);
     if (o.with_radius) c.a.push_back(answers[i].a);
+    const std::size_t k = c.P.size() - 1;
+    if (!std::isfinite(c.delta[k]) || !std::isfinite(c.P[k]) || (!c.t.empty() && !std::isfinite(c.t[k])))
+      throw InputError("simulate: sample " + std::to_string(k) + " is not finite (t = " +
+                           (c.t.empty() ? std::string("-") : format_double(c.t[k])) + " s, delta = " +
+                           format_double(c.delta[k]) + " m, P = " + format_double(c.P[k]) +
+                           " N): the options' scales overflow (max_indentation, delta0, P0, noise, speeds)");
   }
   return c;
 }

@@ -84,6 +84,45 @@ TEST_CASE("simulate: bad input exits 2 with one line and writes nothing", "[cli]
   refused(cell + " --max-indentation 2e-6 --speed 1e-6 --control cantilever --stiffness 1",
           "cantilever-controlled retract is modelled with crack kinetics");
   refused(unique("missing.json") + " --max-indentation 2e-6 --speed 1e-6", "missing.json");
+  // Issue 41: bounds before the work - a dwell of 1e7 s ended in bad_alloc, a noise of 1e308
+  // printed inf forces and a speed of 1e-316 nan times, all with exit 0.
+  refused(cell + " --max-indentation 2e-6 --speed 2e-6 --dwell 1e7", "--dwell = 10000000");
+  refused(cell + " --max-indentation 2e-6 --speed 2e-6 --dwell 1e7", "more than 1000000 samples");
+  refused(cell + " --max-indentation 2e-6 --speed 2e-6 --noise 1e308", "--noise = 1e+308");
+  refused(cell + " --max-indentation 2e-6 --speed 1e-316", "--speed = 1e-316");
+  refused(cell + " --max-indentation 2e-6 --speed 1e-6 --retract-speed 1e9", "--retract-speed = 1000000000");
+  refused(cell + " --max-indentation 2e-6 --speed 1e-6 --points 100001", "--points = 100001");
+  refused(write_file("h2.json", R"({"indenter": {"shape": "paraboloid", "R": 5e-6},
+      "medium": {"type": "half_space", "E": 2000, "nu": 0.5}})") + " --max-indentation 1e-6 --P0 1.7976931348623e308 --noise 1e298",
+          "is not finite");
+}
+
+TEST_CASE("simulate never overwrites its scene, not even through a link", "[cli][simulate]") {
+  const std::string scene = write_file("keep.json", kCell);
+  const std::string before = slurp(scene);
+  const std::filesystem::path link = unique("keep_link.json");
+  std::filesystem::create_symlink(scene, link);
+  for (const std::string& out : {scene, link.string()}) {
+    const Run r = run("simulate " + scene + " --max-indentation 2e-6 --speed 1e-6 --out " + out);
+    INFO(r.err);
+    CHECK(r.code == 2);
+    CHECK(count_lines(r.err) == 1);
+    CHECK(r.err.find("would destroy the input") != std::string::npos);
+  }
+  CHECK(slurp(scene) == before);
+}
+
+TEST_CASE("simulate --free-fraction 0 starts a relaxing medium's history at the contact", "[cli][simulate]") {
+  // Refused before by its own history check: "delta[0] = 1e-24 m is in contact" (rounding).
+  const std::string out = unique("ff0.csv");
+  const Run r = run("simulate " + write_file("cell3.json", kCell) +
+                    " --max-indentation 2e-6 --speed 2e-6 --points 50 --free-fraction 0 --out " + out);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const layerjkr::CurveData c = layerjkr::read_curve_csv(out);
+  CHECK(c.delta.front() == 0.0);
+  CHECK(c.P.front() == 0.0);
+  CHECK(c.P[10] > 0.0);
 }
 
 TEST_CASE("summary --retract-speed: the rate-dependent pull-off and its sweep, refused without kinetics", "[cli][simulate]") {
