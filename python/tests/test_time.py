@@ -43,6 +43,9 @@ def test_fit_joint_across_speeds():
                             [{"delta": curves[2].delta, "P": curves[2].P, "t": curves[2].t}], GUESS,
                             free="E,E_inf,tau,delta0")
     assert j2.fit.values["tau"] == pytest.approx(j.fit.values["tau"], rel=1e-3)
+    # The same measurement twice would shrink every error bar by sqrt(2) (issue 41): refused.
+    with pytest.raises(layerjkr.InputError, match=r"curves 1 \(.*\) and 3 \(.*\) hold the same samples"):
+        layerjkr.fit_joint([curves[0], curves[1], curves[0]], GUESS, free=["E", "E_inf", "tau", "delta0"])
 
 
 def test_summary_rate_dependent_pull_off_is_the_clis(cli, tmp_path):

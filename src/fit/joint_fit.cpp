@@ -77,6 +77,16 @@ JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& sce
     throw InputError("fit_joint: a joint fit shares a law in time across speeds; this scene's medium does not relax "
                      "and its adhesion has no kinetics (an elastic model's curves each have their own answer: fit them "
                      "one by one)");
+  // The same measurement given twice would count its noise twice and shrink every error bar by
+  // sqrt(2) with nothing learnt: refused, naming both.
+  for (std::size_t k = 1; k < curves.size(); ++k)
+    for (std::size_t i = 0; i < k; ++i)
+      if (curves[i].delta == curves[k].delta && curves[i].P == curves[k].P && curves[i].t == curves[k].t &&
+          curves[i].a == curves[k].a && curves[i].segment == curves[k].segment)
+        throw InputError("fit_joint: curves " + std::to_string(i + 1) + " (" + curves[i].source + ") and " +
+                         std::to_string(k + 1) + " (" + curves[k].source + ") hold the same samples: a joint fit of "
+                         "one measurement given twice would count its noise twice and shrink every error bar; give "
+                         "each measurement once");
   JointFitSummary j;
   for (std::size_t k = 0; k < curves.size(); ++k) {
     j.sources.push_back(curves[k].source);

@@ -115,7 +115,7 @@ TEST_CASE("simulate never overwrites its scene, not even through a link", "[cli]
 TEST_CASE("simulate --free-fraction 0 starts a relaxing medium's history at the contact", "[cli][simulate]") {
   // Refused before by its own history check: "delta[0] = 1e-24 m is in contact" (rounding).
   const std::string out = unique("ff0.csv");
-  const Run r = run("simulate " + write_file("cell3.json", kCell) +
+  const Run r = run("simulate " + write_file("cell_ff0.json", kCell) +
                     " --max-indentation 2e-6 --speed 2e-6 --points 50 --free-fraction 0 --out " + out);
   INFO(r.err);
   REQUIRE(r.code == 0);
@@ -194,6 +194,17 @@ TEST_CASE("fit --joint: curves at three speeds fitted together, the report with 
   const Run one = run("fit " + files[0] + " --joint --scene " + scene + " --free E");
   CHECK(one.code == 2);
   CHECK(one.err.find("at least 2 curves") != std::string::npos);
+  // Issue 41: the same data three times reported E with an error bar 1/sqrt(3) of one fit's and
+  // "identifiable: yes"; a copy under another name is the same measurement too.
+  const std::string copy = unique("speed_copy.csv");
+  std::filesystem::copy_file(files[0], copy);
+  for (const std::string& twice : {files[0] + " " + files[0] + " " + files[0], files[0] + " " + files[1] + " " + copy}) {
+    const Run same = run("fit " + twice + " --joint --scene " + scene + " --free E,E_inf,tau,delta0 --branch all");
+    INFO(same.err);
+    CHECK(same.code == 2);
+    CHECK(count_lines(same.err) == 1);
+    CHECK(same.err.find("hold the same samples") != std::string::npos);
+  }
   const Run unknown = run("fit " + files[0] + " --scene " + scene + " --free E,Einf");
   CHECK(unknown.code == 2);
   CHECK(unknown.err.find("E_inf, tau, beta, v_star, n") != std::string::npos);
