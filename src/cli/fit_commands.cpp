@@ -49,9 +49,15 @@ int run_export(const std::string& path, const std::string& out, const std::strin
   // One curve at a time: a map is never held whole, in samples or in text. The samples' time is a
   // column where the file gives it (the first curve decides, and every curve must then have it).
   bool timed = false;
+  std::vector<std::string> said;  // the reader's notes, each once: what fit reports, export says too
   for (std::size_t k = range.begin; k < end; ++k) {
     const InstrumentCurve c = reader.curve(k);
     const CurveData d = to_curve_data(c, path);
+    for (const std::string& note : d.notes)
+      if (std::find(said.begin(), said.end(), note) == said.end()) {
+        said.push_back(note);
+        std::cerr << "export: note: " << printable(note) << "\n";
+      }
     if (k == range.begin) {
       timed = !d.t.empty();
       csv.write(timed ? "curve,segment,t,force,height,tip_position\n" : "curve,segment,force,height,tip_position\n");

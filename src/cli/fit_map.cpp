@@ -232,7 +232,7 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
     record.emplace(sidecar);
   }
   if (!o.plot_dir.empty()) prepare_plot_dir(o.plot_dir, map_plot_names(p.options.free), o.force);
-  if (!o.tiff_dir.empty()) prepare_tiff_dir(o.tiff_dir, map_tiff_names(files, p.options.free), o.force);
+  if (!o.tiff_dir.empty()) prepare_tiff_dir(o.tiff_dir, files, map_tiff_names(files, p.options.free), o.force);
   for (const std::string& line : not_read) std::cerr << "fit-map: " << printable(line) << "\n";
   // What the rows are made from, hashed before any is read (docs/provenance.md has the cost).
   std::vector<InputRecord> hashed;

@@ -1,17 +1,20 @@
 // fit-map --tiff DIR (map_tiffs.hpp): the fields of the results table, as images of each map.
 #include "map_tiffs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "layerjkr/error.hpp"
+#include "layerjkr/instrument.hpp"
 #include "layerjkr/map_image.hpp"
 #include "layerjkr/types.hpp"
 #include "output_file.hpp"
@@ -47,8 +50,21 @@ std::vector<Field> fields_of(const std::vector<FitParameter>& free) {
   return fields;
 }
 
-std::string prefix_of(const std::vector<std::string>& inputs, std::size_t k) {
-  return inputs.size() == 1 ? std::string() : fs::path(inputs[k]).stem().string() + ".";
+// Each input's file-name prefix: none for one input, else its stem and a dot - made unique, as
+// two maps of the same stem in two folders would overwrite each other's images: the later ones
+// get _2, _3, ... (the first free), in the order given.
+std::vector<std::string> prefixes(const std::vector<std::string>& inputs) {
+  std::vector<std::string> out;
+  if (inputs.size() == 1) return {std::string()};
+  std::set<std::string> taken;
+  for (const std::string& in : inputs) {
+    const std::string stem = fs::path(in).stem().string();
+    std::string name = stem;
+    for (int k = 2; taken.count(name); ++k) name = stem + "_" + std::to_string(k);
+    taken.insert(name);
+    out.push_back(name + ".");
+  }
+  return out;
 }
 
 // A file layerjkr wrote: a little-endian TIFF whose description, which write_tiff puts just
@@ -74,12 +90,19 @@ bool belongs(const std::string& source, const std::string& input) {
 
 std::vector<std::string> map_tiff_names(const std::vector<std::string>& inputs, const std::vector<FitParameter>& free) {
   std::vector<std::string> names;
+  const std::vector<std::string> prefix = prefixes(inputs);
   for (std::size_t k = 0; k < inputs.size(); ++k)
-    for (const Field& f : fields_of(free)) names.push_back(prefix_of(inputs, k) + f.name + ".tiff");
+    for (const Field& f : fields_of(free)) names.push_back(prefix[k] + f.name + ".tiff");
   return names;
 }
 
-void prepare_tiff_dir(const std::string& dir, const std::vector<std::string>& names, bool force) {
+void prepare_tiff_dir(const std::string& dir, const std::vector<std::string>& inputs, const std::vector<std::string>& names,
+                      bool force) {
+  // Curve files carry no map position: refused now, before the work, not after every fit.
+  if (std::none_of(inputs.begin(), inputs.end(),
+                   [](const std::string& in) { return is_instrument_file(in) || is_asylum_map_export(in); }))
+    throw InputError("--tiff: no input carries map positions (CSV curve files do not; instrument force maps and QI "
+                     "files do)");
   prepare_derived_dir(dir, "--tiff", names, force, is_our_tiff, "a TIFF layerjkr wrote");
 }
 
@@ -87,6 +110,7 @@ std::size_t write_map_tiffs(const std::vector<BatchItem>& items, const std::vect
                             const std::vector<FitParameter>& free, const std::string& dir) {
   std::size_t written = 0;
   const std::vector<Field> fields = fields_of(free);
+  const std::vector<std::string> prefix = prefixes(inputs);
   for (std::size_t k = 0; k < inputs.size(); ++k) {
     std::vector<const BatchItem*> mine;
     for (const BatchItem& it : items)
@@ -104,7 +128,7 @@ std::size_t write_map_tiffs(const std::vector<BatchItem>& items, const std::vect
       values.reserve(mine.size());
       for (const BatchItem* it : mine) values.push_back(it->ok ? f.value(it->summary) : std::nan(""));
       const MapImage image = map_image(gx, gy, values);
-      OutputFile out((fs::path(dir) / (prefix_of(inputs, k) + f.name + ".tiff")).string());
+      OutputFile out((fs::path(dir) / (prefix[k] + f.name + ".tiff")).string());
       write_tiff(image, out.temporary(), std::string(kMarker) + ": " + f.name + (f.unit.empty() ? "" : " [" + f.unit + "]") +
                                   " of " + fs::path(inputs[k]).filename().string() + "; NaN where no fit");
       out.commit();

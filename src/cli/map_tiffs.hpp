@@ -9,13 +9,16 @@
 namespace layerjkr::cli {
 
 /// The TIFFs a run writes into DIR: for one input, FIELD.tiff; for several, STEM.FIELD.tiff
-/// (STEM the file's name without its extension). FIELD is each free parameter, its _stderr,
-/// pull_off and rms_residual.
+/// (STEM the file's name without its extension, STEM_2, STEM_3, ... for later inputs of a stem
+/// already taken, so that no image overwrites another). FIELD is each free parameter, its
+/// _stderr, pull_off and rms_residual.
 std::vector<std::string> map_tiff_names(const std::vector<std::string>& inputs, const std::vector<FitParameter>& free);
 
-/// Creates DIR and refuses, before any fit, to replace a file there that is not a TIFF layerjkr
-/// wrote (its description starts "layerjkr fit-map") unless `force`.
-void prepare_tiff_dir(const std::string& dir, const std::vector<std::string>& names, bool force);
+/// Creates DIR and refuses, before any fit, inputs none of which can carry map positions (curve
+/// CSV files), and to replace a file there that is not a TIFF layerjkr wrote (its description
+/// starts "layerjkr fit-map") unless `force`.
+void prepare_tiff_dir(const std::string& dir, const std::vector<std::string>& inputs, const std::vector<std::string>& names,
+                      bool force);
 
 /// Writes the TIFFs of every input with map pixels (failed curves NaN). Returns how many were
 /// written; InputError if no input has pixels.

@@ -56,13 +56,27 @@ class AsylumMap final : public CurveSource {
   AsylumMap(const std::string& path, const std::vector<std::string>& files) {
     file_.path = path;
     file_.format = InstrumentFormat::ibw_map;
+    // A point whose channel files appear twice (a flat export beside the LineLLLL folders, two
+    // folders given together) is two measurements: each set of files is a curve of its own, in
+    // the order the files come, and a note says so - none is dropped.
     for (const std::string& f : files) {
       const auto [line, point, channel] = *channel_file(f);
-      points_[{line, point}][channel] = f;
+      std::vector<std::map<std::string, std::string>>& copies = points_[{line, point}];
+      auto free = std::find_if(copies.begin(), copies.end(), [&](const auto& c) { return !c.count(channel); });
+      if (free == copies.end()) free = copies.insert(copies.end(), std::map<std::string, std::string>{});
+      (*free)[channel] = f;
     }
-    for (const auto& [lp, channels] : points_) order_.push_back(lp);
+    for (const auto& [lp, copies] : points_) {
+      for (std::size_t k = 0; k < copies.size(); ++k) order_.push_back({lp, k});
+      if (copies.size() > 1) {
+        std::string where;
+        for (const auto& c : copies) where += (where.empty() ? "" : ", ") + c.begin()->second;
+        notes_.push_back("line " + std::to_string(lp.first) + " point " + std::to_string(lp.second) + " is given by " +
+                         std::to_string(copies.size()) + " sets of files (" + where + "): each is a curve of its own");
+      }
+    }
     int max_line = 0, max_point = 0;
-    for (const auto& [line, point] : order_) max_line = std::max(max_line, line), max_point = std::max(max_point, point);
+    for (const auto& [lp, copy] : order_) max_line = std::max(max_line, lp.first), max_point = std::max(max_point, lp.second);
     find_image(files, max_point + 1, max_line + 1);
     nx_ = image_ ? static_cast<int>(number_or(image_->note, "FMapScanPoints", max_point + 1)) : max_point + 1;
     ny_ = image_ ? static_cast<int>(number_or(image_->note, "FMapScanLines", max_line + 1)) : max_line + 1;
@@ -101,8 +115,9 @@ class AsylumMap final : public CurveSource {
   std::size_t size() const override { return order_.size(); }
 
   InstrumentCurve curve(std::size_t i, const CurveChannels& /*channels: a by-product of the height here*/) const override {
-    const auto [line, point] = order_.at(i);
-    const std::map<std::string, std::string>& channels = points_.at({line, point});
+    const auto [lp, copy] = order_.at(i);
+    const auto [line, point] = lp;
+    const std::map<std::string, std::string>& channels = points_.at(lp).at(copy);
     const std::string where = file_.path + ": line " + std::to_string(line) + " point " + std::to_string(point);
     for (const char* need : {"Defl", "ZSnsr"})
       if (!channels.count(need))
@@ -189,8 +204,9 @@ class AsylumMap final : public CurveSource {
   }
 
   InstrumentFile file_;
-  std::map<std::pair<int, int>, std::map<std::string, std::string>> points_;  // (line, point) -> channel -> file
-  std::vector<std::pair<int, int>> order_;
+  /// (line, point) -> each set of its files: channel -> file.
+  std::map<std::pair<int, int>, std::vector<std::map<std::string, std::string>>> points_;
+  std::vector<std::pair<std::pair<int, int>, std::size_t>> order_;  ///< curve i: (line, point), which set
   std::optional<IgorWave> image_;
   int nx_ = 0, ny_ = 0;
   double scan_x_ = 0.0, scan_y_ = 0.0;

@@ -8,6 +8,7 @@
 
 #include "support/cli_support.hpp"
 #include "support/test_support.hpp"
+#include "io/jpk_builder.hpp"
 
 using namespace test::cli;
 namespace fs = std::filesystem;
@@ -88,6 +89,21 @@ TEST_CASE("export rejects files that are not instrument files, with exit 2", "[c
   CHECK(r.code == 2);
   CHECK(r.err.find("not an instrument file") != std::string::npos);
   CHECK(r.out.empty());
+}
+
+TEST_CASE("export says what the reader noted, as fit does: a spring constant given twice", "[cli][instrument]") {
+  // Issue 41: export wrote the forces from one of two different SpringConstant values and said
+  // nothing (fit says which it used).
+  const std::string ibw = unique("twice.ibw");
+  {
+    const std::string bytes = test::igor_wave("Version:16.11.212\rSpringConstant: 1.1841\rSpringConstant: 0.5\r"
+                                              "InvOLS: 4.499e-08\rIndexes: 0,2,5\rDirection: NaN,1,-1,\r");
+    std::ofstream(ibw, std::ios::binary) << bytes;
+  }
+  const Run r = run("export " + ibw + " --out " + unique("twice.csv"));
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.find("export: note: the wave note gives SpringConstant 2 times with different values") != std::string::npos);
 }
 
 TEST_CASE("fit-map --plot-dir draws every fitted field over the map grid", "[cli][instrument][plot]") {

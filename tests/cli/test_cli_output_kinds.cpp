@@ -247,9 +247,28 @@ TEST_CASE("fit-map --tiff: a float TIFF per field and map, a TIFF layerjkr did n
   const Run again = run(args);  // its own TIFFs are replaced without --force
   INFO(again.err);
   CHECK(again.code == 4);
-  const Run csv_only = run("fit-map " + kCurve + kFree + " --out " + unique("tiff_c.csv") + " --tiff " + unique("none"));
+  // Issue 41: refused before the work - nothing written, no table, no record, no folder.
+  const std::string csv_table = unique("tiff_c.csv");
+  const Run csv_only = run("fit-map " + kCurve + kFree + " --out " + csv_table + " --tiff " + unique("none"));
   CHECK(csv_only.code == 2);
+  CHECK(count_lines(csv_only.err) == 1);
   CHECK(csv_only.err.find("no input carries map positions") != std::string::npos);
+  CHECK_FALSE(fs::exists(csv_table));
+  CHECK_FALSE(fs::exists(unique("none")));
+  // Two maps of the same stem in two folders: "16 TIFF image(s) written" wrote 8 before, the
+  // first map's overwritten; now the second's are grid_2.*.
+  const fs::path a = fresh_dir("stem_a"), b = fresh_dir("stem_b"), both = fresh_dir("tiffs_both");
+  test::write_jpk_map((a / "grid.jpk-force-map").string(), 4, 2, 2, 2);
+  test::write_jpk_map((b / "grid.jpk-force-map").string(), 4, 2, 2, 2);
+  const Run two = run("fit-map " + (a / "grid.jpk-force-map").string() + " " + (b / "grid.jpk-force-map").string() + kFree +
+                      " --out " + unique("two.csv") + " --tiff " + both.string());
+  INFO(two.err);
+  CHECK(two.err.find("20 TIFF image(s) written") != std::string::npos);
+  std::size_t images = 0;
+  for (const auto& e : fs::directory_iterator(both)) images += e.path().extension() == ".tiff" ? 1 : 0;
+  CHECK(images == 20);
+  CHECK(fs::exists(both / "grid.E.tiff"));
+  CHECK(fs::exists(both / "grid_2.E.tiff"));
 }
 
 TEST_CASE("fit-map's exit code: 0 every curve fitted, 3 some failed, 4 none - --version and --help say so",

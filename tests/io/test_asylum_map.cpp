@@ -97,6 +97,25 @@ TEST_CASE("Asylum map exports: a glob of the waves, a lone channel and the image
   CHECK_NOTHROW(partial.curve(1));
 }
 
+TEST_CASE("Asylum map exports: a point given twice is two curves, with a note, none dropped", "[io][asylum]") {
+  // Issue 41: point (0,0) present as a flat copy beside the LineLLLL folders gave 6 rows for 7
+  // curves - one measurement dropped without a word.
+  const fs::path root = make_export("twice", true);
+  for (const char* chan : {"Defl", "ZSnsr"})
+    fs::copy_file(root / "Line0000" / (std::string("Line0000Point0000") + chan + ".ibw"),
+                  root / (std::string("Line0000Point0000") + chan + ".ibw"));
+  const InstrumentReader r(root.string());
+  REQUIRE(r.size() == 7);
+  CHECK(r.curve(0).grid_x == 0);
+  CHECK(r.curve(1).grid_x == 0);  // the second set of the same point
+  CHECK(r.curve(1).grid_y == 0);
+  CHECK(r.curve(2).grid_x == 1);
+  bool said = false;
+  for (const std::string& n : r.curve(1).notes) said = said || n.find("line 0 point 0 is given by 2 sets of files") != std::string::npos;
+  CHECK(said);
+  CHECK(r.curve(0).segments[0].force == r.curve(1).segments[0].force);  // the same data, both kept
+}
+
 TEST_CASE("Asylum point names: LineLLLLPointPPPP<channel>, from the end of a wave's or a file's name", "[io][asylum]") {
   using detail::asylum_point_name;
   const auto full = asylum_point_name("Line0012Point0345Defl", true);
