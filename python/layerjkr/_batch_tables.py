@@ -156,10 +156,13 @@ class BatchResults(list):  # type: ignore[type-arg]
                                         "grid_x": ("x", np.arange(shape[1])), "grid_y": ("y", np.arange(shape[0]))},
                           attrs={"source": "layerjkr %s" % _core.__version__})
 
-    def to_tiff(self, field: str, path: Union[str, "os.PathLike[str]"], *, file: Optional[str] = None) -> None:
+    def to_tiff(self, field: str, path: Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"], *,
+                file: Optional[str] = None) -> None:
         """Writes :meth:`image` of ``field`` to ``path`` as a 32-bit float TIFF (ImageJ, Fiji,
         Gwyddion; NaN where no fit) with the writer of ``fit-map --tiff``; replaces ``path``."""
         image = self.image(field, file=file)  # checks the field first
         unit = _unit(field)
-        _core.write_tiff(os.fsdecode(path), image,
+        # Bytes reach the file system as given: a name that is not UTF-8 (os.fsdecode's surrogates)
+        # is written, not refused by the binding's text conversion.
+        _core.write_tiff(os.fsencode(path), image,
                          "layerjkr fit-map: %s%s" % (field, " [%s]" % unit if unit else ""))

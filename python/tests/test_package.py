@@ -2,6 +2,7 @@
 public API, results that become models again (r.scene, r.eval), units and forgiving names,
 labelled prints, an HTML table and a plot."""
 import json
+import os
 import pathlib
 import pickle
 
@@ -57,6 +58,13 @@ def test_fit_scene_round_trips(fitted):
     # eval: the fitted force at the fit's own samples is its P_fit.
     span = np.ptp(r.P_fit)
     assert np.max(np.abs(r.eval(r.delta) - r.P_fit)) < 2e-3 * span
+    # Issue 41: one extra point far out (1 cm) changed the forces at 20-80 nm 28-280x; eval([nan])
+    # returned P0. Each point's value is its own now; NaN in, NaN out.
+    some = r.delta[::37]
+    assert np.array_equal(r.eval(some), r.eval(np.append(some, 2e-5))[:-1])
+    assert np.array_equal(r.eval(some[::-1]), r.eval(some)[::-1])
+    out = r.eval([np.nan, some[3], np.inf])
+    assert np.isnan(out[0]) and np.isnan(out[2]) and out[1] == r.eval([some[3]])[0]
     clone = pickle.loads(pickle.dumps(r))
     assert type(clone) is layerjkr.FitResult and clone.scene.json == scene.json
 
@@ -153,6 +161,11 @@ def test_batch_results_become_tables_images_and_tiffs(fitted, tmp_path):
     assert np.isnan(ds["w"].values[1, 1])
     path = tmp_path / "E.tiff"
     b.to_tiff("E", path)
+    # A name that is not UTF-8 (bytes, or os.fsdecode's surrogates) is written, not a TypeError.
+    raw = bytes(tmp_path) + b"/E-\xff.tiff"
+    b.to_tiff("E", raw)
+    b.to_tiff("E", os.fsdecode(bytes(tmp_path) + b"/E-\xfe.tiff"))
+    assert {b"E-\xff.tiff", b"E-\xfe.tiff"} <= set(os.listdir(bytes(tmp_path)))
     PIL = pytest.importorskip("PIL.Image")  # an independent reader of the TIFF
     with PIL.open(path) as im:
         assert im.size == (3, 2) and im.mode == "F"
