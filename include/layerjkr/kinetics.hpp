@@ -67,12 +67,19 @@ struct KineticRetract {
   /// where dP/d delta = -k under a cantilever.
   CriticalPoint equilibrium_pull_off;
   CriticalPoint equilibrium_separation;
+  /// The drive's demand on the crack: the equilibrium retract's mean crack speed over v_star.
+  /// Where rate_ratio^n < 1e-6 (the kinetic correction's order) the retract is the equilibrium one
+  /// (at_equilibrium: the JKR curve, G = w0, sampled at 401 radii), not integrated; beyond 1e12 a
+  /// drive is refused (the pull-off grows without bound).
+  double rate_ratio = 0.0;
+  bool at_equilibrium = false;
 };
 
 /// The retract of the JKR contact of `model` with work of adhesion w0 [J/m^2] > 0 and `kinetics`,
 /// driven by options.drive from equilibrium at options.start_force. Throws DomainError for invalid
-/// options, kinetics or w0, or a start below the pull-off; NumericalError if the integrator fails
-/// or the contact is not lost within options.max_steps.
+/// options, kinetics or w0, a start below the pull-off, or a drive more than 1e12 times v_star
+/// (rate_ratio); NumericalError if the integrator fails or the contact is not lost within
+/// options.max_steps.
 KineticRetract kinetic_retract(const ContactModelPtr& model, double w0, const CrackKinetics& kinetics,
                                const KineticRetractOptions& options);
 
@@ -86,10 +93,15 @@ struct KineticSummary {
   CriticalPoint equilibrium_pull_off, equilibrium_separation;  ///< v_star -> infinity (JKR)
   /// The lowest force [N] at drive.rate times 0.01, 0.1, 1, 10 and 100 [N/s or m/s].
   std::vector<double> rates, pull_off_forces;
+  double rate_ratio = 0.0;      ///< KineticRetract::rate_ratio at drive.rate
+  bool at_equilibrium = false;  ///< KineticRetract::at_equilibrium at drive.rate
+  /// "kinetic", or why the answer is the equilibrium one (reports print it).
+  std::string regime() const;
 };
 
 /// The lowest retract force at several rates: one kinetic_retract each (the sweep a summary
-/// reports), with options.drive's control; rates [N/s or m/s], each > 0.
+/// reports), with options.drive's control; rates [N/s or m/s], each > 0. NaN for a rate beyond
+/// the crack's reach (more than 1e12 times v_star), which kinetic_retract refuses.
 std::vector<double> kinetic_pull_off_forces(const ContactModelPtr& model, double w0, const CrackKinetics& kinetics,
                                             const KineticRetractOptions& options, const std::vector<double>& rates);
 

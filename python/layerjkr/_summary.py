@@ -187,7 +187,8 @@ class Summary:
                 "pull_off": dict(zip(("a", "P", "delta"), k["pull_off"])), "pull_off_time": k["pull_off_time"],
                 "separation_time": k["separation_time"], "equilibrium_pull_off_force": k["equilibrium_pull_off_force"],
                 "equilibrium_separation": dict(zip(("a", "P", "delta"), k["equilibrium_separation"])),
-                "rate_dependence": [{"rate": float(r), "pull_off_force": float(f)}
+                "rate_ratio": k["rate_ratio"], "regime": k["regime"],
+                "rate_dependence": [{"rate": float(r), "pull_off_force": _finite_or_none(float(f))}
                                     for r, f in zip(k["rates"], k["pull_off_forces"])]}
         d["warnings"] = self.warnings
         d["notices"] = self.notices

@@ -426,6 +426,8 @@ PYBIND11_MODULE(_core, m) {
             py::make_tuple(k.equilibrium_separation.a, k.equilibrium_separation.P, k.equilibrium_separation.delta);
         d["rates"] = to_array(k.rates);
         d["pull_off_forces"] = to_array(k.pull_off_forces);
+        d["rate_ratio"] = k.rate_ratio;
+        d["regime"] = k.regime();
         return d;
       });
 

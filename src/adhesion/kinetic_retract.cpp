@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <boost/math/tools/roots.hpp>
 
@@ -11,6 +12,15 @@
 
 namespace layerjkr {
 namespace {
+
+// Below this kinetic correction (rho^n, rho the drive's crack speed over v_star) the retract is at
+// equilibrium to within it: answered by the JKR limit instead of integrated (v_star = 1e50 failed
+// at once, a retract at 1e-300 m/s reported +1e-19 N, at 1e-20 m/s - rho^n = 1.6e-8 - and n = 10
+// at rho = 0.14 - rho^n = 3e-9 - the integrator crawled 2 million steps and failed).
+constexpr double kEquilibriumCorrection = 1e-6;
+// Beyond this many times v_star the pull-off grows without bound and the stiff ODE takes more
+// steps than any retract is worth (rho = 1.4e15 failed after 60 s; 1.4e12 takes seconds).
+constexpr double kMaxRateRatio = 1e12;
 
 // The equilibrium contact's control value: the force, the approach, or the base's position.
 double control_value(const RetractDrive& d, const AdhesiveState& s) {
@@ -60,6 +70,34 @@ void lowest_force(KineticRetract& r, const AdhesiveSolution& sol, RetractControl
   r.pull_off = {r.a[i] + f * (r.a[j] - r.a[i]), Pv, r.delta[i] + f * (r.delta[j] - r.delta[i])};
   r.pull_off_time = tv;
   (void)sol;
+}
+
+// The retract at equilibrium (G = w0 throughout): the JKR curve from a0 to the separation, each
+// state at the time the control reaches it.
+void equilibrium_retract(KineticRetract& r, const AdhesiveSolution& sol, const RetractDrive& drive, double a0,
+                         double c0) {
+  r.at_equilibrium = true;
+  const double a_end = r.equilibrium_separation.a;
+  constexpr int kSamples = 400;
+  for (int k = 0; k <= kSamples; ++k) {
+    const double a = a0 + (a_end - a0) * k / kSamples;
+    const AdhesiveState s = sol.at(a);
+    r.t.push_back(std::max(0.0, (c0 - control_value(drive, s)) / drive.rate));
+    r.a.push_back(a);
+    r.P.push_back(s.P);
+    r.delta.push_back(s.delta);
+    r.G.push_back(sol.w());
+  }
+  for (std::size_t k = 0; k < r.a.size(); ++k) {
+    const std::size_t i = k == 0 ? 0 : k - 1, j = k + 1 < r.a.size() ? k + 1 : k;
+    r.speed.push_back(r.t[j] > r.t[i] ? -(r.a[j] - r.a[i]) / (r.t[j] - r.t[i]) : 0.0);
+  }
+  r.pull_off = r.equilibrium_pull_off;
+  const AdhesiveState po = sol.at(r.pull_off.a);
+  r.separation_time = r.t.back();
+  // The lowest force comes no later than the release (under a lever of 1e-300 N/m the two points
+  // coincide and P/k's rounding could order them either way).
+  r.pull_off_time = std::min(std::max(0.0, (c0 - control_value(drive, po)) / drive.rate), r.separation_time);
 }
 
 }  // namespace
@@ -118,6 +156,20 @@ KineticRetract kinetic_retract(const ContactModelPtr& model, double w0, const Cr
                                                           r.equilibrium_separation.P, r.equilibrium_separation.delta, {}});
   const double T_eq = std::max(std::abs(c0 - c_sep), 1e-9 * std::abs(c0) + 1e-300) / drive.rate;
   const double h_max = options.max_step_fraction * T_eq;
+  // How fast the drive asks the crack to move: the equilibrium retract's mean crack speed, in
+  // units of v_star. G/w0 - 1 = (v/v_star)^n, so rho^n is the kinetic correction's order.
+  r.rate_ratio = std::abs(a0 - r.equilibrium_separation.a) / T_eq / kinetics.v_star;
+  if (!(std::pow(r.rate_ratio, kinetics.n) >= kEquilibriumCorrection)) {
+    equilibrium_retract(r, sol, drive, a0, c0);  // the limit v_star -> infinity, not integrated
+    return r;
+  }
+  if (r.rate_ratio > kMaxRateRatio)
+    throw DomainError("kinetic_retract", "rate", drive.rate,
+                      "(0, " + format_double(drive.rate * kMaxRateRatio / r.rate_ratio) + "] " +
+                          (drive.control == RetractControl::load ? "N/s" : "m/s") + ": this drive asks the crack to move " +
+                          format_double(r.rate_ratio) + " times v_star (" + kinetics.describe() + "), where the " +
+                          "pull-off grows without bound and the integrator cannot follow; at most " +
+                          format_double(kMaxRateRatio) + " times");
 
   detail::KineticStepper stepper([&](double a) { return model->state(a); }, w0, kinetics, drive.control,
                                  drive.stiffness);
@@ -155,13 +207,25 @@ KineticRetract kinetic_retract(const ContactModelPtr& model, double w0, const Cr
                        drive.describe() + ", " + kinetics.describe() + ")");
 }
 
+std::string KineticSummary::regime() const {
+  return at_equilibrium ? "equilibrium: the kinetic correction rate_ratio^n = " +
+                              format_double(rate_ratio) + "^n is below " + format_double(kEquilibriumCorrection) +
+                              ": the JKR limit"
+                        : "kinetic";
+}
+
 std::vector<double> kinetic_pull_off_forces(const ContactModelPtr& model, double w0, const CrackKinetics& kinetics,
                                             const KineticRetractOptions& options, const std::vector<double>& rates) {
   std::vector<double> out;
   for (double rate : rates) {
     KineticRetractOptions o = options;
     o.drive.rate = rate;
-    out.push_back(kinetic_retract(model, w0, kinetics, o).pull_off.P);
+    try {
+      out.push_back(kinetic_retract(model, w0, kinetics, o).pull_off.P);
+    } catch (const DomainError& e) {  // a sweep's rate beyond the crack's reach: no value, not no sweep
+      if (e.parameter() != "rate") throw;
+      out.push_back(std::numeric_limits<double>::quiet_NaN());
+    }
   }
   return out;
 }

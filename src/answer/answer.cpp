@@ -95,6 +95,8 @@ KineticSummary kinetic_summary(const Scene& scene, const BuiltScene& built, cons
   k.separation_time = r.separation_time;
   k.equilibrium_pull_off = r.equilibrium_pull_off;
   k.equilibrium_separation = r.equilibrium_separation;
+  k.rate_ratio = r.rate_ratio;
+  k.at_equilibrium = r.at_equilibrium;
   for (double f : {0.01, 0.1, 1.0, 10.0, 100.0}) k.rates.push_back(f * o.drive.rate);
   k.pull_off_forces = kinetic_pull_off_forces(built.model, scene.w, *scene.adhesion.kinetics, o, k.rates);
   return k;

@@ -153,7 +153,9 @@ json summary_json(const SummaryAnswer& a) {
     const KineticSummary& k = *a.kinetic;
     const auto point = [](const CriticalPoint& p) { return json{{"a", p.a}, {"P", p.P}, {"delta", p.delta}}; };
     json sweep = json::array();
-    for (std::size_t i = 0; i < k.rates.size(); ++i) sweep.push_back({{"rate", k.rates[i]}, {"pull_off_force", k.pull_off_forces[i]}});
+    for (std::size_t i = 0; i < k.rates.size(); ++i)
+      sweep.push_back({{"rate", k.rates[i]},
+                       {"pull_off_force", std::isnan(k.pull_off_forces[i]) ? json(nullptr) : json(k.pull_off_forces[i])}});
     j["kinetic_pull_off"] = {{"drive", k.drive.describe()},
                              {"control", to_string(k.drive.control)},
                              {"rate", k.drive.rate},
@@ -165,6 +167,8 @@ json summary_json(const SummaryAnswer& a) {
                              {"separation_time", k.separation_time},
                              {"equilibrium_pull_off_force", k.equilibrium_pull_off.P},
                              {"equilibrium_separation", point(k.equilibrium_separation)},
+                             {"rate_ratio", k.rate_ratio},
+                             {"regime", k.regime()},
                              {"rate_dependence", sweep}};
   }
   if (a.choice)

@@ -216,3 +216,51 @@ TEST_CASE("kinetics in scenes and bad input", "[adhesion][scene]") {
   o.start_force = 0.0;
   CHECK_THROWS_WITH(kinetic_retract(model, 0.0, {1e-6, 0.6}, o), Catch::Contains("w0 = 0"));
 }
+
+TEST_CASE("kinetic retract at the extremes: the JKR limit where kinetics vanish, a refusal beyond reach",
+          "[adhesion][limits]") {
+  // Issue 41: v_star = 1e50 (the JKR limit) failed at once and 1e10 after 24 s; a retract at
+  // 1e-300 m/s or under a 1e-300 N/m lever reported a pull-off of +1.08e-19 N (the limit is
+  // -2.356e-4 N); n = 10 ran 2 million steps and failed; 1e10 m/s did the same.
+  const ContactModelPtr model = half_space();
+  const double jkr = -1.5 * kPi * kW * kR;
+  KineticRetractOptions o;
+  const auto run = [&](RetractControl control, double rate, double v_star, double n, double k = 0.0) {
+    o.drive = {control, rate, k};
+    return kinetic_retract(model, kW, {v_star, n}, o);
+  };
+  for (const KineticRetract& r : {run(RetractControl::fixed_grips, 1e-6, 1e50, 0.6), run(RetractControl::fixed_grips, 1e-6, 1e10, 0.6),
+                                  run(RetractControl::fixed_grips, 1e-300, 1e-6, 0.6), run(RetractControl::load, 1e-300, 1e-6, 0.6),
+                                  run(RetractControl::cantilever, 1e-6, 1e-6, 0.6, 1e-300), run(RetractControl::fixed_grips, 1e-8, 1e-6, 10.0)}) {
+    INFO("rate ratio " << r.rate_ratio);
+    CHECK(r.at_equilibrium);
+    CHECK(rel(r.pull_off.P, jkr) < 1e-9);
+    CHECK(r.separation_time >= r.pull_off_time);
+    CHECK(r.t.size() == r.P.size());
+  }
+  // Where the integration takes over, its answer meets the limit: the kinetic correction is of
+  // order rate_ratio^n (measured here: 1.0-1.3 x it), so the limit at rate_ratio^n < 1e-6 is
+  // within about 1e-6 of the force.
+  for (double rate : {1e-13, 1e-12, 1e-11}) {
+    const KineticRetract r = run(RetractControl::fixed_grips, rate, 1e-6, 0.6);
+    REQUIRE_FALSE(r.at_equilibrium);
+    const double correction = std::pow(r.rate_ratio, 0.6);
+    INFO("rate " << rate << ": ratio " << r.rate_ratio << ", pull-off " << r.pull_off.P);
+    CHECK(rel(r.pull_off.P, jkr) > 0.3 * correction);
+    CHECK(rel(r.pull_off.P, jkr) < 3.0 * correction);
+  }
+  // Beyond reach: refused, naming the rate and the fastest one allowed.
+  try {
+    run(RetractControl::fixed_grips, 1e10, 1e-6, 0.6);
+    FAIL("not refused");
+  } catch (const DomainError& e) {
+    CHECK(e.parameter() == "rate");
+    CHECK_THAT(e.what(), Catch::Contains("times v_star") && Catch::Contains("valid range: (0, "));
+  }
+  // A sweep keeps its other rates and gives NaN for the one beyond reach.
+  o.drive = {RetractControl::fixed_grips, 1e-6, 0.0};
+  const std::vector<double> sweep = kinetic_pull_off_forces(model, kW, {1e-6, 0.6}, o, {1e-300, 1e-6, 1e10});
+  CHECK(rel(sweep[0], jkr) < 1e-9);
+  CHECK(sweep[1] < jkr);
+  CHECK(std::isnan(sweep[2]));
+}
