@@ -108,13 +108,15 @@ def _unit_hint(delta: npt.NDArray[np.float64], P: npt.NDArray[np.float64]) -> st
 
 class Simulation(NamedTuple):
     """A synthetic curve (:func:`simulate`): float64 arrays in SI units, ``a`` and ``t`` empty
-    where not made. ``fit(delta, P, scene, t=t, segment=segment)`` fits it back."""
+    where not made. ``fit(delta, P, scene, t=t, segment=segment)`` fits it back. ``notes``: what
+    the curve's accuracy is where it is not exact (a relaxing medium's estimated error)."""
     t: npt.NDArray[np.float64]
     delta: npt.NDArray[np.float64]
     P: npt.NDArray[np.float64]
     a: npt.NDArray[np.float64]
     segment: npt.NDArray[np.int64]
     source: str
+    notes: Tuple[str, ...] = ()
 
 
 def simulate(scene: SceneLike, *, max_indentation: float, speed: float = 0.0, retract_speed: float = 0.0,
@@ -181,8 +183,8 @@ def simulate(scene: SceneLike, *, max_indentation: float, speed: float = 0.0, re
         noise=_number("noise", noise), seed=seed_, with_radius=bool(with_radius),
         branch=_text("branch", branch), delta0=_number("delta0", delta0), P0=_number("P0", P0),
         control=_text("control", control), stiffness=0.0 if stiffness is None else _number("stiffness", stiffness))
-    t, d, p, a, seg, source = _core.simulate(_as_scene(scene), o)
-    return Simulation(t, d, p, a, np.asarray(seg, dtype=np.int64), source)
+    t, d, p, a, seg, source, notes = _core.simulate(_as_scene(scene), o)
+    return Simulation(t, d, p, a, np.asarray(seg, dtype=np.int64), source, tuple(notes))
 
 
 class JointFitResult(NamedTuple):

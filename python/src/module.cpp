@@ -219,7 +219,7 @@ py::tuple simulate_py(const Scene& scene, const SimulationOptions& o) {
   }
   py::array_t<int> segment(static_cast<py::ssize_t>(c.segment.size()));
   std::copy(c.segment.begin(), c.segment.end(), segment.mutable_data());
-  return py::make_tuple(to_array(c.t), to_array(c.delta), to_array(c.P), to_array(c.a), segment, c.source);
+  return py::make_tuple(to_array(c.t), to_array(c.delta), to_array(c.P), to_array(c.a), segment, c.source, c.notes);
 }
 
 SimulationOptions simulation_options(double max_indentation, double speed, double retract_speed, double dwell,

@@ -59,6 +59,10 @@ int run_simulate(const SimulateArguments& a, const std::string& command_line) {
   const CurveData c = simulate_curve(scene, o);  // before the output is opened: a failure writes nothing
   const bool timed = !c.t.empty(), radius = !c.a.empty();
   std::string text = "# " + printable(command_line) + "\n";
+  for (const std::string& note : c.notes) {  // in the file, with the curve, and said now
+    text += "# note: " + printable(note) + "\n";
+    std::cerr << "simulate: note: " << printable(note) << "\n";
+  }
   text += std::string(timed ? "t," : "") + "delta,P" + (radius ? ",a" : "") + ",segment\n";
   for (std::size_t i = 0; i < c.size(); ++i)
     text += (timed ? format_double(c.t[i]) + "," : std::string()) + format_double(c.delta[i]) + "," +

@@ -105,14 +105,60 @@ std::vector<Answer> equilibrium(const std::vector<Sample>& ramp, const AdhesiveS
 }
 
 // A relaxing medium without adhesion: Lee-Radok and Ting over the ramp's indentation history.
-std::vector<Answer> relaxing(const std::vector<Sample>& ramp, const AdhesiveSolution& sol, const RelaxationLaw& law,
-                             bool with_radius) {
+// The hereditary response at the ramp's samples, integrated on the samples' grid subdivided m
+// times (the history is piecewise linear in time between samples, so the finer grid is exact).
+HereditaryResponse hereditary_on(const std::vector<Sample>& ramp, const AdhesiveSolution& sol, const RelaxationLaw& law,
+                                 std::size_t m) {
   std::vector<double> t, d;
-  for (const Sample& s : ramp) {
-    t.push_back(s.t);
-    d.push_back(s.delta);
+  t.reserve((ramp.size() - 1) * m + 1);
+  d.reserve(t.capacity());
+  for (std::size_t i = 0; i < ramp.size(); ++i) {
+    if (i > 0)
+      for (std::size_t k = 1; k < m; ++k) {
+        const double f = static_cast<double>(k) / static_cast<double>(m);
+        t.push_back(ramp[i - 1].t + f * (ramp[i].t - ramp[i - 1].t));
+        d.push_back(ramp[i - 1].delta + f * (ramp[i].delta - ramp[i - 1].delta));
+      }
+    t.push_back(ramp[i].t);
+    d.push_back(ramp[i].delta);
   }
-  const HereditaryResponse r = hereditary_response(t, d, [&](double x) { return sol.force_at_delta(x); }, law);
+  const HereditaryResponse fine = hereditary_response(t, d, [&](double x) { return sol.force_at_delta(x); }, law);
+  HereditaryResponse out;
+  for (std::size_t i = 0; i < ramp.size(); ++i) {
+    out.P.push_back(fine.P[i * m]);
+    out.delta1.push_back(fine.delta1[i * m]);
+  }
+  return out;
+}
+
+// The hereditary sum converges at order ~1.3 in the step for a power law (4.4e-5 of the peak force
+// at 200 samples a branch, 2.4e-6 at 2 000): the grid is halved until two in a row agree to
+// kHereditaryTolerance of the peak force at every sample (the change bounds the finer one's error:
+// order >= 1), or the refined grid would pass kMaxHereditarySamples; the estimate goes in `note`.
+constexpr double kHereditaryTolerance = 1e-6;
+constexpr std::size_t kMaxHereditarySamples = 4'000'000;
+
+std::vector<Answer> relaxing(const std::vector<Sample>& ramp, const AdhesiveSolution& sol, const RelaxationLaw& law,
+                             bool with_radius, std::string* note) {
+  std::size_t m = 1;
+  HereditaryResponse r = hereditary_on(ramp, sol, law, m);
+  double peak = 0.0, change = std::numeric_limits<double>::infinity();
+  for (double P : r.P) peak = std::max(peak, std::abs(P));
+  while ((ramp.size() - 1) * m * 2 + 1 <= kMaxHereditarySamples) {
+    HereditaryResponse finer = hereditary_on(ramp, sol, law, 2 * m);
+    change = 0.0;
+    for (std::size_t i = 0; i < r.P.size(); ++i) change = std::max(change, std::abs(finer.P[i] - r.P[i]));
+    r = std::move(finer);
+    m *= 2;
+    if (change <= kHereditaryTolerance * peak) break;
+  }
+  const double relative = peak > 0.0 ? change / peak : 0.0;
+  *note = "the relaxing medium's force is integrated on a grid " + std::to_string(m) + "x finer than the samples: "
+          "estimated error " + format_double(relative) + " of the peak force (the change from the last halving of "
+          "the step)" + (relative > kHereditaryTolerance ? std::string(", above ") + format_double(kHereditaryTolerance) +
+                                                              ": the grid reached its bound of " +
+                                                              std::to_string(kMaxHereditarySamples) + " steps"
+                                                        : std::string());
   std::vector<Answer> out;
   for (std::size_t i = 0; i < ramp.size(); ++i)
     out.push_back({r.P[i], with_radius && r.delta1[i] > 0.0 ? sol.contact_radius_at_delta(r.delta1[i]) : 0.0, ramp[i].delta});
@@ -207,12 +253,14 @@ CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
                             : d_contact - o.free_fraction * o.max_indentation;
   const double lo_r = d_release - o.free_fraction * (d_max - d_release);
   const std::vector<Sample> samples = ramp(lo, d_max, lo_r, o);
-  const std::vector<Answer> answers = relaxes    ? relaxing(samples, sol, scene.medium.relaxation, o.with_radius)
+  std::string accuracy;
+  const std::vector<Answer> answers = relaxes    ? relaxing(samples, sol, scene.medium.relaxation, o.with_radius, &accuracy)
                                       : kinetics ? kinetic(samples, sol, scene, o, d_contact, d_max, o.with_radius)
                                                  : equilibrium(samples, sol, d_contact, d_release, o.with_radius);
 
   CurveData c;
   c.source = "simulated(" + built.model->name() + ")";
+  if (!accuracy.empty()) c.notes.push_back(accuracy);
   std::mt19937_64 rng(o.seed);
   std::normal_distribution<double> gauss(0.0, 1.0);
   for (std::size_t i = 0; i < samples.size(); ++i) {

@@ -36,7 +36,9 @@ TEST_CASE("simulate writes t,delta,P[,a],segment that fit reads back, the librar
   CHECK(r.out.empty());
   const std::vector<std::string> rows = lines(slurp(out));
   CHECK(rows[0].rfind("# layerjkr simulate ", 0) == 0);
-  CHECK(rows[1] == "t,delta,P,a,segment");
+  CHECK(rows[1].rfind("# note: the relaxing medium's force is integrated on a grid ", 0) == 0);  // its accuracy
+  CHECK(r.err.find("simulate: note: the relaxing medium's force") != std::string::npos);
+  CHECK(rows[2] == "t,delta,P,a,segment");
   const layerjkr::CurveData c = layerjkr::read_curve_csv(out);
   layerjkr::SimulationOptions o;
   o.max_indentation = 2e-6;
