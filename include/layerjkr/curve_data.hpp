@@ -82,6 +82,9 @@ struct CsvOptions {
   double length_unit = 1.0;  ///< metres per length unit in the file (1e-9 for nm), > 0
   double force_unit = 1.0;   ///< newtons per force unit in the file (1e-9 for nN), > 0
   double spring_constant = 0.0;  ///< cantilever stiffness [N/m]; required for z,deflection
+  /// Instrument files: the deflection sensitivity [m/V] replacing the file's (0: the file's;
+  /// needed where the file gives none - to_curve_data). CSV files do not use it.
+  double sensitivity = 0.0;
   double z_sign = 1.0;           ///< +1: z grows towards the sample; -1: it decreases
   double deflection_sign = 1.0;  ///< +1: deflection > 0 when pushed away by the sample
   int curve = -1;  ///< with a curve column: read only this curve (-1: the file must hold one)

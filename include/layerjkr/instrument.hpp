@@ -183,6 +183,9 @@ InstrumentFile read_instrument_file(const std::string& path);
 /// `source` names it in error messages. spring_constant > 0 [N/m] replaces the file's: the deflection is kept,
 /// so force scales by k / k_file and the tip position is height + deflection. A curve whose
 /// file gives no spring constant (NaN) needs one here (InputError naming `source` otherwise).
-CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source, double spring_constant = 0.0);
+/// sensitivity > 0 [m/V] replaces the file's deflection sensitivity (curve.sensitivity, which it
+/// needs): the deflection scales by sensitivity / the file's, and the force with it.
+CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source, double spring_constant = 0.0,
+                        double sensitivity = 0.0);
 
 }  // namespace layerjkr

@@ -133,7 +133,7 @@ _with_fit_parameters(fit_batch)
 
 def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.PathLike[str]"]]], scene: SceneLike, *,
               free: Union[str, Sequence[str]] = ("E", "w", "delta0", "P0"), jobs: int = 1, branch: Branch = "approach",
-              control: Control = "auto", spring_constant: Optional[float] = None,
+              control: Control = "auto", spring_constant: Optional[float] = None, sensitivity: Optional[float] = None,
               baseline: BaselineKind = "constant", window: Window = "all", window_fraction: float = 0.5,
               loss: Loss = "none", loss_scale: Optional[float] = None, starts: int = 0, max_iterations: int = 200,
               units: str = "m,N", z_sign: float = 1.0, deflection_sign: float = 1.0,
@@ -154,6 +154,9 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
     jobs : int, default 1
         Worker threads, >= 1 (the GIL is released).
     %s
+    sensitivity : float, optional
+        Instrument files: the deflection sensitivity [m/V] replacing the file's (the deflection
+        rescales), or giving one it lacks (a JPK calibration force-save, in volts).
     units : str, default "m,N"
         Units of the CSV files, "LENGTH,FORCE", e.g. "nm,nN".
     z_sign : float, default 1.0
@@ -212,6 +215,7 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
         selection = (begin, _NO_END if end is None else end)
     csv = _core.csv_options(units=_text("units", units),
                             spring_constant=None if spring_constant is None else _number("spring_constant", spring_constant),
+                            sensitivity=None if sensitivity is None else _number("sensitivity", sensitivity),
                             z_sign=_number("z_sign", z_sign), deflection_sign=_number("deflection_sign", deflection_sign),
                             curve=None if curve is None else _integer("curve", curve))
     if isinstance(paths, (str, os.PathLike)):

@@ -7,7 +7,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union, overload
 
 from . import _core
 from ._core import InputError
-from ._common import CurveRangeLike, _integer
+from ._common import CurveRangeLike, _integer, _number
 
 
 # CurveRange's "to the last curve" as the binding takes it: any end past the last curve stops
@@ -40,8 +40,8 @@ def _curve_range(curves: Any) -> Tuple[int, Optional[int]]:
     return begin, end
 
 
-def read_instrument(path: Union[str, "os.PathLike[str]"], *,
-                    curves: Optional[CurveRangeLike] = None) -> List[Dict[str, Any]]:
+def read_instrument(path: Union[str, "os.PathLike[str]"], *, curves: Optional[CurveRangeLike] = None,
+                    spring_constant: Optional[float] = None, sensitivity: Optional[float] = None) -> List[Dict[str, Any]]:
     """The curves of an instrument file, or of a range of its curves.
 
     Parameters
@@ -54,6 +54,12 @@ def read_instrument(path: Union[str, "os.PathLike[str]"], *,
         ``(a, b)`` for a .. b - 1, ``slice(a, None)`` for a to the end; as list slicing, an
         end past the last curve stops there. Only the range is read from the file. None:
         every curve.
+    spring_constant : float, optional
+        The cantilever's spring constant [N/m]: replaces the file's, or gives one it lacks
+        (a JPK file whose force conversion is not defined; an Asylum map without its image).
+    sensitivity : float, optional
+        The deflection sensitivity [m/V]: replaces the file's (the deflection rescales), or
+        gives one it lacks (a JPK calibration force-save, whose deflection is in volts).
 
     Returns
     -------
@@ -77,7 +83,9 @@ def read_instrument(path: Union[str, "os.PathLike[str]"], *,
     open_instrument : random access to any curve without reading the others.
     """
     begin, end = (0, None) if curves is None else _curve_range(curves)
-    return _core.read_instrument(os.fspath(path), begin, end)
+    k = 0.0 if spring_constant is None else _number("spring_constant", spring_constant)
+    s = 0.0 if sensitivity is None else _number("sensitivity", sensitivity)
+    return _core.read_instrument(os.fspath(path), begin, end, k, s)
 
 
 class Instrument(Sequence[Dict[str, Any]]):

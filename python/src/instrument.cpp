@@ -29,8 +29,9 @@ py::array_t<double> to_array(const std::vector<double>& v) {
   return out;
 }
 
-py::dict curve_dict(const InstrumentCurve& c, const std::string& path) {
-  const CurveData d = to_curve_data(c, path);
+py::dict curve_dict(const InstrumentCurve& c, const std::string& path, double spring_constant = 0.0,
+                    double sensitivity = 0.0) {
+  const CurveData d = to_curve_data(c, path, spring_constant, sensitivity);
   py::dict item;
   item["index"] = c.index, item["x"] = c.x, item["y"] = c.y, item["grid_x"] = c.grid_x, item["grid_y"] = c.grid_y;
   item["spring_constant"] = c.spring_constant, item["sensitivity"] = c.sensitivity;
@@ -39,13 +40,15 @@ py::dict curve_dict(const InstrumentCurve& c, const std::string& path) {
   return item;
 }
 
-py::list curve_list(const std::vector<InstrumentCurve>& curves, const std::string& path) {
+py::list curve_list(const std::vector<InstrumentCurve>& curves, const std::string& path, double spring_constant = 0.0,
+                    double sensitivity = 0.0) {
   py::list out;
-  for (const InstrumentCurve& c : curves) out.append(curve_dict(c, path));
+  for (const InstrumentCurve& c : curves) out.append(curve_dict(c, path, spring_constant, sensitivity));
   return out;
 }
 
-py::list read_instrument(const std::string& path, std::size_t begin, std::optional<std::size_t> end) {
+py::list read_instrument(const std::string& path, std::size_t begin, std::optional<std::size_t> end,
+                         double spring_constant, double sensitivity) {
   CurveRange range;
   range.begin = begin;
   if (end) range.end = *end;
@@ -54,7 +57,7 @@ py::list read_instrument(const std::string& path, std::size_t begin, std::option
     py::gil_scoped_release release;
     f = read_instrument_file(path, ReadLimits::from_environment(), range);
   }
-  return curve_list(f.curves, f.path);
+  return curve_list(f.curves, f.path, spring_constant, sensitivity);
 }
 
 // The library's InstrumentReader behind a shared_ptr: a read in flight (GIL released) holds its
@@ -117,7 +120,8 @@ py::list texts(const std::vector<std::string>& v) {
 }
 
 void bind_instrument(py::module_& m) {
-  m.def("read_instrument", &read_instrument, py::arg("path"), py::arg("begin") = 0, py::arg("end") = py::none());
+  m.def("read_instrument", &read_instrument, py::arg("path"), py::arg("begin") = 0, py::arg("end") = py::none(),
+        py::arg("spring_constant") = 0.0, py::arg("sensitivity") = 0.0);
   py::class_<Reader>(m, "InstrumentReader", "An instrument file opened for random access (the library's InstrumentReader).")
       .def(py::init<const std::string&>(), py::arg("path"))
       .def("__len__", [](const Reader& r) { return r.open()->size(); })

@@ -151,11 +151,12 @@ FitOptions fit_options(const std::vector<std::string>& free, const std::string& 
   return o;
 }
 
-CsvOptions csv_options(const std::string& units, std::optional<double> spring_constant, double z_sign,
-                       double deflection_sign, std::optional<int> curve) {
+CsvOptions csv_options(const std::string& units, std::optional<double> spring_constant, std::optional<double> sensitivity,
+                       double z_sign, double deflection_sign, std::optional<int> curve) {
   CsvOptions c;
   parse_units(units, c);
   c.spring_constant = spring_constant.value_or(0.0);
+  c.sensitivity = sensitivity.value_or(0.0);
   c.z_sign = z_sign;
   c.deflection_sign = deflection_sign;
   c.curve = curve.value_or(-1);
@@ -447,7 +448,8 @@ PYBIND11_MODULE(_core, m) {
         py::arg("loss_scale"), py::arg("starts"), py::arg("max_iterations"), py::arg("contact_point"),
         py::arg("indentation_range"), py::arg("force_range"), py::arg("baseline_window"));
   py::class_<CsvOptions>(m, "CsvOptions", "The library's CsvOptions; make them with csv_options().");
-  m.def("csv_options", &csv_options, py::kw_only(), py::arg("units"), py::arg("spring_constant"), py::arg("z_sign"),
+  m.def("csv_options", &csv_options, py::kw_only(), py::arg("units"), py::arg("spring_constant"),
+        py::arg("sensitivity") = py::none(), py::arg("z_sign"),
         py::arg("deflection_sign"), py::arg("curve"));
   // "LENGTH,FORCE" -> (metres per length unit, newtons per force unit): fit()'s units=.
   m.def("unit_scales", [](const std::string& units) {

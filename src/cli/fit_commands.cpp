@@ -3,6 +3,7 @@
 #include "fit_commands.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <iostream>
@@ -24,7 +25,7 @@ CurveData read_fit_data(const std::string& path, const Prepared& p) {
     throw InputError(path + ": holds " + std::to_string(reader.size()) +
                      " curves; select one with --curve N, or fit them all with fit-map");
   for (std::size_t i = 0; i < reader.size(); ++i)
-    if (p.csv.curve < 0 || reader.curve_number(i) == p.csv.curve) return to_curve_data(reader.curve(i), path, p.csv.spring_constant);
+    if (p.csv.curve < 0 || reader.curve_number(i) == p.csv.curve) return to_curve_data(reader.curve(i), path, p.csv.spring_constant, p.csv.sensitivity);
   throw InputError(path + ": has no curve " + std::to_string(p.csv.curve));
 }
 
@@ -39,8 +40,13 @@ std::string read_text(const std::string& path, const std::string& flag) {
 
 }  // namespace
 
-int run_export(const std::string& path, const std::string& out, const std::string& curves) {
+int run_export(const std::string& path, const std::string& out, const std::string& curves, double spring_constant,
+               double sensitivity) {
   check_not_input(out, "--out", {path});
+  if (!(spring_constant >= 0.0 && std::isfinite(spring_constant)))
+    throw InputError("--spring-constant = " + format_double(spring_constant) + " is invalid; valid range: finite and > 0 [N/m]");
+  if (!(sensitivity >= 0.0 && std::isfinite(sensitivity)))
+    throw InputError("--sensitivity = " + format_double(sensitivity) + " is invalid; valid range: finite and > 0 [m/V]");
   const CurveRange range = curves.empty() ? CurveRange{} : CurveRange::parse(curves, "--curves");
   OutputFile csv(out);
   const InstrumentReader reader(path);
@@ -52,7 +58,7 @@ int run_export(const std::string& path, const std::string& out, const std::strin
   std::vector<std::string> said;  // the reader's notes, each once: what fit reports, export says too
   for (std::size_t k = range.begin; k < end; ++k) {
     const InstrumentCurve c = reader.curve(k);
-    const CurveData d = to_curve_data(c, path);
+    const CurveData d = to_curve_data(c, path, spring_constant, sensitivity);
     for (const std::string& note : d.notes)
       if (std::find(said.begin(), said.end(), note) == said.end()) {
         said.push_back(note);
@@ -67,10 +73,10 @@ int run_export(const std::string& path, const std::string& out, const std::strin
     }
     std::string text;
     std::size_t row = 0;
-    for (const InstrumentSegment& seg : c.segments)
+    for (const InstrumentSegment& seg : c.segments)  // the force as calibrated (and overridden)
       for (std::size_t i = 0; i < seg.force.size(); ++i, ++row)
         text += std::to_string(c.index) + "," + std::to_string(d.segment[row]) + "," +
-                (timed ? format_double(d.t[row]) + "," : std::string()) + format_double(seg.force[i]) + "," +
+                (timed ? format_double(d.t[row]) + "," : std::string()) + format_double(d.P[row]) + "," +
                 format_double(seg.height[i]) + "," + format_double(-d.delta[row]) + "\n";
     csv.write(text);
   }

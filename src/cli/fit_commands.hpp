@@ -26,7 +26,9 @@ int run_fit_from_report(const std::string& from, const std::string& report, cons
 /// `layerjkr export FILE --out OUT.csv [--curves A:B]`: every curve (or those at positions A to
 /// B - 1) of an instrument file as one CSV (curve,segment,force,height,tip_position), which
 /// `fit` reads back; written curve by curve.
-int run_export(const std::string& path, const std::string& out, const std::string& curves = "");
+/// spring_constant [N/m] and sensitivity [m/V], when > 0, replace the file's (to_curve_data).
+int run_export(const std::string& path, const std::string& out, const std::string& curves = "",
+               double spring_constant = 0.0, double sensitivity = 0.0);
 
 /// fit-map's exit codes besides 0 (every curve of the table fitted), 1 (an internal failure), 2
 /// (invalid input, before any fit) and 130 / 143 (stopped by SIGINT / SIGTERM).

@@ -94,6 +94,7 @@ Prepared prepare_options(const FitArguments& a) {
   p.options.max_iterations = a.max_iterations;
   parse_units(a.units, p.csv);
   p.csv.spring_constant = a.spring_constant;
+  p.csv.sensitivity = a.sensitivity;
   p.csv.z_sign = a.z_sign;
   p.csv.deflection_sign = a.deflection_sign;
   p.csv.curve = a.curve;
@@ -134,7 +135,12 @@ void add_fit_options(CLI::App& c, FitArguments& a) {
   c.add_option("--loss", a.loss, "Robust loss: none | huber:SCALE | cauchy:SCALE (SCALE in N)");
   c.add_option("--branch", a.branch, "approach | retract | all (default approach)");
   c.add_option("--units", a.units, "Units of the CSV: LENGTH,FORCE, e.g. nm,nN (default m,N)");
-  c.add_option("--spring-constant", a.spring_constant, "Cantilever stiffness [N/m] for z,deflection data");
+  c.add_option("--spring-constant", a.spring_constant,
+               "Cantilever stiffness [N/m] for z,deflection data; for instrument files it replaces the file's, or "
+               "gives one it lacks");
+  c.add_option("--sensitivity", a.sensitivity,
+               "Instrument files: the deflection sensitivity [m/V] replacing the file's (the deflection rescales), or "
+               "giving one it lacks (a JPK calibration force-save)");
   c.add_option("--z-sign", a.z_sign, "z,deflection data: +1 if z grows as the tip approaches the sample, -1 if it decreases");
   c.add_option("--deflection-sign", a.deflection_sign, "z,deflection data: +1 if deflection > 0 when the sample pushes the tip away, else -1");
   c.add_option("--starts", a.extra_starts, "Extra starts around the data-driven guess (default 0)");

@@ -17,7 +17,7 @@ namespace layerjkr::cli {
 /// The flags shared by `fit` and `fit-map`, as typed.
 struct FitArguments {
   std::string scene, free, loss = "none", branch = "approach", units = "m,N";
-  double spring_constant = 0.0, z_sign = 1.0, deflection_sign = 1.0;
+  double spring_constant = 0.0, sensitivity = 0.0, z_sign = 1.0, deflection_sign = 1.0;
   double force_noise = 0.0, radius_noise = 0.0;  ///< --force-noise, --radius-noise (0: estimated)
   bool keep_offset = false;                      ///< --keep-offset
   int extra_starts = 0, max_iterations = 200;

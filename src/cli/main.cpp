@@ -230,6 +230,11 @@ static int run_main(int argc, char** argv) {
   export_cmd->add_option("file", export_path, "Instrument file (" + layerjkr::known_instrument_formats() + ")")
       ->required();
   export_cmd->add_option("--curves", export_curves, "Only the curves at positions A to B - 1 (A:B, A: or :B)");
+  double export_k = 0.0, export_sensitivity = 0.0;
+  export_cmd->add_option("--spring-constant", export_k,
+                         "The cantilever's spring constant [N/m]: replaces the file's, or gives one it lacks");
+  export_cmd->add_option("--sensitivity", export_sensitivity,
+                         "The deflection sensitivity [m/V]: replaces the file's (the deflection rescales)");
   export_cmd->add_option("--out", export_out, "CSV file to write (- for standard output)")->required();
 
   layerjkr::cli::DiscreteArguments discrete_args;
@@ -293,7 +298,8 @@ static int run_main(int argc, char** argv) {
     if (*fit_map && !map_from_report.empty())
       return layerjkr::cli::run_fit_map_from_report(map_from_report, map, command_line);
     if (*fit_map) return layerjkr::cli::run_fit_map(fit_args, map_inputs, map_curves, map, command_line);
-    if (*export_cmd) return layerjkr::cli::run_export(export_path, export_out, export_curves);
+    if (*export_cmd)
+      return layerjkr::cli::run_export(export_path, export_out, export_curves, export_k, export_sensitivity);
     if (*discrete) return layerjkr::cli::run_discrete(discrete_args);
     if (*simulate) {
       std::string line = "layerjkr";  // what made the file, in its first line

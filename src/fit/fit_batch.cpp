@@ -240,7 +240,7 @@ std::vector<BatchItem> fit_files(const std::vector<std::string>& paths, const Sc
           item.y = c.y;
           item.grid_x = c.grid_x;
           item.grid_y = c.grid_y;
-          return to_curve_data(c, item.source, csv.spring_constant);
+          return to_curve_data(c, item.source, csv.spring_constant, csv.sensitivity);
         }
         // Checked again: the file may have changed since the list was made.
         const std::string why = detail::not_a_file(s.csv_path);

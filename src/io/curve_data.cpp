@@ -132,6 +132,7 @@ void CsvOptions::validate() const {
   detail::require_positive(fn, "length_unit", length_unit);
   detail::require_positive(fn, "force_unit", force_unit);
   detail::require_non_negative(fn, "spring_constant", spring_constant);
+  detail::require_non_negative(fn, "sensitivity", sensitivity);
   if (z_sign != 1.0 && z_sign != -1.0) throw DomainError(fn, "z_sign", z_sign, "+1 or -1");
   if (deflection_sign != 1.0 && deflection_sign != -1.0)
     throw DomainError(fn, "deflection_sign", deflection_sign, "+1 or -1");

@@ -241,15 +241,24 @@ std::vector<double> InstrumentCurve::tip_position(std::size_t s) const {
   return out;
 }
 
-CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source, double spring_constant) {
+CurveData to_curve_data(const InstrumentCurve& curve, const std::string& source, double spring_constant,
+                        double sensitivity) {
   detail::require_non_negative("to_curve_data", "spring_constant", spring_constant);
+  detail::require_non_negative("to_curve_data", "sensitivity", sensitivity);
+  // A file without a deflection sensitivity (NaN: a JPK calibration force-save) holds volts.
+  const bool volts = std::isnan(curve.sensitivity);
+  if (volts && !(sensitivity > 0.0))
+    throw InputError(source + ": the file gives no deflection sensitivity (its deflection is in volts): give the "
+                              "sensitivity [m/V] (--sensitivity, Python sensitivity=) and the spring constant");
   if (std::isnan(curve.spring_constant) && !(spring_constant > 0.0))
-    throw InputError(source + ": the file gives no spring constant (an Asylum map export without its map image): "
-                              "give the cantilever's spring constant k [N/m] (--spring-constant), or put the map's "
-                              "image (its note says ForceMapImage:1) beside the curves");
+    throw InputError(source + ": the file gives no spring constant (its force conversion is not defined, or an Asylum "
+                              "map export without its map image): give the cantilever's spring constant k [N/m] "
+                              "(--spring-constant, Python spring_constant=)");
   const double k = spring_constant > 0.0 ? spring_constant : curve.spring_constant;
-  // Without the file's k its force is the deflection [m]: force = k x deflection.
-  const double scale = std::isnan(curve.spring_constant) ? k : k / curve.spring_constant;
+  // Without the file's k its force is the deflection [m]: force = k x deflection. A sensitivity
+  // given turns volts into metres, or rescales the deflection the file's made (where it has one).
+  const double deflection = volts ? sensitivity : sensitivity > 0.0 && curve.sensitivity > 0.0 ? sensitivity / curve.sensitivity : 1.0;
+  const double scale = (std::isnan(curve.spring_constant) ? k : k / curve.spring_constant) * deflection;
   CurveData d;
   d.source = source;
   d.spring_constant = k;

@@ -2,6 +2,7 @@
 // decoded and scaled (see jpk_segment.hpp).
 #include "io/jpk_segment.hpp"
 
+#include <limits>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -228,9 +229,20 @@ InstrumentSegment read_segment(const Reader& in, const Properties& shared, const
   s.style = read_style(in, in.value(seg, "force-segment-header.settings.style", where), where);
   s.duration = in.number(seg, "force-segment-header.duration", where);
   if (!ch.has("vDeflection")) in.fail(where, "no vDeflection channel (force)");
-  s.force = ch.values("vDeflection", "force");
-  curve.spring_constant = ch.multiplier("vDeflection", "force");
-  curve.sensitivity = ch.multiplier("vDeflection", "distance");
+  // A file whose force conversion is not defined (the spring constant never calibrated, or
+  // removed: afmformats' fmt-jpk-fd_single-modified_2023) holds the deflection [m]: read in the
+  // distance slot, the spring constant NaN - to_curve_data then needs one given.
+  // Without a distance conversion either (a calibration force-save) it holds volts: both NaN.
+  const auto defined = [&](const char* slot) {
+    const std::string conv = std::string("channel.vDeflection.conversion-set.conversion.") + slot + ".";
+    const std::optional<std::string_view> flag = seg.find(conv + "defined");
+    return seg.contains(conv + "base-calibration-slot") && !(flag && *flag == "false");
+  };
+  const bool has_force = defined("force"), has_distance = defined("distance");
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  s.force = ch.values("vDeflection", has_force ? "force" : has_distance ? "distance" : "volts");
+  curve.spring_constant = has_force ? ch.multiplier("vDeflection", "force") : kNaN;
+  curve.sensitivity = has_distance ? ch.multiplier("vDeflection", "distance") : kNaN;
   bool found = false;
   for (const char* name : {"strainGaugeHeight", "capacitiveSensorHeight", "measuredHeight"})
     if (!found && ch.has(name)) {

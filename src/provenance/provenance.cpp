@@ -64,6 +64,7 @@ void csv_fields(Options& o, Visit&& v) {
   v("length_unit", o.length_unit);
   v("force_unit", o.force_unit);
   v("spring_constant", o.spring_constant);
+  v("sensitivity", o.sensitivity);
   v("z_sign", o.z_sign);
   v("deflection_sign", o.deflection_sign);
   v("curve", o.curve);
@@ -77,7 +78,7 @@ void csv_fields(Options& o, Visit&& v) {
 static_assert(sizeof(void*) != 8 || sizeof(FitOptions) == 264,
               "FitOptions changed: add its new field to fit_fields() in src/provenance/provenance.cpp and to the "
               "non-default options of tests/provenance/test_provenance.cpp, then update this size");
-static_assert(sizeof(void*) != 8 || sizeof(CsvOptions) == 64,
+static_assert(sizeof(void*) != 8 || sizeof(CsvOptions) == 72,
               "CsvOptions changed: add its new field to csv_fields() in src/provenance/provenance.cpp and to the "
               "non-default options of tests/provenance/test_provenance.cpp, then update this size");
 

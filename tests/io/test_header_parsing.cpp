@@ -175,3 +175,40 @@ TEST_CASE("Igor notes: Indexes and Direction are lists of numbers, nothing else"
   direction.replace(direction.find("Direction: NaN,1,-1,"), 20, "Direction: NaN,one,-1");
   CHECK_THAT(input_error([&] { igor(direction); }), Catch::Contains("Direction") && Catch::Contains("'one'"));
 }
+
+TEST_CASE("JPK files without a spring constant or a sensitivity read, and need them given", "[io][headers]") {
+  // Issue 41: afmformats' fmt-jpk-fd_single-modified_2023.jpk-force (force conversion removed)
+  // failed with "no '...conversion.force.base-calibration-slot'" and could not be read even with
+  // a spring constant; afmformats asks for one (MissingMetaDataError) and takes an override:
+  // force[0] = -5.261711536426128e-07 N with k = 12, and -0.2454449015321114 N with k = 10 and
+  // sensitivity 0.05 m/V - what `layerjkr export --spring-constant` gives on that file.
+  const test::TempDir dir;
+  const InstrumentFile calibrated = read_instrument_file(archive(dir, 1, "", ""));
+  const double volts = calibrated.curves[0].segments[0].force[1] / (5e-8 * 0.05);  // sample 1: not 0
+  const std::string no_k = archive(dir, 1, "channel.vDeflection.conversion-set.conversion.force.base-calibration-slot=distance",
+                                   "channel.vDeflection.conversion-set.conversion.force.defined=false");
+  const InstrumentCurve c = read_instrument_file(no_k).curves[0];
+  CHECK(std::isnan(c.spring_constant));
+  CHECK(c.sensitivity == 5e-8);
+  CHECK_THAT(input_error([&] { to_curve_data(c, "hand.jpk-force"); }),
+             Catch::Contains("hand.jpk-force: the file gives no spring constant") && Catch::Contains("--spring-constant"));
+  CHECK(to_curve_data(c, "hand.jpk-force", 12.0).P[1] == Approx(volts * 5e-8 * 12.0).epsilon(1e-14));
+  CHECK(to_curve_data(c, "hand.jpk-force", 10.0, 0.05).P[1] == Approx(volts * 0.05 * 10.0).epsilon(1e-14));
+  // A calibrated file: a sensitivity given rescales its deflection, a spring constant its force.
+  const InstrumentCurve k = calibrated.curves[0];
+  CHECK(to_curve_data(k, "x", 0.0, 1e-7).P[1] == Approx(volts * 1e-7 * 0.05).epsilon(1e-14));
+  // Neither conversion (a calibration force-save: volts): both must be given.
+  std::vector<test::Member> members = test::jpk_members();
+  std::string& seg = members[1].bytes;
+  for (const char* slot : {"distance", "force"}) {
+    const std::string key = std::string("channel.vDeflection.conversion-set.conversion.") + slot + ".base-calibration-slot=";
+    seg.erase(seg.find(key), seg.find('\n', seg.find(key)) - seg.find(key) + 1);
+  }
+  const std::string path = dir.file("volts.jpk-force");
+  test::write_zip(path, members);
+  const InstrumentCurve v = read_instrument_file(path).curves[0];
+  CHECK(std::isnan(v.sensitivity));
+  CHECK_THAT(input_error([&] { to_curve_data(v, "volts.jpk-force", 0.1); }),
+             Catch::Contains("no deflection sensitivity (its deflection is in volts)") && Catch::Contains("--sensitivity"));
+  CHECK(to_curve_data(v, "volts.jpk-force", 0.1, 5e-8).P[1] == Approx(volts * 5e-8 * 0.1).epsilon(1e-14));
+}
