@@ -1,5 +1,5 @@
 // layerjkr: force curves as they come off the instrument - JPK archives (.jpk-force,
-// .jpk-force-map, .jpk-qi-data), Asylum Research / Igor binary waves (.ibw, version 5) and
+// .jpk-force-map, .jpk-qi-data, .jpk-qi-series), Asylum Research / Igor binary waves (.ibw, version 5) and
 // Bruker NanoScope files (.spm, .000) - read in C++ with their calibration, without any
 // Python stack; whole (read_instrument_file) or one curve at a time (InstrumentReader).
 //
@@ -98,7 +98,7 @@ struct ReadLimits {
   static ReadLimits from_environment();
 };
 
-/// The format a file name says: .jpk-force, .jpk-force-map, .jpk-qi-data, .ibw, and for
+/// The format a file name says: .jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series, .ibw, and for
 /// Bruker NanoScope .spm or a numbered extension .000 - .999; none for any other name.
 std::optional<InstrumentFormat> instrument_format(const std::string& path);
 /// True if the file name ends in an extension read_instrument_file knows.

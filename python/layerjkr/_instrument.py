@@ -47,7 +47,7 @@ def read_instrument(path: Union[str, "os.PathLike[str]"], *, curves: Optional[Cu
     Parameters
     ----------
     path : str or os.PathLike
-        A JPK (.jpk-force, .jpk-force-map, .jpk-qi-data), Igor (.ibw) or Bruker NanoScope
+        A JPK (.jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series), Igor (.ibw) or Bruker NanoScope
         (.spm, .000 - .999) file.
     curves : slice or (int, int), optional
         Read only the curves at these positions (0-based, file order): ``slice(a, b)`` or
@@ -99,7 +99,7 @@ class Instrument(Sequence[Dict[str, Any]]):
     Attributes
     ----------
     header : dict
-        The file's metadata: path, format ("jpk-force", "jpk-force-map", "jpk-qi-data",
+        The file's metadata: path, format ("jpk-force", "jpk-force-map", "jpk-qi-data", "jpk-qi-series",
         "ibw", "nanoscope"), instrument, software, grid_shape (x, y; (0, 0) if not a map),
         grid_size (x, y) [m], grid_center (x, y) [m].
     """
@@ -175,7 +175,7 @@ def open_instrument(path: Union[str, "os.PathLike[str]"]) -> Instrument:
     Parameters
     ----------
     path : str or os.PathLike
-        A JPK (.jpk-force, .jpk-force-map, .jpk-qi-data), Igor (.ibw) or Bruker NanoScope
+        A JPK (.jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series), Igor (.ibw) or Bruker NanoScope
         (.spm, .000 - .999) file.
 
     Returns

@@ -72,7 +72,8 @@ std::unique_ptr<detail::CurveSource> open_source(const std::string& path, const 
     case InstrumentFormat::nanoscope: return detail::open_nanoscope(path, limits);
     case InstrumentFormat::jpk_force:
     case InstrumentFormat::jpk_force_map:
-    case InstrumentFormat::jpk_qi_data: return detail::open_jpk(path, format, limits);
+    case InstrumentFormat::jpk_qi_data:
+    case InstrumentFormat::jpk_qi_series: return detail::open_jpk(path, format, limits);
     case InstrumentFormat::ibw_map: return detail::open_asylum_map(path, detail::asylum_channel_files(path));
   }
   throw Error(path + ": InstrumentFormat " + std::to_string(static_cast<int>(format)) + " has no reader");
@@ -89,7 +90,7 @@ ReadLimits ReadLimits::from_environment() {
 
 std::optional<InstrumentFormat> instrument_format(const std::string& path) {
   for (InstrumentFormat f : {InstrumentFormat::jpk_force, InstrumentFormat::jpk_force_map,
-                             InstrumentFormat::jpk_qi_data, InstrumentFormat::ibw})
+                             InstrumentFormat::jpk_qi_data, InstrumentFormat::jpk_qi_series, InstrumentFormat::ibw})
     if (ends_with(path, std::string(".") + to_string(f))) return f;
   if (ends_with(path, ".spm")) return InstrumentFormat::nanoscope;
   // NanoScope numbers its files: name.000, name.001, ...
@@ -122,7 +123,7 @@ std::string unread_format_reason(const std::string& path) {
 }  // namespace detail
 
 std::string known_instrument_formats() {
-  return ".jpk-force, .jpk-force-map, .jpk-qi-data (JPK), .ibw (Asylum / Igor), .spm or .000-.999 (Bruker NanoScope)";
+  return ".jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series (JPK), .ibw (Asylum / Igor), .spm or .000-.999 (Bruker NanoScope)";
 }
 
 CurveRange CurveRange::parse(const std::string& text, const std::string& what) {

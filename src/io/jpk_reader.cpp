@@ -1,4 +1,4 @@
-// JPK force archives (.jpk-force, .jpk-force-map, .jpk-qi-data): see instrument.hpp for the
+// JPK force archives (.jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series): see instrument.hpp for the
 // conventions and ../shared/data/instrument/README.md for the format notes they follow.
 #include <algorithm>
 #include <charconv>

@@ -212,3 +212,24 @@ TEST_CASE("JPK files without a spring constant or a sensitivity read, and need t
              Catch::Contains("no deflection sensitivity (its deflection is in volts)") && Catch::Contains("--sensitivity"));
   CHECK(to_curve_data(v, "volts.jpk-force", 0.1, 5e-8).P[1] == Approx(volts * 5e-8 * 0.1).epsilon(1e-14));
 }
+
+TEST_CASE("JPK QI series (.jpk-qi-series): one curve, its header keyed by the scan type", "[io][headers]") {
+  // Issue 41: the JPK format afmformats opens by the suffix .jpk-qi-series was "not an instrument
+  // file". Its archive is a .jpk-force's with quantitative-imaging-series.* header keys (afmformats'
+  // fmt-jpk-fd_qi-data-2021.04.13.jpk-qi-series: two segments of 1 000 samples, position-index 170).
+  const test::TempDir dir;
+  std::vector<test::Member> members = test::jpk_members();
+  std::string& top = members[0].bytes;
+  for (std::size_t at; (at = top.find("force-scan-series.")) != std::string::npos;)
+    top.replace(at, std::string("force-scan-series.").size(), "quantitative-imaging-series.");
+  const std::string path = dir.file("hand.jpk-qi-series");
+  test::write_zip(path, members);
+  REQUIRE(instrument_format(path) == InstrumentFormat::jpk_qi_series);
+  const InstrumentFile f = read_instrument_file(path);
+  CHECK(f.format == InstrumentFormat::jpk_qi_series);
+  REQUIRE(f.curves.size() == 1);
+  CHECK(f.curves[0].x == 1e-6);
+  CHECK(f.curves[0].y == 2e-6);
+  const InstrumentFile same = read_instrument_file(archive(dir, 0, "", ""));
+  CHECK(f.curves[0].segments[0].force == same.curves[0].segments[0].force);
+}
