@@ -65,7 +65,7 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs, s
       for (; !ec && it != end; it.increment(ec)) {
         const fs::path& e = it->path();
         std::error_code type_ec;
-        if (e.extension() == ".csv" || is_instrument_file(e.string()))
+        if (e.extension() == ".csv" || e.extension() == ".tab" || is_instrument_file(e.string()))
           found.push_back(e.string());
         else if (it->is_directory(type_ec))
           folders.push_back(e.filename().string());

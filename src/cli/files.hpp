@@ -13,7 +13,7 @@ namespace layerjkr::cli {
 void check_not_input(const std::string& output, const std::string& flag, const std::vector<std::string>& inputs);
 
 /// Directories, glob patterns and files, in the order given. A directory gives every entry
-/// whose name ends in .csv or an instrument extension, whatever it is (file, link - dangling or
+/// whose name ends in .csv, .tab or an instrument extension, whatever it is (file, link - dangling or
 /// looping -, FIFO, directory), sorted by name: the batch reports the ones it cannot read as
 /// failed rows. A directory or a pattern that holds an Asylum map exported per channel
 /// (is_asylum_map_export) is one input, the map. What a directory holds besides (sub-folders,

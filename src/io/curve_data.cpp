@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "io/afm_workshop.hpp"
+#include "io/afmformats_tab.hpp"
 #include "io/csv_rows.hpp"
 #include "io/instrument_readers.hpp"
 #include "layerjkr/instrument.hpp"
@@ -284,6 +285,7 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
          "(known: " + known_instrument_formats() + ")");
   }
   if (detail::is_afm_workshop(text)) return detail::parse_afm_workshop(text, source, options);
+  if (detail::is_afmformats_tab(text)) return detail::parse_afmformats_tab(text, source, options);
   detail::CsvRows rows(text);
   std::size_t line_no = 0;
   auto next_row = [&](std::vector<std::string_view>* cells) {
