@@ -60,7 +60,8 @@ class AsylumMap final : public CurveSource {
     // folders given together) is two measurements: each set of files is a curve of its own, in
     // the order the files come, and a note says so - none is dropped.
     for (const std::string& f : files) {
-      const auto [line, point, channel] = *channel_file(f);
+      const auto [line, point, name] = *channel_file(f);
+      const std::string channel = name;  // a lambda cannot capture a structured binding in C++17
       std::vector<std::map<std::string, std::string>>& copies = points_[{line, point}];
       auto free = std::find_if(copies.begin(), copies.end(), [&](const auto& c) { return !c.count(channel); });
       if (free == copies.end()) free = copies.insert(copies.end(), std::map<std::string, std::string>{});
