@@ -28,6 +28,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "layerjkr/types.hpp"
@@ -99,6 +100,11 @@ struct CsvOptions {
 /// Parses a length/force unit pair "m,N" | "nm,nN" | "um,uN" | "nm,pN" ... into the
 /// options' multipliers; throws InputError for an unknown unit.
 void parse_units(const std::string& text, CsvOptions& options);
+
+/// True if `text` (a file's first bytes) begins a vendor's text export that parse_curve_csv
+/// reads by its content - AFM Workshop's force-distance CSV, afmformats' tab export - rather
+/// than a plain CSV of named columns.
+bool is_vendor_curve_text(std::string_view text);
 
 /// Parses CSV text (see the forms above). `source` names the data in errors. Throws
 /// InputError for a bad header, a non-numeric or non-finite cell (naming row and

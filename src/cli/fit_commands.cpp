@@ -40,6 +40,45 @@ std::string read_text(const std::string& path, const std::string& flag) {
 
 }  // namespace
 
+namespace {
+
+// A vendor's text export that fit reads as a curve file (AFM Workshop's CSV, afmformats' tab):
+// export writes it as it writes an instrument file's curve, so that `export` refuses nothing
+// `fit` reads from a vendor.
+bool is_vendor_text(const std::string& path) {
+  if (is_instrument_file(path) || is_asylum_map_export(path)) return false;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(64, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return is_vendor_curve_text(head);
+}
+
+int export_vendor_text(const std::string& path, const std::string& out, double spring_constant, double sensitivity) {
+  if (sensitivity > 0.0)
+    throw InputError("--sensitivity: " + path + " gives forces, not a deflection in volts to rescale");
+  CsvOptions o;
+  o.spring_constant = spring_constant;
+  const CurveData d = read_curve_csv(path, o);
+  for (const std::string& note : d.notes) std::cerr << "export: note: " << printable(note) << "\n";
+  OutputFile csv(out);
+  const bool timed = !d.t.empty();
+  std::string text = timed ? "curve,segment,t,force,height,tip_position\n" : "curve,segment,force,height,tip_position\n";
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const double tip = -d.delta[i];
+    // The height the tip's position and the force imply (tip = height + F/k), where k is known.
+    const double height = d.spring_constant > 0.0 ? tip - d.P[i] / d.spring_constant : std::nan("");
+    text += "0," + std::to_string(d.segment[i]) + "," + (timed ? format_double(d.t[i]) + "," : std::string()) +
+            format_double(d.P[i]) + "," + format_double(height) + "," + format_double(tip) + "\n";
+  }
+  csv.write(text);
+  csv.commit();
+  std::cerr << "export: 1 curve(s) of " << printable(path) << " written to " << printable(out) << "\n";
+  return 0;
+}
+
+}  // namespace
+
 int run_export(const std::string& path, const std::string& out, const std::string& curves, double spring_constant,
                double sensitivity) {
   check_not_input(out, "--out", {path});
@@ -48,6 +87,7 @@ int run_export(const std::string& path, const std::string& out, const std::strin
   if (!(sensitivity >= 0.0 && std::isfinite(sensitivity)))
     throw InputError("--sensitivity = " + format_double(sensitivity) + " is invalid; valid range: finite and > 0 [m/V]");
   const CurveRange range = curves.empty() ? CurveRange{} : CurveRange::parse(curves, "--curves");
+  if (is_vendor_text(path)) return export_vendor_text(path, out, spring_constant, sensitivity);
   OutputFile csv(out);
   const InstrumentReader reader(path);
   range.require_any(reader.size(), path);

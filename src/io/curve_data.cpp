@@ -274,6 +274,10 @@ void append_row(const std::vector<double>& v, const Layout& l, const CsvOptions&
 
 }  // namespace
 
+bool is_vendor_curve_text(std::string_view text) {
+  return detail::is_afm_workshop(text) || detail::is_afmformats_tab(text);
+}
+
 CurveData parse_curve_csv(const std::string& text, const std::string& source,
                           const CsvOptions& options) {
   options.validate();

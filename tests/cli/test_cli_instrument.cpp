@@ -3,6 +3,7 @@
 // failing only its own row. Skipped, not failed, when ../shared is absent.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -217,4 +218,23 @@ TEST_CASE("export, fit and fit-map take --spring-constant and --sensitivity for 
     INFO(command << ": " << r.err);
     CHECK(r.err.find("no spring constant") == std::string::npos);  // read; the tiny curve may not fit
   }
+}
+
+TEST_CASE("export takes the vendors' text exports fit reads: AFM Workshop's CSV", "[cli][instrument]") {
+  // Issue 41: export refused the AFM Workshop CSV that fit reads. Its spring constant is the
+  // header's or --spring-constant's; the height is the tip's position less F/k.
+  const std::string aw = std::string(LAYERJKR_SOURCE_DIR) + "/tests/data/instrument/fmt-afm-workshop-fd_single_2020-02-14_13.41.25.csv";
+  const Run refused = run("export " + aw + " --out " + unique("aw0.csv"));
+  CHECK(refused.code == 2);
+  CHECK(refused.err.find("--spring-constant") != std::string::npos);
+  const std::string out = unique("aw.csv");
+  const Run r = run("export " + aw + " --spring-constant 0.2 --out " + out);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const std::string text = slurp(out);
+  CHECK(text.rfind("curve,segment,force,height,tip_position\n", 0) == 0);
+  CHECK(std::count(text.begin(), text.end(), '\n') > 100);
+  const Run sens = run("export " + aw + " --spring-constant 0.2 --sensitivity 1e-7 --out " + unique("aw2.csv"));
+  CHECK(sens.code == 2);
+  CHECK(sens.err.find("gives forces, not a deflection in volts") != std::string::npos);
 }
