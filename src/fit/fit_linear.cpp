@@ -18,12 +18,6 @@ namespace {
 // free, a stack with only the top's E): then Ceres solves from the original start.
 constexpr double kLinearTolerance = 1e-9;
 
-double half_sum_of_squares(const std::vector<double>& r) {
-  double c = 0.0;
-  for (double v : r) c += 0.5 * v * v;
-  return c;
-}
-
 }  // namespace
 
 bool FitRun::linear_candidate() const {
@@ -42,7 +36,7 @@ bool FitRun::linear_candidate() const {
 bool FitRun::solve_linear() {
   const std::vector<double> start = x_;
   if (!ev_.evaluate(x_.data(), false)) return false;
-  const double initial_cost = half_sum_of_squares(ev_.residuals());
+  const double initial_cost = least_squares_cost(ev_.residuals());
   CurveParameters<double> p;
   double delta0 = 0.0, P0 = 0.0;
   map_.physical(x_.data(), &p, &delta0, &P0);
@@ -83,7 +77,7 @@ bool FitRun::solve_linear() {
   summary_.termination_type = ceres::CONVERGENCE;
   summary_.message = "linear least squares: the model is linear in its free parameters here, solved exactly";
   summary_.initial_cost = initial_cost;
-  summary_.final_cost = half_sum_of_squares(ev_.residuals());
+  summary_.final_cost = least_squares_cost(ev_.residuals());
   ceres::IterationSummary it;
   it.cost = initial_cost;
   it.gradient_max_norm = 0.0;

@@ -172,11 +172,7 @@ double FitRun::cost_with_held(FitParameter q, double xq) {
   xs[static_cast<std::size_t>(map_.index(q))] = xq;
   if (!ev_.evaluate(xs.data(), false)) return kNaN;
   if (xs.size() == 1) {  // nothing else to refit: the cost at xw (least squares; robust losses refit below)
-    if (options_.loss == LossType::none) {
-      double c = 0.0;
-      for (double r : ev_.residuals()) c += 0.5 * r * r;
-      return c;
-    }
+    if (options_.loss == LossType::none) return least_squares_cost(ev_.residuals());
     return kNaN;
   }
   ceres::Solver::Summary s2;

@@ -32,6 +32,13 @@ class ResidualModel {
   virtual std::size_t rows(std::size_t i) const = 0;
 };
 
+/// The least-squares cost of residuals r, sum r^2 / 2 (Ceres' convention).
+inline double least_squares_cost(const std::vector<double>& r) {
+  double c = 0.0;
+  for (double v : r) c += 0.5 * v * v;
+  return c;
+}
+
 /// What every evaluator keeps of its last evaluation, and the accessors over it.
 class ResidualStore : public ResidualModel {
  public:

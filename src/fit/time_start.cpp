@@ -33,9 +33,7 @@ double mean_relaxation_sls(double ratio, double tau, double T) {
 
 double cost_at(ResidualModel& ev, const std::vector<double>& x) {
   if (!ev.evaluate(x.data(), false)) return std::numeric_limits<double>::infinity();
-  double c = 0.0;
-  for (double r : ev.residuals()) c += 0.5 * r * r;
-  return c;
+  return least_squares_cost(ev.residuals());
 }
 
 int slot(const ParameterMap& map, FitParameter q) { return map.index(q); }
