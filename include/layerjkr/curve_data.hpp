@@ -84,7 +84,8 @@ struct CsvOptions {
   double force_unit = 1.0;   ///< newtons per force unit in the file (1e-9 for nN), > 0
   double spring_constant = 0.0;  ///< cantilever stiffness [N/m]; required for z,deflection
   /// Instrument files: the deflection sensitivity [m/V] replacing the file's (0: the file's;
-  /// needed where the file gives none - to_curve_data). CSV files do not use it.
+  /// needed where the file gives none - to_curve_data). Vendor text exports: AFM Workshop's
+  /// T-B(V) columns [m/V] and NT-MDT's deflection signal [m/A] use it. Plain CSV does not.
   double sensitivity = 0.0;
   double z_sign = 1.0;           ///< +1: z grows towards the sample; -1: it decreases
   double deflection_sign = 1.0;  ///< +1: deflection > 0 when pushed away by the sample
@@ -101,9 +102,9 @@ struct CsvOptions {
 /// options' multipliers; throws InputError for an unknown unit.
 void parse_units(const std::string& text, CsvOptions& options);
 
-/// True if `text` (a file's first bytes) begins a vendor's text export that parse_curve_csv
-/// reads by its content - AFM Workshop's force-distance CSV, afmformats' tab export - rather
-/// than a plain CSV of named columns.
+/// True if `text` (a file's first 4 KiB) begins a vendor's text export that parse_curve_csv
+/// reads by its content - AFM Workshop's force-distance CSV, afmformats' tab export, NT-MDT
+/// Nova's and Optics11 Chiaro's text exports - rather than a plain CSV of named columns.
 bool is_vendor_curve_text(std::string_view text);
 
 /// Parses CSV text (see the forms above). `source` names the data in errors. Throws

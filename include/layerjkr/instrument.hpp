@@ -1,6 +1,6 @@
 // layerjkr: force curves as they come off the instrument - JPK archives (.jpk-force,
-// .jpk-force-map, .jpk-qi-data, .jpk-qi-series), Asylum Research / Igor binary waves (.ibw, version 5) and
-// Bruker NanoScope files (.spm, .000) - read in C++ with their calibration, without any
+// .jpk-force-map, .jpk-qi-data, .jpk-qi-series), Asylum Research / Igor binary waves (.ibw, version 5),
+// Bruker NanoScope files (.spm, .000) and AFM Workshop maps (.zip of its CSV exports) - read in C++ with their calibration, without any
 // Python stack; whole (read_instrument_file) or one curve at a time (InstrumentReader).
 //
 // JPK (zip archives of Java .properties headers and big-endian channel data): force is the
@@ -99,7 +99,9 @@ struct ReadLimits {
 };
 
 /// The format a file name says: .jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series, .ibw, and for
-/// Bruker NanoScope .spm or a numbered extension .000 - .999; none for any other name.
+/// Bruker NanoScope .spm or a numbered extension .000 - .999, for an AFM Workshop map .zip (an
+/// archive of its CSV exports, one per point; a .zip of anything else is refused when read);
+/// none for any other name.
 std::optional<InstrumentFormat> instrument_format(const std::string& path);
 /// True if the file name ends in an extension read_instrument_file knows.
 bool is_instrument_file(const std::string& path);

@@ -47,8 +47,8 @@ def read_instrument(path: Union[str, "os.PathLike[str]"], *, curves: Optional[Cu
     Parameters
     ----------
     path : str or os.PathLike
-        A JPK (.jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series), Igor (.ibw) or Bruker NanoScope
-        (.spm, .000 - .999) file.
+        A JPK (.jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series), Igor (.ibw), Bruker NanoScope
+        (.spm, .000 - .999) or AFM Workshop map (.zip) file.
     curves : slice or (int, int), optional
         Read only the curves at these positions (0-based, file order): ``slice(a, b)`` or
         ``(a, b)`` for a .. b - 1, ``slice(a, None)`` for a to the end; as list slicing, an
@@ -100,7 +100,7 @@ class Instrument(Sequence[Dict[str, Any]]):
     ----------
     header : dict
         The file's metadata: path, format ("jpk-force", "jpk-force-map", "jpk-qi-data", "jpk-qi-series",
-        "ibw", "nanoscope"), instrument, software, grid_shape (x, y; (0, 0) if not a map),
+        "ibw", "nanoscope", "ibw-map", "afm-workshop-map"), instrument, software, grid_shape (x, y; (0, 0) if not a map),
         grid_size (x, y) [m], grid_center (x, y) [m].
     """
 
@@ -175,8 +175,8 @@ def open_instrument(path: Union[str, "os.PathLike[str]"]) -> Instrument:
     Parameters
     ----------
     path : str or os.PathLike
-        A JPK (.jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series), Igor (.ibw) or Bruker NanoScope
-        (.spm, .000 - .999) file.
+        A JPK (.jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series), Igor (.ibw), Bruker NanoScope
+        (.spm, .000 - .999) or AFM Workshop map (.zip) file.
 
     Returns
     -------

@@ -181,3 +181,21 @@ def test_the_default_fit_of_a_qi_curve_frees_its_baseline_or_warns(source):
         fixed = layerjkr.fit(c["delta"], c["P"], scene, segment=c["segment"], free="E,w,delta0")
     assert abs(fixed.values["E"] - with_P0.values["E"]) > 3 * with_P0.errors["E"]
     assert not fixed.identifiable
+
+
+def test_vendor_exports_read_with_the_calibration_given(source):
+    # Issue 41: afmformats' AFM Workshop map (a zip) and NT-MDT text export, which layerjkr did not
+    # read; their calibration comes from the arguments, and its absence names them.
+    d = source / "tests/data/instrument"
+    zip_map = d / "fmt-afm-workshop-fd_mapping_16_2018-08-01_13.07.zip"
+    with pytest.raises(layerjkr.InputError, match="sensitivity"):
+        layerjkr.read_instrument(zip_map, spring_constant=20)
+    curves = layerjkr.read_instrument(zip_map, spring_constant=20, sensitivity=1e-8)
+    assert len(curves) == 16 and (curves[1]["grid_x"], curves[1]["grid_y"]) == (1, 0)
+    assert curves[0]["P"][0] == pytest.approx(0.6875 * 1e-8 * 20, rel=1e-12)
+    nt = d / "fmt-ntmdt-txt-fd_2015_01_17_gel4-0,1_mQ_adh_6B_Curve_DFL_Height_51.txt"
+    scene = str(source / "data/scenes/hertz_R40nm.json")
+    bare = layerjkr.fit_files([nt], scene, free="E,delta0,P0")[0]
+    assert bare.result is None and "--spring-constant" in bare.error and "--sensitivity" in bare.error
+    item = layerjkr.fit_files([nt], scene, free="E,delta0,P0", spring_constant=0.055, sensitivity=61)[0]
+    assert item.error is None and item.result.values["E"] > 0

@@ -48,17 +48,16 @@ namespace {
 bool is_vendor_text(const std::string& path) {
   if (is_instrument_file(path) || is_asylum_map_export(path)) return false;
   std::ifstream in(path, std::ios::binary);
-  std::string head(64, '\0');
+  std::string head(4096, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
   return is_vendor_curve_text(head);
 }
 
 int export_vendor_text(const std::string& path, const std::string& out, double spring_constant, double sensitivity) {
-  if (sensitivity > 0.0)
-    throw InputError("--sensitivity: " + path + " gives forces, not a deflection in volts to rescale");
   CsvOptions o;
   o.spring_constant = spring_constant;
+  o.sensitivity = sensitivity;
   const CurveData d = read_curve_csv(path, o);
   for (const std::string& note : d.notes) std::cerr << "export: note: " << printable(note) << "\n";
   OutputFile csv(out);

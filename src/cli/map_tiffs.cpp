@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -103,6 +104,23 @@ void prepare_tiff_dir(const std::string& dir, const std::vector<std::string>& in
                    [](const std::string& in) { return is_instrument_file(in) || is_asylum_map_export(in); }))
     throw InputError("--tiff: no input carries map positions (CSV curve files do not; instrument force maps and QI "
                      "files do)");
+  // A grid too large for an image is refused now too. A file that cannot be opened is left to the
+  // batch, which reports it as that file's failure and goes on.
+  for (const std::string& in : inputs) {
+    if (!is_instrument_file(in) && !is_asylum_map_export(in)) continue;
+    std::optional<InstrumentReader> reader;
+    try {
+      reader.emplace(in);
+    } catch (const InputError&) {
+      continue;
+    }
+    const InstrumentFile& h = reader->header();
+    const double pixels = static_cast<double>(std::max(h.grid_shape_x, 0)) * static_cast<double>(std::max(h.grid_shape_y, 0));
+    if (pixels > static_cast<double>(kMaxMapImagePixels))
+      throw InputError("--tiff: " + in + " has a map grid of " + std::to_string(h.grid_shape_x) + " x " +
+                       std::to_string(h.grid_shape_y) + " pixels; an image holds at most " +
+                       std::to_string(kMaxMapImagePixels) + " (8192 x 8192): drop --tiff for this map");
+  }
   prepare_derived_dir(dir, "--tiff", names, force, is_our_tiff, "a TIFF layerjkr wrote");
 }
 

@@ -7,6 +7,7 @@
 // side by side, each in time order. Z-Sense grows towards the sample.
 #include "io/afm_workshop.hpp"
 
+#include <algorithm>
 #include <map>
 #include <optional>
 
@@ -39,13 +40,18 @@ bool is_afm_workshop(std::string_view text) {
   return text.substr(0, kFirstLine.size()) == kFirstLine;
 }
 
-CurveData parse_afm_workshop(std::string_view text, const std::string& source, const CsvOptions& options) {
+std::optional<double> AfmWorkshopRecord::number(std::string_view key) const {
+  const auto it = header.find(key);
+  double v = 0.0;
+  if (it == header.end() || !parse_finite(trim(it->second), v)) return std::nullopt;
+  return v;
+}
+
+AfmWorkshopRecord read_afm_workshop(std::string_view text, const std::string& source, bool columns) {
   const auto fail = [&](const std::string& what) -> void {
     throw InputError(source + ": AFM Workshop force-distance file: " + what);
   };
-  if (options.length_unit != 1.0 || options.force_unit != 1.0)
-    fail("states its units (Z-Sense in nm, Force in nN); give no units option");
-  std::map<std::string, std::string, std::less<>> meta;
+  AfmWorkshopRecord r;
   std::size_t pos = 0, line = 0;
   // The next line, trimmed, counted in `line`; nullopt at the end of the text.
   const auto next_line = [&]() -> std::optional<std::string_view> {
@@ -65,7 +71,8 @@ CurveData parse_afm_workshop(std::string_view text, const std::string& source, c
       break;
     }
     const std::size_t colon = t.find(':');
-    if (colon != std::string_view::npos) meta.emplace(std::string(trim(t.substr(0, colon))), std::string(trim(t.substr(colon + 1))));
+    if (colon != std::string_view::npos)
+      r.header.emplace(std::string(trim(t.substr(0, colon))), std::string(trim(t.substr(colon + 1))));
   }
   if (header.empty()) fail("has no column header naming Z-Sense(nm)");
   std::vector<std::string_view> cells;
@@ -82,44 +89,58 @@ CurveData parse_afm_workshop(std::string_view text, const std::string& source, c
     if (side < 0 || !slot || *slot >= 0) fail("column '" + printable(std::string(name)) + "' is not one this reader knows");
     *slot = static_cast<int>(i);
   }
-  const bool volts = c.volts[0] >= 0;
-  if (c.z[0] < 0 || c.z[1] < 0 || (volts ? c.volts[1] < 0 || c.force[0] >= 0 : c.force[0] < 0 || c.force[1] < 0))
+  r.volts = c.volts[0] >= 0;
+  if (c.z[0] < 0 || c.z[1] < 0 || (r.volts ? c.volts[1] < 0 || c.force[0] >= 0 : c.force[0] < 0 || c.force[1] < 0))
     fail("expected Extend and Retract columns of Z-Sense(nm) with Force(nN) or with T-B(V)");
-  // k: the user's (as for instrument files) or the file's.
-  const std::optional<double> file_k = set_value(meta, "Force Constant, nN/nm");  // nN/nm = N/m
-  const double k = options.spring_constant > 0.0 ? options.spring_constant : file_k.value_or(0.0);
-  if (!(k > 0.0))
-    fail("gives no spring constant (Force Constant, nN/nm is absent or the unset 1.000000): the tip's position is "
-         "Z-Sense minus the deflection, force / k; give the cantilever's spring constant k [N/m] (--spring-constant)");
-  const std::optional<double> gain = set_value(meta, "Light Lever Gain, mV/nm");
-  if (volts && !gain)
-    fail("holds the photodiode's T-B(V), not force, and gives no Light Lever Gain, mV/nm (absent or the unset "
-         "1.000000) to make it a deflection: export Force(nN), or set the gain in the file's header");
-  CurveData d;
-  d.source = source;
-  d.spring_constant = k;
-  std::vector<double> rows[2][2];  // [side][z, force]
+  r.spring_constant = set_value(r.header, "Force Constant, nN/nm");  // nN/nm = N/m
+  if (const std::optional<double> gain = set_value(r.header, "Light Lever Gain, mV/nm")) r.sensitivity = 1e-6 / *gain;
+  if (!columns) return r;
   while (const auto next = next_line()) {
     const std::string_view t = *next;
     if (t.empty()) continue;
     split(t, cells);
     for (int side = 0; side < 2; ++side) {
-      const int zc = c.z[side], fc = volts ? c.volts[side] : c.force[side];
+      const int zc = c.z[side], fc = r.volts ? c.volts[side] : c.force[side];
       double z = 0.0, f = 0.0;
       if (static_cast<std::size_t>(std::max(zc, fc)) >= cells.size() || !parse_finite(cells[static_cast<std::size_t>(zc)], z) ||
           !parse_finite(cells[static_cast<std::size_t>(fc)], f))
         fail("line " + std::to_string(line) + ": '" + printable(std::string(t), 60) + "' is not a row of numbers");
-      // nm; force nN, or volts / (mV/nm) -> nm of deflection -> k x m.
-      const double deflection_m = volts ? f / (*gain * 1e-3) * 1e-9 : f * 1e-9 / k;
-      rows[side][0].push_back(z * 1e-9);
-      rows[side][1].push_back(volts ? k * deflection_m : f * 1e-9);
+      r.z[side].push_back(z * 1e-9);
+      r.signal[side].push_back(r.volts ? f : f * 1e-9);
     }
   }
-  if (rows[0][0].empty()) fail("has a column header but no data rows");
+  if (r.z[0].empty()) fail("has a column header but no data rows");
+  return r;
+}
+
+CurveData parse_afm_workshop(std::string_view text, const std::string& source, const CsvOptions& options) {
+  const auto fail = [&](const std::string& what) -> void {
+    throw InputError(source + ": AFM Workshop force-distance file: " + what);
+  };
+  if (options.length_unit != 1.0 || options.force_unit != 1.0)
+    fail("states its units (Z-Sense in nm, Force in nN); give no units option");
+  const AfmWorkshopRecord r = read_afm_workshop(text, source);
+  // k and the sensitivity: the user's (as for instrument files) or the file's.
+  const double k = options.spring_constant > 0.0 ? options.spring_constant : r.spring_constant.value_or(0.0);
+  if (!(k > 0.0))
+    fail("gives no spring constant (Force Constant, nN/nm is absent or the unset 1.000000): the tip's position is "
+         "Z-Sense minus the deflection, force / k; give the cantilever's spring constant k [N/m] (--spring-constant)");
+  const double sensitivity = options.sensitivity > 0.0 ? options.sensitivity : r.sensitivity.value_or(0.0);
+  if (r.volts && !(sensitivity > 0.0))
+    fail("holds the photodiode's T-B(V), not force, and gives no Light Lever Gain, mV/nm (absent or the unset "
+         "1.000000) to make it a deflection: give the deflection sensitivity [m/V] (--sensitivity; 1e-6 / the gain "
+         "in mV/nm), or export Force(nN)");
+  if (!r.volts && options.sensitivity > 0.0)
+    fail("gives forces (Force(nN)), not the photodiode's T-B(V): a sensitivity (--sensitivity " +
+         format_double(options.sensitivity) + " m/V) does not apply");
+  CurveData d;
+  d.source = source;
+  d.spring_constant = k;
   for (int side = 0; side < 2; ++side)
-    for (std::size_t i = 0; i < rows[side][0].size(); ++i) {
-      d.delta.push_back(rows[side][0][i] - rows[side][1][i] / k);
-      d.P.push_back(rows[side][1][i]);
+    for (std::size_t i = 0; i < r.z[side].size(); ++i) {
+      const double force = r.volts ? k * sensitivity * r.signal[side][i] : r.signal[side][i];
+      d.delta.push_back(r.z[side][i] - force / k);
+      d.P.push_back(force);
       d.segment.push_back(side);
     }
   d.validate();

@@ -41,6 +41,8 @@ bool is_afmformats_tab(std::string_view text) {
 CurveData parse_afmformats_tab(std::string_view text, const std::string& source, const CsvOptions& options) {
   const auto fail = [&](const std::string& what) -> void { throw InputError(source + ": afmformats tab export: " + what); };
   if (options.length_unit != 1.0 || options.force_unit != 1.0) fail("is in SI units (N, m, s); give no units option");
+  if (options.sensitivity > 0.0)
+    fail("gives forces [N]: a sensitivity (--sensitivity " + format_double(options.sensitivity) + " m/V) does not apply");
   std::vector<std::string_view> lines;
   for (std::size_t pos = 0; pos < text.size();) {
     std::size_t end = text.find('\n', pos);

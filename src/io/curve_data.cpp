@@ -12,6 +12,7 @@
 
 #include "io/afm_workshop.hpp"
 #include "io/afmformats_tab.hpp"
+#include "io/vendor_text.hpp"
 #include "io/csv_rows.hpp"
 #include "io/instrument_readers.hpp"
 #include "layerjkr/instrument.hpp"
@@ -275,21 +276,29 @@ void append_row(const std::vector<double>& v, const Layout& l, const CsvOptions&
 }  // namespace
 
 bool is_vendor_curve_text(std::string_view text) {
-  return detail::is_afm_workshop(text) || detail::is_afmformats_tab(text);
+  return detail::is_afm_workshop(text) || detail::is_afmformats_tab(text) || detail::is_chiaro_txt(text) ||
+         detail::is_ntmdt_txt(text);
 }
 
 CurveData parse_curve_csv(const std::string& text, const std::string& source,
                           const CsvOptions& options) {
   options.validate();
   const Fail fail{source};
+  // A format known not to be read is named for what it is, text or not.
+  if (const std::string why = detail::unread_format_reason(source); !why.empty()) fail(why);
   // A binary file: say which formats are known rather than only that it is not text.
   if (text.find('\0') != std::string::npos) {
-    if (const std::string why = detail::unread_format_reason(source); !why.empty()) fail(why);
     fail("is not a text file (it contains NUL bytes): not CSV, and its name is not of a known instrument format "
          "(known: " + known_instrument_formats() + ")");
   }
   if (detail::is_afm_workshop(text)) return detail::parse_afm_workshop(text, source, options);
   if (detail::is_afmformats_tab(text)) return detail::parse_afmformats_tab(text, source, options);
+  if (detail::is_chiaro_txt(std::string_view(text).substr(0, 4096))) return detail::parse_chiaro_txt(text, source, options);
+  if (detail::is_ntmdt_txt(text)) return detail::parse_ntmdt_txt(text, source, options);
+  if (options.sensitivity > 0.0)
+    fail("is a CSV of named columns: a sensitivity (--sensitivity, Python sensitivity= " +
+         format_double(options.sensitivity) + " m/V) does not apply; it turns an instrument's deflection signal into "
+         "metres (instrument files, AFM Workshop's T-B(V) and NT-MDT's exports)");
   detail::CsvRows rows(text);
   std::size_t line_no = 0;
   auto next_row = [&](std::vector<std::string_view>* cells) {

@@ -43,6 +43,9 @@ std::unique_ptr<CurveSource> open_nanoscope(const std::string& path, const ReadL
 std::vector<std::string> asylum_channel_files(const std::string& path);
 /// The map those files make, one curve per point, named `path`.
 std::unique_ptr<CurveSource> open_asylum_map(const std::string& path, const std::vector<std::string>& files);
+/// An AFM Workshop force map: a zip archive of the software's CSV exports, one per point
+/// (afm_workshop_map.cpp).
+std::unique_ptr<CurveSource> open_afm_workshop_map(const std::string& path, const ReadLimits& limits);
 std::unique_ptr<CurveSource> open_nanoscope_bytes(std::string bytes, const std::string& path, const ReadLimits& limits);
 
 }  // namespace layerjkr::detail

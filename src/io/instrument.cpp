@@ -75,6 +75,7 @@ std::unique_ptr<detail::CurveSource> open_source(const std::string& path, const 
     case InstrumentFormat::jpk_qi_data:
     case InstrumentFormat::jpk_qi_series: return detail::open_jpk(path, format, limits);
     case InstrumentFormat::ibw_map: return detail::open_asylum_map(path, detail::asylum_channel_files(path));
+    case InstrumentFormat::afm_workshop_map: return detail::open_afm_workshop_map(path, limits);
   }
   throw Error(path + ": InstrumentFormat " + std::to_string(static_cast<int>(format)) + " has no reader");
 }
@@ -93,6 +94,7 @@ std::optional<InstrumentFormat> instrument_format(const std::string& path) {
                              InstrumentFormat::jpk_qi_data, InstrumentFormat::jpk_qi_series, InstrumentFormat::ibw})
     if (ends_with(path, std::string(".") + to_string(f))) return f;
   if (ends_with(path, ".spm")) return InstrumentFormat::nanoscope;
+  if (ends_with(path, ".zip")) return InstrumentFormat::afm_workshop_map;
   // NanoScope numbers its files: name.000, name.001, ...
   const std::size_t dot = path.rfind('.');
   const std::size_t slash = path.find_last_of("/\\");
@@ -114,16 +116,23 @@ std::string unread_format_reason(const std::string& path) {
   std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   const std::string per_point = "export the map from AR's software as one .ibw wave per channel per point "
                                 "(LineLLLLPointPPPP<Channel>.ibw) and give their folder, which layerjkr reads as one map";
+  if (ends_with(lower, ".tnd"))
+    return "a JPK thermal noise file (the lever's calibration spectrum), not force curves: its header's sensitivity "
+           "and spring constant can be given to a curve that lacks them (--sensitivity [m/V], --spring-constant [N/m])";
+  if (ends_with(lower, ".uff"))
+    return "PyFMReader's UFF file, its copy of a vendor's curves (Entry_filename names the original): read the original";
   if (ends_with(lower, ".ardf")) return "Asylum Research ARDF force maps are not read yet: " + per_point;
   if (ends_with(lower, ".h5") || ends_with(lower, ".hdf5"))
-    return "HDF5 files (such as Asylum's HDF5 force maps) are not read: for an Asylum map, " + per_point;
+    return "HDF5 files (Asylum's HDF5 force maps, afmformats' HDF5 exports) are not read: for an afmformats "
+           "export, write the curve as afmformats' .tab (export_data(path, fmt=\"tab\")), which is read; for an "
+           "Asylum map, " + per_point;
   return "";
 }
 
 }  // namespace detail
 
 std::string known_instrument_formats() {
-  return ".jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series (JPK), .ibw (Asylum / Igor), .spm or .000-.999 (Bruker NanoScope)";
+  return ".jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series (JPK), .ibw (Asylum / Igor), .spm or .000-.999 (Bruker NanoScope), .zip (AFM Workshop map: a CSV export per point)";
 }
 
 CurveRange CurveRange::parse(const std::string& text, const std::string& what) {

@@ -34,6 +34,20 @@ TEST_CASE("bounds: a map header announcing 1e6 x 1e6 pixels over 4 curves is dra
   if (have_gnuplot()) CHECK(fs::file_size(unique("sparse_plots") + "/status.png") > 1000);
 }
 
+TEST_CASE("bounds: --tiff of a map whose grid no image can hold is refused before any fit", "[cli][bounds]") {
+  // Issue 41: the same 1e6 x 1e6 header with --tiff was refused only after every fit, the table
+  // and its record already written.
+  const std::string map = unique("tiff_sparse.jpk-force-map");
+  test::write_jpk_map(map, 4, 2, 1000000, 1000000);
+  const std::string table = unique("tiff_sparse.csv");
+  const Run r = run("fit-map " + map + kFree + " --out " + table + " --tiff " + unique("tiff_sparse_dir"));
+  CHECK(r.code == 2);
+  CHECK(count_lines(r.err) == 1);
+  CHECK(r.err.find("map grid of 1000000 x 1000000 pixels; an image holds at most 67108864") != std::string::npos);
+  CHECK_FALSE(fs::exists(table));
+  CHECK_FALSE(fs::exists(unique("tiff_sparse_dir")));
+}
+
 TEST_CASE("bounds: radii of a Dugdale law on a layer beyond 2 000 a call are refused before any is solved",
           "[cli][bounds]") {
   const std::string scene = write_file("md_film.json", R"({"indenter": {"shape": "paraboloid", "R": 2e-8},

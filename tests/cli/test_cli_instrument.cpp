@@ -236,5 +236,31 @@ TEST_CASE("export takes the vendors' text exports fit reads: AFM Workshop's CSV"
   CHECK(std::count(text.begin(), text.end(), '\n') > 100);
   const Run sens = run("export " + aw + " --spring-constant 0.2 --sensitivity 1e-7 --out " + unique("aw2.csv"));
   CHECK(sens.code == 2);
-  CHECK(sens.err.find("gives forces, not a deflection in volts") != std::string::npos);
+  CHECK(sens.err.find("a sensitivity (--sensitivity 1e-07 m/V) does not apply") != std::string::npos);
+}
+
+TEST_CASE("export takes NT-MDT's and Chiaro's text exports and AFM Workshop's maps, with their calibration",
+          "[cli][instrument]") {
+  // Issue 41: afmformats reads these; layerjkr did not. NT-MDT's file holds no calibration: both
+  // options are required and named; AFM Workshop's map of T-B volts needs the sensitivity.
+  const std::string dir = std::string(LAYERJKR_SOURCE_DIR) + "/tests/data/instrument/";
+  const std::string nt = dir + "fmt-ntmdt-txt-fd_2015_01_17_gel4-0,1_mQ_adh_6B_Curve_DFL_Height_51.txt";
+  const Run bare = run("export '" + nt + "' --out " + unique("nt0.csv"));
+  CHECK(bare.code == 2);
+  CHECK(bare.err.find("--spring-constant") != std::string::npos);
+  CHECK(bare.err.find("--sensitivity") != std::string::npos);
+  const std::string out = unique("nt.csv");
+  const Run r = run("export '" + nt + "' --spring-constant 0.055 --sensitivity 61 --out " + out);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(lines(slurp(out)).size() == 1645);  // a header and afmformats' 1644 samples
+  CHECK(r.err.find("note: dropped 178 approach and 178 retract rows of constant padding") != std::string::npos);
+  const std::string map = dir + "fmt-afm-workshop-fd_mapping_16_2018-08-01_13.07.zip";
+  const Run no_sens = run("export " + map + " --spring-constant 20 --out " + unique("ws0.csv"));
+  CHECK(no_sens.code == 2);
+  CHECK(no_sens.err.find("--sensitivity") != std::string::npos);
+  const Run ws = run("export " + map + " --spring-constant 20 --sensitivity 1e-8 --out " + unique("ws.csv"));
+  INFO(ws.err);
+  CHECK(ws.code == 0);
+  CHECK(ws.err.find("16 curve(s)") != std::string::npos);
 }
