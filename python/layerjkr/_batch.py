@@ -9,7 +9,7 @@ from typing import Any, Callable, Dict, Iterator, List, NamedTuple, Optional, Se
 import numpy.typing as npt
 
 from . import _core
-from ._common import BaselineKind, Branch, ContactPointMethod, Control, CurveRangeLike, Loss, SceneLike, Window, _float64, _integer, _number, _text
+from ._common import BaselineKind, Branch, ContactPointMethod, Control, CurveRangeLike, Loss, SceneLike, Window, _float64, _integer, _number, _pairs, _path, _positive, _sequence, _text
 from ._scene import _as_scene
 from ._fit_result import FitResult
 from ._fit_options import _array_inputs, _options, _provenance, _with_fit_parameters, _with_inputs
@@ -116,7 +116,8 @@ def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: Scen
     """
     options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
                        starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
-    pairs = [(_float64(d), _float64(p)) for d, p in curves]
+    pairs = [(_float64(c[0], "curves[%d] delta" % k), _float64(c[1], "curves[%d] P" % k))
+             for k, c in enumerate(_pairs("curves", curves))]
     s = _as_scene(scene)
     directory = _report_dir(report)
     with _keep_finished(options.branch):
@@ -214,12 +215,13 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
         begin, end = _curve_range(curves)
         selection = (begin, _NO_END if end is None else end)
     csv = _core.csv_options(units=_text("units", units),
-                            spring_constant=None if spring_constant is None else _number("spring_constant", spring_constant),
-                            sensitivity=None if sensitivity is None else _number("sensitivity", sensitivity),
+                            spring_constant=None if spring_constant is None else _positive("spring_constant", spring_constant, "N/m"),
+                            sensitivity=None if sensitivity is None else _positive("sensitivity", sensitivity, "m/V"),
                             z_sign=_number("z_sign", z_sign), deflection_sign=_number("deflection_sign", deflection_sign),
                             curve=None if curve is None else _integer("curve", curve))
-    if isinstance(paths, (str, os.PathLike)):
+    if isinstance(paths, (str, bytes, os.PathLike)):
         paths = [paths]
+    paths = [_path("paths[%d]" % k, p) for k, p in enumerate(_sequence("paths", paths))]
     # As bytes, the file system's own names: a name that is not UTF-8 (os.listdir gives it with
     # surrogates) reaches the file; each result's source gives it back as os.fsdecode would.
     names = [os.fsencode(p) for p in paths]
@@ -241,7 +243,7 @@ def _report_dir(report: Optional[Union[str, "os.PathLike[str]"]]) -> Optional[st
     """The report's directory, created and checked before any fitting (None: no report)."""
     if report is None:
         return None
-    directory = os.fspath(report)
+    directory = _path("report", report)
     _core.prepare_report_dir(directory, "report")
     return directory
 

@@ -2,7 +2,7 @@
 signatures and ModelWarning. Internal; the public names are re-exported by layerjkr."""
 from __future__ import annotations
 
-import os  # noqa: F401 - named in SceneLike
+import os
 import warnings as _warnings
 from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union
 
@@ -35,11 +35,47 @@ def _number(name: str, value: Any) -> float:
     return float(value)
 
 
+def _positive(name: str, value: Any, unit: str) -> float:
+    """A finite number > 0 for argument ``name`` [unit], else InputError naming it and the range
+    (rather than the library's name for the quantity)."""
+    v = _number(name, value)
+    if not (np.isfinite(v) and v > 0):
+        raise InputError("%s = %r is invalid; valid range: finite and > 0 [%s]" % (name, value, unit))
+    return v
+
+
 def _integer(name: str, value: Any) -> int:
-    """An integer for option ``name``: 2.5 is refused rather than truncated."""
+    """An integer for option ``name``: 2.5 is refused rather than truncated, and one the library's
+    32-bit integers cannot hold is an InputError naming it (not the binding's TypeError)."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
         raise TypeError("%s must be an integer, got %s %r" % (name, type(value).__name__, value))
+    if not -2**31 <= int(value) < 2**31:
+        raise InputError("%s = %d is out of range; valid range: [%d, %d]" % (name, int(value), -2**31, 2**31 - 1))
     return int(value)
+
+
+def _sequence(name: str, value: Any) -> Sequence[Any]:
+    """A list from a sequence for argument ``name``, else TypeError naming it."""
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
+        raise TypeError("%s must be a sequence, got %s %r" % (name, type(value).__name__, value))
+    return list(value)
+
+
+def _pairs(name: str, value: Any) -> Sequence[Any]:
+    """A list of (x, y) pairs for argument ``name``, else TypeError naming it and the bad element."""
+    items = _sequence(name, value)
+    for k, item in enumerate(items):
+        if isinstance(item, (str, bytes)) or not hasattr(item, "__len__") or len(item) != 2:
+            raise TypeError("%s[%d] must be a pair (delta, P), got %s %r" % (name, k, type(item).__name__, item))
+    return items
+
+
+def _path(name: str, value: Any) -> str:
+    """A file system path (str, bytes or os.PathLike) as str, else TypeError naming ``name``; bytes
+    that are not UTF-8 keep their bytes through os.fsdecode's surrogates."""
+    if not isinstance(value, (str, bytes, os.PathLike)):
+        raise TypeError("%s must be a path (str, bytes or os.PathLike), got %s %r" % (name, type(value).__name__, value))
+    return os.fsdecode(value)
 
 
 def _text(name: str, value: Any) -> str:
@@ -74,8 +110,8 @@ def _segments(segment: npt.ArrayLike) -> npt.NDArray[np.int64]:
             return values.astype(np.int64)
     out = []
     for i, v in enumerate(values.tolist()):
-        if (isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v) or v != int(v)
-                or abs(v) >= 2**31):
+        if (isinstance(v, bool) or not isinstance(v, (int, float)) or abs(v) >= 2**31 or not np.isfinite(v)
+                or v != int(v)):
             raise InputError("segment[%d] = %r is not a segment label; valid values: 0 (approach), 1 (retract), 2 (dwell)" % (i, v))
         out.append(int(v))
     return np.array(out, dtype=np.int64)
@@ -90,6 +126,10 @@ def _finite_or_none(x: Optional[float]) -> Optional[float]:
     return x if x is not None and np.isfinite(x) else None
 
 
-def _float64(a: npt.ArrayLike) -> npt.NDArray[np.float64]:
-    """The float64 C-ordered array the library fits (and provenance hashes)."""
-    return np.asarray(a, dtype=np.float64, order="C")
+def _float64(a: npt.ArrayLike, name: str = "array") -> npt.NDArray[np.float64]:
+    """The float64 C-ordered array the library fits (and provenance hashes); what cannot be one is
+    a TypeError naming the argument."""
+    try:
+        return np.asarray(a, dtype=np.float64, order="C")
+    except (TypeError, ValueError) as e:
+        raise TypeError("%s must be an array of numbers, got %s: %s" % (name, type(a).__name__, e)) from None

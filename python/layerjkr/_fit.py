@@ -9,7 +9,7 @@ import numpy.typing as npt
 
 from . import _core
 from ._core import InputError, NumericalError
-from ._common import BaselineKind, Branch, ContactPointMethod, Control, Loss, SceneLike, Window, _float64, _integer, _number, _segments, _text, _warn
+from ._common import BaselineKind, Branch, ContactPointMethod, Control, Loss, SceneLike, Window, _float64, _integer, _number, _segments, _sequence, _text, _warn
 from ._scene import _as_scene
 from ._fit_result import FitResult
 from ._fit_options import _array_inputs, _options, _provenance, _with_fit_parameters
@@ -69,8 +69,8 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
                        starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
     seg = None if segment is None else _segments(segment)
     length, force = _core.unit_scales(_text("units", units))
-    d, p = _float64(delta) * length, _float64(P) * force
-    tt = None if t is None else _float64(t)
+    d, p = _float64(delta, "delta") * length, _float64(P, "P") * force
+    tt = None if t is None else _float64(t, "t")
     s_ = _as_scene(scene)
     try:
         s = _core.fit(d, p, seg, tt, s_, options)
@@ -209,12 +209,13 @@ def _curve_tuple(c: Any, k: int) -> Tuple[Any, Any, Optional[List[int]], Optiona
         if missing:
             raise InputError("curves[%d] has no %s" % (k, " or ".join(missing)))
         seg, t = c.get("segment"), c.get("t")
-        return (_float64(c["delta"]), _float64(c["P"]), None if seg is None else _segments(seg),
-                None if t is None else _float64(t))
+        return (_float64(c["delta"], "curves[%d] delta" % k), _float64(c["P"], "curves[%d] P" % k),
+                None if seg is None else _segments(seg), None if t is None else _float64(t, "curves[%d] t" % k))
     if isinstance(c, (tuple, list)) and 2 <= len(c) <= 4:
         seg = c[2] if len(c) > 2 else None
         t = c[3] if len(c) > 3 else None
-        return (_float64(c[0]), _float64(c[1]), None if seg is None else _segments(seg), None if t is None else _float64(t))
+        return (_float64(c[0], "curves[%d] delta" % k), _float64(c[1], "curves[%d] P" % k),
+                None if seg is None else _segments(seg), None if t is None else _float64(t, "curves[%d] t" % k))
     raise InputError("curves[%d] is not a curve: give a Simulation, a dict with delta, P[, segment][, t], or a "
                      "tuple (delta, P[, segment[, t]])" % k)
 
@@ -247,7 +248,7 @@ def fit_joint(curves: Sequence[Any], scene: SceneLike, *, free: Union[str, Seque
     """
     options = _options(free, branch, control, spring_constant, "constant", "all", 0.5, loss, loss_scale, 0,
                        max_iterations, "fit", None, None, None)
-    tuples = [_curve_tuple(c, k) for k, c in enumerate(curves)]
+    tuples = [_curve_tuple(c, k) for k, c in enumerate(_sequence("curves", curves))]
     s_ = _as_scene(scene)
     joint, begin, sources, alone = _core.fit_joint(tuples, s_, options)
     inputs = []

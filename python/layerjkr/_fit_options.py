@@ -12,7 +12,7 @@ import numpy.typing as npt
 
 from . import _core
 from ._core import InputError, Scene
-from ._common import _integer, _number, _text
+from ._common import _integer, _number, _positive, _text
 
 
 # The names a fit frees (FitParameter's string registry, with its aliases T, w0 and V).
@@ -34,6 +34,8 @@ def _free(free: Union[str, Sequence[str]]) -> List[str]:
     """The free parameters: a sequence of names, or one string separated by commas and/or spaces."""
     if isinstance(free, str):
         free = [f for f in re.split(r"[,\s]+", free) if f]
+    if not hasattr(free, "__iter__"):
+        raise TypeError("free must be a string or a sequence of names, got %s %r" % (type(free).__name__, free))
     return [_parameter_name(_text("free", f).strip()) for f in free]
 
 
@@ -43,7 +45,7 @@ def _options(free: Union[str, Sequence[str]], branch: str, control: str, spring_
              indentation_range: Optional[Tuple[float, float]] = None, force_range: Optional[Tuple[float, float]] = None,
              baseline_window: Optional[Tuple[float, float]] = None) -> Any:
     return _core.fit_options(free=_free(free), branch=_text("branch", branch), control=_text("control", control),
-                             spring_constant=None if spring_constant is None else _number("spring_constant", spring_constant),
+                             spring_constant=None if spring_constant is None else _positive("spring_constant", spring_constant, "N/m"),
                              baseline=_text("baseline", baseline), window=_text("window", window),
                              window_fraction=_number("window_fraction", window_fraction), loss=_text("loss", loss),
                              loss_scale=None if loss_scale is None else _number("loss_scale", loss_scale),

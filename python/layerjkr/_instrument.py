@@ -7,7 +7,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union, overload
 
 from . import _core
 from ._core import InputError
-from ._common import CurveRangeLike, _integer, _number
+from ._common import CurveRangeLike, _integer, _number, _path, _positive
 
 
 # CurveRange's "to the last curve" as the binding takes it: any end past the last curve stops
@@ -83,9 +83,9 @@ def read_instrument(path: Union[str, "os.PathLike[str]"], *, curves: Optional[Cu
     open_instrument : random access to any curve without reading the others.
     """
     begin, end = (0, None) if curves is None else _curve_range(curves)
-    k = 0.0 if spring_constant is None else _number("spring_constant", spring_constant)
-    s = 0.0 if sensitivity is None else _number("sensitivity", sensitivity)
-    return _core.read_instrument(os.fspath(path), begin, end, k, s)
+    k = 0.0 if spring_constant is None else _positive("spring_constant", spring_constant, "N/m")
+    s = 0.0 if sensitivity is None else _positive("sensitivity", sensitivity, "m/V")
+    return _core.read_instrument(_path("path", path), begin, end, k, s)
 
 
 class Instrument(Sequence[Dict[str, Any]]):
@@ -105,7 +105,7 @@ class Instrument(Sequence[Dict[str, Any]]):
     """
 
     def __init__(self, path: Union[str, "os.PathLike[str]"]) -> None:
-        self._reader = _core.InstrumentReader(os.fspath(path))
+        self._reader = _core.InstrumentReader(_path("path", path))
         self._header: Dict[str, Any] = self._reader.header
         self._size: int = len(self._reader)
 

@@ -5,7 +5,7 @@ from typing import Any, Dict, List, NamedTuple, Optional, Tuple
 
 from . import _core
 from ._core import InputError
-from ._common import SceneLike, _finite_or_none, _number, _warn
+from ._common import SceneLike, _finite_or_none, _number, _positive, _warn
 from ._scene import AdhesionCheck, AutoChoice, FixedGrips, ModelError, _as_scene, _choice
 
 
@@ -265,8 +265,9 @@ def summary(scene: SceneLike, *, warning_threshold: float = 0.05, retract_speed:
         "load" if load_rate is not None else "cantilever" if stiffness is not None else "grips")
     rate = load_rate if load_rate is not None else retract_speed
     result = Summary(_core.summary(_as_scene(scene), _number("warning_threshold", warning_threshold), control,
-                                   0.0 if rate is None else _number("retract_speed" if load_rate is None else "load_rate", rate),
-                                   0.0 if stiffness is None else _number("stiffness", stiffness),
+                                   0.0 if rate is None else (_positive("retract_speed", rate, "m/s") if load_rate is None
+                                                             else _positive("load_rate", rate, "N/s")),
+                                   0.0 if stiffness is None else _positive("stiffness", stiffness, "N/m"),
                                    _number("start_force", start_force)))
     _warn(result._a.warnings, 2)
     return result

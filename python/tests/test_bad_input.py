@@ -120,3 +120,36 @@ def test_simulate_bounds_its_options_before_the_work(options, says):
     scene = {"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "half_space", "E": 2000, "nu": 0.5}}
     with pytest.raises(ValueError, match=says):
         layerjkr.simulate(scene, max_indentation=1e-6, **options)
+
+
+def test_every_argument_is_checked_by_its_own_name(source):
+    # Issue 41: an audit passing bad values to every argument of every function found pybind's
+    # "incompatible function arguments" for integers past 32 bits, bare "'NoneType' object is not
+    # iterable", and the library's internal names (cantilever_stiffness, RetractDrive: rate).
+    d, P, seg = curve_arrays(source)
+    scene = str(source / SCENE)
+    for name in ("max_iterations", "starts"):
+        with pytest.raises(layerjkr.InputError, match="%s = 10+ is out of range" % name):
+            layerjkr.fit(d, P, scene, free="E", **{name: 10**19})
+    with pytest.raises(layerjkr.InputError, match="jobs = -10+ is out of range"):
+        layerjkr.fit_batch([(d, P)], scene, free="E", jobs=-10**19)
+    with pytest.raises(layerjkr.InputError, match=r"segment\[0\] = 10+ is not a segment label"):
+        layerjkr.fit(d, P, scene, free="E", segment=[10**30] * len(d))
+    with pytest.raises(TypeError, match="free must be a string or a sequence"):
+        layerjkr.fit(d, P, scene, free=None)
+    with pytest.raises(TypeError, match="delta must be an array of numbers"):
+        layerjkr.fit(object(), P, scene, free="E")
+    with pytest.raises(TypeError, match=r"curves\[0\] must be a pair"):
+        layerjkr.fit_batch([1, 2], scene, free="E")
+    with pytest.raises(TypeError, match="paths must be a sequence"):
+        layerjkr.fit_files(None, scene, free="E")
+    with pytest.raises(TypeError, match="path must be a path"):
+        layerjkr.read_instrument(None)
+    with pytest.raises(layerjkr.InputError, match=r"spring_constant = -1 is invalid; valid range: finite and > 0 \[N/m\]"):
+        layerjkr.fit(d, P, scene, free="E", spring_constant=-1)
+    with pytest.raises(layerjkr.InputError, match=r"retract_speed = -1 is invalid"):
+        layerjkr.summary(scene, retract_speed=-1)
+    # A bytes path is a path, as the CLI takes any name the file system gives.
+    ibw = os.fsencode(str(source / "tests/data/instrument/IgorIBWReader_ForceCurve.ibw"))
+    assert len(layerjkr.read_instrument(ibw)) == 1
+    assert layerjkr.fit_files([ibw], scene, free="E")[0].source.endswith("IgorIBWReader_ForceCurve.ibw")
