@@ -10,11 +10,12 @@
 # python3-nbclient, python3-nbformat and python3-ipykernel run examples/notebooks/afm_map.ipynb in the tests.
 # python3-venv and patchelf: tools/bundle_wheel.py and the test that installs the wheel into a fresh venv.
 # python3-scipy: python/bench/fit_vs_scipy.py, the per-curve comparison with scipy's least_squares.
+# libhdf5-dev: afmformats' .h5 exports, read by the CLI (not linked into the library or the wheel).
 # Runs apt-get directly as root (CI, containers) and through sudo otherwise.
 set -euo pipefail
 packages=(cmake ninja-build g++ libeigen3-dev libgsl-dev libboost-dev libceres-dev libmetis-dev
           catch2 libcli11-dev nlohmann-json3-dev libbenchmark-dev gnuplot-nox
-          clang clang-tidy libclang-rt-14-dev libzip-dev zipcmp zipmerge ziptool zlib1g-dev libdeflate-dev pkg-config libssl-dev
+          clang clang-tidy libclang-rt-14-dev libzip-dev zipcmp zipmerge ziptool zlib1g-dev libdeflate-dev pkg-config libssl-dev libhdf5-dev
           pybind11-dev python3-dev python3-pybind11 python3-numpy python3-pytest python3-setuptools
           python3-pip python3-matplotlib python3-dask python3-distributed python3-pandas python3-xarray
           python3-nbclient python3-nbformat python3-ipykernel python3-venv patchelf python3-scipy

@@ -100,11 +100,18 @@ struct ReadLimits {
 
 /// The format a file name says: .jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series, .ibw, and for
 /// Bruker NanoScope .spm or a numbered extension .000 - .999, for an AFM Workshop map .zip (an
-/// archive of its CSV exports, one per point; a .zip of anything else is refused when read);
-/// none for any other name.
+/// archive of its CSV exports, one per point; a .zip of anything else is refused when read), for
+/// afmformats' HDF5 export .h5 or .hdf5 (read only in programs that link libhdf5 - the CLI; others
+/// refuse it saying so: src/io/afmformats_hdf5.hpp says why); none for any other name.
 std::optional<InstrumentFormat> instrument_format(const std::string& path);
 /// True if the file name ends in an extension read_instrument_file knows.
 bool is_instrument_file(const std::string& path);
+/// From now on, read afmformats' HDF5 exports (.h5, .hdf5) too (idempotent, thread-safe). Defined
+/// in the build tree's target layerjkr_hdf5 (not installed with the package), which links libhdf5
+/// (Debian's brings 34 shared libraries, which the library and the Python wheel do not carry); the
+/// CLI links it and calls this at start. Without it an .h5 file is refused with an InputError
+/// saying where it is read.
+void enable_hdf5_reading();
 /// True if `path` names an Asylum force map exported one Igor wave per channel per point
 /// (format ibw-map): a directory holding LineLLLLPointPPPP<Channel>.ibw files (Defl, ZSnsr,
 /// optionally Raw), directly or in LineLLLL folders, or a glob pattern every match of which is

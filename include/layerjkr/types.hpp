@@ -104,8 +104,10 @@ enum class SegmentStyle { extend, retract, pause, modulation };
 /// An instrument file's format (instrument.hpp): "jpk-force", "jpk-force-map",
 /// "jpk-qi-data", "ibw", "nanoscope" (Bruker force curves and force volumes), "ibw-map" (an
 /// Asylum force map exported as one Igor wave per channel per point, read from its folder),
-/// "jpk-qi-series", "afm-workshop-map" (a .zip of AFM Workshop's CSV exports, one per point).
-enum class InstrumentFormat { jpk_force, jpk_force_map, jpk_qi_data, ibw, nanoscope, ibw_map, jpk_qi_series, afm_workshop_map };
+/// "jpk-qi-series", "afm-workshop-map" (a .zip of AFM Workshop's CSV exports, one per point),
+/// "afmformats-hdf5" (afmformats' .h5 export; read where libhdf5 is linked, instrument.hpp).
+enum class InstrumentFormat { jpk_force, jpk_force_map, jpk_qi_data, ibw, nanoscope, ibw_map, jpk_qi_series, afm_workshop_map,
+                              afmformats_hdf5 };
 
 /// Smoothing of discrete data (discrete.hpp): "log_polynomial", "log_spline".
 enum class Smoothing { log_polynomial, log_spline };

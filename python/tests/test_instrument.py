@@ -199,3 +199,9 @@ def test_vendor_exports_read_with_the_calibration_given(source):
     assert bare.result is None and "--spring-constant" in bare.error and "--sensitivity" in bare.error
     item = layerjkr.fit_files([nt], scene, free="E,delta0,P0", spring_constant=0.055, sensitivity=61)[0]
     assert item.error is None and item.result.values["E"] > 0
+
+
+def test_hdf5_is_refused_saying_where_it_is_read(source):
+    # The wheel carries no libhdf5 (34 libraries on Debian): the CLI reads afmformats' .h5 exports.
+    with pytest.raises(layerjkr.InputError, match="not read by this program.*layerjkr export FILE.h5"):
+        layerjkr.read_instrument(source / "tests/data/instrument/fmt-hdf5-fd_version_0.13.3.h5")

@@ -319,6 +319,7 @@ static int run_main(int argc, char** argv) {
 int main(int argc, char** argv) {
   // Past RLIMIT_FSIZE a write fails with EFBIG, which the writers report, instead of a core dump.
   std::signal(SIGXFSZ, SIG_IGN);
+  layerjkr::enable_hdf5_reading();  // the CLI links libhdf5; the library alone does not
   try {
     const int rc = run_main(argc, argv);
     // Why the disk cache was off, or which entries it refused (a folder others can write, a

@@ -60,7 +60,8 @@ LAYERJKR_NAMES(InstrumentFormat, {InstrumentFormat::jpk_force, "jpk-force"},
                {InstrumentFormat::jpk_force_map, "jpk-force-map"}, {InstrumentFormat::jpk_qi_data, "jpk-qi-data"},
                {InstrumentFormat::ibw, "ibw"}, {InstrumentFormat::nanoscope, "nanoscope"},
                {InstrumentFormat::ibw_map, "ibw-map"}, {InstrumentFormat::jpk_qi_series, "jpk-qi-series"},
-               {InstrumentFormat::afm_workshop_map, "afm-workshop-map"})
+               {InstrumentFormat::afm_workshop_map, "afm-workshop-map"},
+               {InstrumentFormat::afmformats_hdf5, "afmformats-hdf5"})
 LAYERJKR_NAMES(Smoothing, {Smoothing::log_polynomial, "log_polynomial"}, {Smoothing::log_spline, "log_spline"})
 LAYERJKR_NAMES(DiscreteApproach, {DiscreteApproach::two_models, "two_models"},
                {DiscreteApproach::single_model, "single_model"})

@@ -50,6 +50,9 @@ class AfmWorkshopMap final : public CurveSource {
     std::set<double> xs, ys;
     for (std::size_t i = 0; i < names_.size(); ++i) {
       const std::string text = member(i);
+      if (!is_afm_workshop(text) && is_vendor_curve_text(std::string_view(text).substr(0, 4096)))
+        throw InputError(where(i) + ": a curve export layerjkr reads (Chiaro, NT-MDT, afmformats tab), zipped: unpack "
+                                    "the archive and give the file itself; a .zip is read as an AFM Workshop force map");
       if (!is_afm_workshop(text))
         throw InputError(where(i) + ": not an AFM Workshop force-distance export (its first line is not 'Force-Distance "
                                     "Curve'); layerjkr reads a .zip as an AFM Workshop force map, one export per point");

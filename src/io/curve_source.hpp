@@ -49,3 +49,12 @@ std::unique_ptr<CurveSource> open_afm_workshop_map(const std::string& path, cons
 std::unique_ptr<CurveSource> open_nanoscope_bytes(std::string bytes, const std::string& path, const ReadLimits& limits);
 
 }  // namespace layerjkr::detail
+
+namespace layerjkr::detail {
+
+/// The reader of afmformats' .h5 exports, installed by enable_hdf5_reading() (afmformats_hdf5.hpp)
+/// in programs that link libhdf5; null elsewhere, and an .h5 file is then refused.
+using Hdf5Opener = std::unique_ptr<CurveSource> (*)(const std::string& path, const ReadLimits& limits);
+void set_hdf5_opener(Hdf5Opener opener);
+
+}  // namespace layerjkr::detail

@@ -2,6 +2,7 @@
 #include "layerjkr/instrument.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -62,6 +63,11 @@ InstrumentFormat format_by_content(const std::string& path) {
   throw InputError(path + ": not an instrument file" + known);
 }
 
+std::atomic<detail::Hdf5Opener>& hdf5_opener() {
+  static std::atomic<detail::Hdf5Opener> opener{nullptr};
+  return opener;
+}
+
 std::unique_ptr<detail::CurveSource> open_source(const std::string& path, const ReadLimits& limits) {
   if (std::vector<std::string> files = detail::asylum_channel_files(path); !files.empty())
     return detail::open_asylum_map(path, files);
@@ -76,6 +82,9 @@ std::unique_ptr<detail::CurveSource> open_source(const std::string& path, const 
     case InstrumentFormat::jpk_qi_series: return detail::open_jpk(path, format, limits);
     case InstrumentFormat::ibw_map: return detail::open_asylum_map(path, detail::asylum_channel_files(path));
     case InstrumentFormat::afm_workshop_map: return detail::open_afm_workshop_map(path, limits);
+    case InstrumentFormat::afmformats_hdf5:
+      if (const detail::Hdf5Opener open = hdf5_opener().load()) return open(path, limits);
+      throw InputError(path + ": " + detail::unread_format_reason(path));
   }
   throw Error(path + ": InstrumentFormat " + std::to_string(static_cast<int>(format)) + " has no reader");
 }
@@ -95,6 +104,7 @@ std::optional<InstrumentFormat> instrument_format(const std::string& path) {
     if (ends_with(path, std::string(".") + to_string(f))) return f;
   if (ends_with(path, ".spm")) return InstrumentFormat::nanoscope;
   if (ends_with(path, ".zip")) return InstrumentFormat::afm_workshop_map;
+  if (ends_with(path, ".h5") || ends_with(path, ".hdf5")) return InstrumentFormat::afmformats_hdf5;
   // NanoScope numbers its files: name.000, name.001, ...
   const std::size_t dot = path.rfind('.');
   const std::size_t slash = path.find_last_of("/\\");
@@ -111,28 +121,30 @@ bool is_asylum_map_export(const std::string& path) { return !detail::asylum_chan
 
 namespace detail {
 
+void set_hdf5_opener(Hdf5Opener opener) { hdf5_opener().store(opener); }
+
 std::string unread_format_reason(const std::string& path) {
   std::string lower = path;
   std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  const std::string per_point = "export the map from AR's software as one .ibw wave per channel per point "
-                                "(LineLLLLPointPPPP<Channel>.ibw) and give their folder, which layerjkr reads as one map";
+  const std::string per_point = kAsylumPerPoint;
   if (ends_with(lower, ".tnd"))
     return "a JPK thermal noise file (the lever's calibration spectrum), not force curves: its header's sensitivity "
            "and spring constant can be given to a curve that lacks them (--sensitivity [m/V], --spring-constant [N/m])";
   if (ends_with(lower, ".uff"))
     return "PyFMReader's UFF file, its copy of a vendor's curves (Entry_filename names the original): read the original";
+  if ((ends_with(lower, ".h5") || ends_with(lower, ".hdf5")) && !hdf5_opener().load())
+    return "HDF5 files are not read by this program: afmformats' HDF5 exports are read where libhdf5 is linked - "
+           "the layerjkr CLI (layerjkr export FILE.h5 --out FILE.csv) - not here (the Python wheel does not carry "
+           "libhdf5 and its 34 libraries); or write the curve with afmformats as .tab (export_data(path, "
+           "fmt=\"tab\")), which is read; " + per_point;
   if (ends_with(lower, ".ardf")) return "Asylum Research ARDF force maps are not read yet: " + per_point;
-  if (ends_with(lower, ".h5") || ends_with(lower, ".hdf5"))
-    return "HDF5 files (Asylum's HDF5 force maps, afmformats' HDF5 exports) are not read: for an afmformats "
-           "export, write the curve as afmformats' .tab (export_data(path, fmt=\"tab\")), which is read; for an "
-           "Asylum map, " + per_point;
   return "";
 }
 
 }  // namespace detail
 
 std::string known_instrument_formats() {
-  return ".jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series (JPK), .ibw (Asylum / Igor), .spm or .000-.999 (Bruker NanoScope), .zip (AFM Workshop map: a CSV export per point)";
+  return ".jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series (JPK), .ibw (Asylum / Igor), .spm or .000-.999 (Bruker NanoScope), .zip (AFM Workshop map: a CSV export per point), .h5 (afmformats' HDF5 export)";
 }
 
 CurveRange CurveRange::parse(const std::string& text, const std::string& what) {

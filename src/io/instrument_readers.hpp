@@ -26,6 +26,10 @@ std::unique_ptr<CurveSource> source_of(InstrumentFile file);
 InstrumentFile read_ibw(const std::string& path);
 /// The same from the file's bytes; `path` names it in errors.
 InstrumentFile read_ibw_bytes(const std::string& bytes, const std::string& path);
+/// What to do with an Asylum map layerjkr does not read (ARDF, HDF5): export it per point.
+inline constexpr const char* kAsylumPerPoint =
+    "for an Asylum map, export it from AR's software as one .ibw wave per channel per point "
+    "(LineLLLLPointPPPP<Channel>.ibw) and give their folder, which layerjkr reads as one map";
 /// Why a file of a known vendor format that layerjkr does not read is refused, with what to export
 /// instead (Asylum ARDF and HDF5 maps, by the name's extension in any case); empty for any other.
 std::string unread_format_reason(const std::string& path);

@@ -263,4 +263,11 @@ TEST_CASE("export takes NT-MDT's and Chiaro's text exports and AFM Workshop's ma
   INFO(ws.err);
   CHECK(ws.code == 0);
   CHECK(ws.err.find("16 curve(s)") != std::string::npos);
+  // afmformats' HDF5 export: the CLI links libhdf5 (the library and the wheel do not).
+  const std::string h5 = unique("h5.csv");
+  const Run hd = run("export " + dir + "fmt-hdf5-fd_version_0.13.3.h5 --out " + h5);
+  INFO(hd.err);
+  CHECK(hd.code == 0);
+  CHECK(lines(slurp(h5)).size() == 7797);
+  CHECK(lines(slurp(h5))[2001].find(",-7.038311459845539e-10,") != std::string::npos);  // afmformats' force[2000]
 }

@@ -52,7 +52,7 @@ TEST_CASE("every registered enum spells each enumerator once and parses it back"
   check_round_trip<AdhesionModel>(3);
   check_round_trip<FitFamily>(6);
   check_round_trip<SegmentStyle>(4);
-  check_round_trip<InstrumentFormat>(8);
+  check_round_trip<InstrumentFormat>(9);
   check_round_trip<Smoothing>(2);
   check_round_trip<DiscreteApproach>(2);
 }

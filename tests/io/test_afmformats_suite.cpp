@@ -115,6 +115,9 @@ TEST_CASE("afmformats suite: an AFM Workshop map, a zip of one export per point"
   test::write_zip(bad, {{"notes.txt", "hello\n"}});
   CHECK_THAT(test::input_error([&] { read_instrument_file(bad); }),
              Catch::Contains("notes.txt: not an AFM Workshop force-distance export"));
+  // afmformats ships its Chiaro file zipped: named for what it is, with what to do.
+  CHECK_THAT(test::input_error([&] { read_instrument_file(kDir + "fmt-chiaro-txt_AEBP1_Indentation_002.zip"); }),
+             Catch::Contains("zipped: unpack the archive and give the file itself"));
 }
 
 TEST_CASE("afmformats suite: AFM Workshop 4.0 exports - unset constants, a given sensitivity, forces without k",
