@@ -29,12 +29,19 @@ namespace layerjkr {
 ///              linear solid is one term, g_1 = 1 - E_inf/E.
 ///   power_law: psi = (t/t0)^-beta for t > 0 (Efremov et al. 2017); E is then the modulus at t0,
 ///              not an instantaneous one (psi is infinite at t = 0+), and beta in [0, 1).
+///   power_law_plateau (a power law with `plateau_form`): psi = p + (1 - p)(t/t0)^-beta, p =
+///              E_inf/E in [0, 1): E(t) = E_inf + (E - E_inf)(t/t0)^-beta, which relaxes towards
+///              E_inf instead of 0 (the scene's "power_law_plateau" with E_inf in Pa).
 struct RelaxationLaw {
   enum class Kind { elastic, prony, power_law };
   Kind kind = Kind::elastic;
   std::vector<double> g, tau;  ///< prony: weights in (0, 1] summing to <= 1, times [s] > 0
   double beta = 0.0;           ///< power_law: exponent in [0, 1)
   double t0 = 1.0;             ///< power_law: the time [s] at which E(t0) = E, > 0
+  double plateau = 0.0;        ///< power_law: E_inf/E in [0, 1) (0: the plain power law)
+  /// Made by power_law_plateau (a scene's "power_law_plateau"): its E_inf was given in Pa, and a
+  /// fit may free E_inf.
+  bool plateau_form = false;
   /// Made by standard_linear_solid (a scene's "sls"): one Prony term whose relaxed modulus E_inf
   /// was given in Pa, so a fit that frees E holds E_inf (not the ratio) where it is not free.
   bool standard_linear_solid_form = false;
@@ -44,6 +51,8 @@ struct RelaxationLaw {
   static RelaxationLaw standard_linear_solid(double E_inf_ratio, double tau);
   static RelaxationLaw prony(std::vector<double> g, std::vector<double> tau);
   static RelaxationLaw power_law(double beta, double t0);
+  /// E(t) = E_inf + (E - E_inf)(t/t0)^-beta (`E_inf_ratio` = E_inf/E in [0, 1)).
+  static RelaxationLaw power_law_plateau(double beta, double t0, double E_inf_ratio);
 
   /// psi(t) for t > 0 [s]; accurate to rounding.
   double relative_modulus(double t) const;

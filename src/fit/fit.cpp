@@ -105,6 +105,9 @@ ParameterMap detail::make_parameter_map(const FitOptions& options, const Resolve
   for (FitParameter q : {FitParameter::K, FitParameter::E, FitParameter::R, FitParameter::G, FitParameter::sigma0,
                          FitParameter::E_inf, FitParameter::tau, FitParameter::beta, FitParameter::v_star, FitParameter::n})
     map.ref[static_cast<int>(q)] = map.fixed_value(q);
+  // E_inf is fitted on a log scale around its reference: a scene's E_inf = 0 would pin it there.
+  if (map.is_free(FitParameter::E_inf) && !(map.ref[static_cast<int>(FitParameter::E_inf)] > 0.0))
+    map.ref[static_cast<int>(FitParameter::E_inf)] = 0.25 * map.ref[static_cast<int>(FitParameter::E)];
   const CurveParameters<double>& f = fixed.values;
   map.G_log = resolved.spec.kind == ModelKind::full_foundation && !resolved.automatic;
   map.G_scale = f.G != 0.0 ? std::abs(f.G) : f.K * span * span;

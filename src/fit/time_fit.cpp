@@ -41,7 +41,10 @@ void check_request(const CurveData& curve, const Scene& scene, const FitOptions&
   for (FitParameter q : o.free) {
     const bool sls = law.kind == RelaxationLaw::Kind::prony && law.g.size() == 1;
     std::string no;
-    if ((q == FitParameter::E_inf || q == FitParameter::tau) && !(relaxes && sls))
+    if (q == FitParameter::E_inf && !(relaxes && (sls || law.plateau_form)))
+      no = "is a one-term Prony law's (\"sls\", or \"prony\" with one g) or a power law's with a plateau "
+           "(\"power_law_plateau\")";
+    else if (q == FitParameter::tau && !(relaxes && sls))
       no = "is a one-term Prony law's (\"sls\", or \"prony\" with one g)";
     else if (q == FitParameter::beta && !(relaxes && law.kind == RelaxationLaw::Kind::power_law))
       no = "is a power law's (\"power_law\")";
@@ -117,6 +120,7 @@ void law_values(const Scene& scene, SceneParameters* fixed) {
     v.tau = law.tau[0];
   }
   v.beta = law.beta;
+  if (law.plateau_form) v.E_inf = v.E * law.plateau;
   if (scene.adhesion.kinetics) {
     v.v_star = scene.adhesion.kinetics->v_star;
     v.n = scene.adhesion.kinetics->n;

@@ -25,7 +25,8 @@ RelaxationKernel<T> kernel_at(const RelaxationLaw& law, const CurveParameters<T>
         return prony_kernel<T>(T(1.0 - std::accumulate(law.g.begin(), law.g.end(), 0.0)), g, tau);
       }
     case RelaxationLaw::Kind::power_law:
-      return power_law_kernel<T>(p.beta, law.t0, t_lo, t_hi);
+      // The plateau law holds E_inf in Pa (free or the scene's): its ratio moves with E.
+      return power_law_kernel<T>(p.beta, law.t0, t_lo, t_hi, law.plateau_form ? T(p.E_inf / p.E) : T(0.0));
     case RelaxationLaw::Kind::elastic:
       break;
   }
@@ -66,6 +67,7 @@ bool HereditaryEvaluator::sweep(const double* x, bool jacobian) {
   if (!(p.E > 0.0 && std::isfinite(p.E)) || !std::isfinite(delta0) || !std::isfinite(P0)) return false;
   if (prony1 && !(p.E_inf >= 0.0 && std::isfinite(p.E_inf) && p.tau > 0.0 && std::isfinite(p.tau))) return false;
   if (law_.kind == RelaxationLaw::Kind::power_law && !(p.beta >= 0.0 && p.beta < 1.0)) return false;
+  if (law_.plateau_form && !(p.E_inf >= 0.0 && p.E_inf < p.E)) return false;
   p.s = 0.0;  // the elastic force: no adhesion
   CurveParameters<J> pj;
   J d0j(delta0), P0j(P0);

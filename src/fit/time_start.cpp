@@ -96,9 +96,18 @@ void start_in_time(const CurveData& curve, const Scene& elastic, const Scene& sc
         candidates.push_back({E, r * E, tau, beta0, v0});
       }
   } else if (relaxes && law.kind == RelaxationLaw::Kind::power_law) {
-    std::vector<double> betas{beta0};
+    std::vector<double> betas{beta0}, ratios{law.plateau};
     if (has(options.free, FitParameter::beta)) betas = {beta0, 0.03, 0.1, 0.2, 0.35, 0.5};
-    for (double b : betas) candidates.push_back({E_for(std::pow(0.5 * T / law.t0, -b)), E_inf0, tau0, b, v0});
+    if (law.plateau_form) {
+      ratios = {map.fixed_value(FitParameter::E_inf) / map.fixed_value(FitParameter::E)};
+      // E_inf is fitted on a log scale: the candidates are plateaus > 0.
+      if (has(options.free, FitParameter::E_inf)) ratios = {ratios[0] > 0.0 ? ratios[0] : 0.1, 0.25, 0.5, 0.75};
+    }
+    for (double b : betas)
+      for (double r : ratios) {
+        const double E = E_for(r + (1.0 - r) * std::pow(0.5 * T / law.t0, -b));
+        candidates.push_back({E, law.plateau_form ? r * E : E_inf0, tau0, b, v0});
+      }
   } else if (relaxes) {
     double g_inf = 1.0, mean = 1.0;  // a longer Prony law: its mean over the loading
     for (std::size_t i = 0; i < law.g.size(); ++i) g_inf -= law.g[i];

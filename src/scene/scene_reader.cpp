@@ -222,7 +222,7 @@ void check_elastic(const Reader& in, const std::string& path, double E, double n
 }
 
 // medium.viscoelastic: {"law": "sls", "E_inf", "tau"} | {"law": "prony", "g", "tau"} |
-// {"law": "power_law", "beta", "t0"}; E is the medium's instantaneous modulus (a stack's top
+// {"law": "power_law", "beta", "t0"} | {"law": "power_law_plateau", "beta", "t0", "E_inf"}; E is the medium's instantaneous modulus (a stack's top
 // layer's: every layer relaxes by the same ratio).
 RelaxationLaw read_relaxation(const Reader& in, const json& med, double E) {
   const std::string path = "medium.viscoelastic";
@@ -250,7 +250,15 @@ RelaxationLaw read_relaxation(const Reader& in, const json& med, double E) {
     const double beta = in.number(v, "beta", path), t0 = in.number(v, "t0", path);
     return in.checked(path, [&] { return RelaxationLaw::power_law(beta, t0); });
   }
-  in.fail(path + ".law", "= \"" + law + "\" is unknown (known: sls, prony, power_law)");
+  if (law == "power_law_plateau") {
+    in.only_keys(v, path, {"law", "beta", "t0", "E_inf"});
+    const double beta = in.number(v, "beta", path), t0 = in.number(v, "t0", path), E_inf = in.number(v, "E_inf", path);
+    if (!(E_inf >= 0.0 && E_inf < E))
+      in.fail(path + ".E_inf", "= " + format_double(E_inf) + " is invalid; valid range: [0, E) with E = " + format_double(E) +
+                                   " Pa, the modulus at t0");
+    return in.checked(path, [&] { return RelaxationLaw::power_law_plateau(beta, t0, E_inf / E); });
+  }
+  in.fail(path + ".law", "= \"" + law + "\" is unknown (known: sls, prony, power_law, power_law_plateau)");
 }
 
 // {"type": "layers", "layers": [{"E", "nu", "h"}, ...], "base": "bonded" | "frictionless" | {"E", "nu"}}

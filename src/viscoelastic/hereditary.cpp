@@ -18,7 +18,7 @@ RelaxationKernel<double> kernel_of(const RelaxationLaw& law, double t_lo, double
     case RelaxationLaw::Kind::prony:
       return prony_kernel<double>(1.0 - std::accumulate(law.g.begin(), law.g.end(), 0.0), law.g, law.tau);
     case RelaxationLaw::Kind::power_law:
-      return power_law_kernel<double>(law.beta, law.t0, t_lo, t_hi);
+      return power_law_kernel<double>(law.beta, law.t0, t_lo, t_hi, law.plateau);
   }
   return prony_kernel<double>(1.0, {}, {});
 }

@@ -43,6 +43,17 @@ RelaxationLaw RelaxationLaw::power_law(double beta, double t0) {
   return law;
 }
 
+RelaxationLaw RelaxationLaw::power_law_plateau(double beta, double t0, double E_inf_ratio) {
+  RelaxationLaw law;
+  law.kind = Kind::power_law;
+  law.beta = beta;
+  law.t0 = t0;
+  law.plateau = E_inf_ratio;
+  law.plateau_form = true;
+  law.validate();
+  return law;
+}
+
 void RelaxationLaw::validate() const {
   const char* fn = "RelaxationLaw";
   switch (kind) {
@@ -66,6 +77,7 @@ void RelaxationLaw::validate() const {
     case Kind::power_law:
       if (!(beta >= 0.0 && beta < 1.0)) throw DomainError(fn, "beta", beta, "[0, 1)");
       if (!(t0 > 0.0 && std::isfinite(t0))) throw DomainError(fn, "t0", t0, "finite and > 0 [s]");
+      if (!(plateau >= 0.0 && plateau < 1.0)) throw DomainError(fn, "E_inf/E", plateau, "[0, 1)");
       return;
   }
 }
@@ -80,7 +92,7 @@ double RelaxationLaw::relative_modulus(double t) const {
       return psi;
     }
     case Kind::power_law:
-      return std::pow(t / t0, -beta);
+      return plateau + (1.0 - plateau) * std::pow(t / t0, -beta);
   }
   return 1.0;
 }
@@ -94,6 +106,9 @@ std::string RelaxationLaw::describe() const {
         return "sls(E_inf/E = " + format_double(1.0 - g[0]) + ", tau = " + format_double(tau[0]) + " s)";
       return "prony(g = " + list(g) + ", tau = " + list(tau) + " s)";
     case Kind::power_law:
+      if (plateau_form)
+        return "power_law_plateau(beta = " + format_double(beta) + ", t0 = " + format_double(t0) +
+               " s, E_inf/E = " + format_double(plateau) + ")";
       return "power_law(beta = " + format_double(beta) + ", t0 = " + format_double(t0) + " s)";
   }
   return "";

@@ -60,9 +60,10 @@ template <class T>
 struct RelaxationKernel {
   /// psi(t) ~ sum_j c[j] exp(-u[j] t) for t >= t_lo (exact for Prony laws); u >= 0.
   std::vector<T> c, u;
-  /// The power law psi = (t/t0)^-beta, for the exact integrals; else a Prony law.
+  /// The power law psi = p + (1 - p)(t/t0)^-beta (p = plateau, 0 for the plain law), for the
+  /// exact integrals; else a Prony law.
   bool power = false;
-  T beta{};
+  T beta{}, plateau{};
   double t0 = 1.0;
 
   /// int_lo^hi psi(r) dr for 0 <= lo <= hi, exact (not the sum's).
@@ -75,9 +76,9 @@ struct RelaxationKernel {
     if (power) {
       // t0^beta (hi^e - lo^e) / e, e = 1 - beta, with hi^e - lo^e = lo^e expm1(e log1p((hi-lo)/lo)).
       const T e = T(1.0) - beta;
-      const T scale = pow(T(t0), beta) / e;
-      if (value_of(lo) <= 0.0) return scale * pow(hi, e);
-      return scale * pow(lo, e) * expm1(e * log1p((hi - lo) / lo));
+      const T scale = (T(1.0) - plateau) * pow(T(t0), beta) / e;
+      if (value_of(lo) <= 0.0) return plateau * hi + scale * pow(hi, e);
+      return plateau * (hi - lo) + scale * pow(lo, e) * expm1(e * log1p((hi - lo) / lo));
     }
     T sum(0.0);
     for (std::size_t j = 0; j < c.size(); ++j) {
@@ -93,7 +94,7 @@ struct RelaxationKernel {
   T value(const T& r) const {
     using std::exp;
     using std::pow;
-    if (power) return pow(r / t0, -beta);
+    if (power) return plateau + (T(1.0) - plateau) * pow(r / t0, -beta);
     T sum(0.0);
     for (std::size_t j = 0; j < c.size(); ++j) sum += c[j] * exp(-u[j] * r);
     return sum;
@@ -113,20 +114,23 @@ RelaxationKernel<T> prony_kernel(const T& c_inf, const std::vector<T>& g, const 
   return k;
 }
 
-/// The power law (t/t0)^-beta as a sum of exponentials accurate over [t_lo, t_hi] (0 < t_lo <= t_hi,
-/// beta in [0, 1)). The lattice depends only on t_lo and t_hi, so its weights are smooth in beta.
+/// The power law p + (1 - p)(t/t0)^-beta as a sum of exponentials accurate over [t_lo, t_hi] (0 <
+/// t_lo <= t_hi, beta in [0, 1), the plateau p in [0, 1)): the plateau one constant term, the power
+/// law's lattice scaled by 1 - p. The lattice depends only on t_lo and t_hi, so its weights are
+/// smooth in beta.
 template <class T>
-RelaxationKernel<T> power_law_kernel(const T& beta, double t0, double t_lo, double t_hi) {
+RelaxationKernel<T> power_law_kernel(const T& beta, double t0, double t_lo, double t_hi, const T& plateau = T(0.0)) {
   using std::exp;
   using std::expm1;
   using std::pow;
   RelaxationKernel<T> k;
   k.power = true;
   k.beta = beta;
+  k.plateau = plateau;
   k.t0 = t0;
   const double h = kPowerLawStep;
   const double x_first = std::log(kPowerLawTailRate / t_hi), x_last = std::log(kPowerLawUpperRate / t_lo);
-  const T scale = pow(T(t0), beta);
+  const T scale = (T(1.0) - plateau) * pow(T(t0), beta);
   const T rg = reciprocal_gamma_1p(beta);  // h / Gamma(beta) = h beta / Gamma(1 + beta): finite at beta = 0
   // The lumped tail, nodes x_first - m h for m >= 1: their summed weight h e^(beta x_first) /
   // (Gamma(beta) expm1(beta h)) and mean rate e^x_first expm1(beta h) / expm1((1 + beta) h). At
@@ -138,6 +142,10 @@ RelaxationKernel<T> power_law_kernel(const T& beta, double t0, double t_lo, doub
     const double x = x_first + m * h;  // not accumulated: no drift over the nodes
     k.c.push_back(scale * h * beta * rg * exp(beta * x));
     k.u.push_back(T(std::exp(x)));
+  }
+  if (!is_constant_zero(plateau)) {
+    k.c.push_back(plateau);
+    k.u.push_back(T(0.0));
   }
   return k;
 }

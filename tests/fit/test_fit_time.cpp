@@ -139,6 +139,45 @@ TEST_CASE("fit in time: a power-law half-space gives back E and beta", "[fit][ti
   check_within(s, FitParameter::delta0, 0.0);
 }
 
+TEST_CASE("fit in time: a power law with a plateau gives back E, beta and E_inf over noise draws", "[fit][time]") {
+  // Issue 42: E(t) = E_inf + (E - E_inf)(t/t0)^-beta, approach + 3 s dwell + retract, six noise
+  // draws, started 2x off in E, 2.5x in E_inf and half the true beta: every draw within 3 SE.
+  const Scene truth = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "half_space",
+      "E": 2000, "nu": 0.49, "viscoelastic": {"law": "power_law_plateau", "beta": 0.3, "t0": 1, "E_inf": 600}}})");
+  const Scene guess = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "half_space",
+      "E": 4000, "nu": 0.49, "viscoelastic": {"law": "power_law_plateau", "beta": 0.15, "t0": 1, "E_inf": 1500}}})");
+  FitOptions f;
+  f.free = {FitParameter::E, FitParameter::beta, FitParameter::E_inf, FitParameter::delta0};
+  f.branch = Branch::all;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    SimulationOptions o;
+    o.max_indentation = 1e-6;
+    o.speed = 2e-6;
+    o.dwell = 3.0;
+    o.points_per_branch = 200;
+    o.noise = 2e-12;
+    o.seed = seed;
+    const FitSummary s = fit(simulate_curve(truth, o), guess, f);
+    INFO("seed " << seed << ": " << s.brief_report());
+    REQUIRE(s.converged);
+    CHECK(s.identifiable);
+    check_within(s, FitParameter::E, 2000.0);
+    check_within(s, FitParameter::beta, 0.3);
+    check_within(s, FitParameter::E_inf, 600.0);
+  }
+  // E_inf belongs to the plateau law (and sls): freeing it on the plain power law is refused.
+  const Scene plain = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "half_space",
+      "E": 2000, "nu": 0.49, "viscoelastic": {"law": "power_law", "beta": 0.3, "t0": 1}}})");
+  SimulationOptions o;
+  o.max_indentation = 1e-6;
+  o.speed = 2e-6;
+  CHECK_THROWS_WITH(fit(simulate_curve(plain, o), plain, f), Catch::Contains("power_law_plateau"));
+  // The scene's E_inf must lie below E, the modulus at t0.
+  CHECK_THROWS_WITH(parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "half_space",
+      "E": 2000, "nu": 0.49, "viscoelastic": {"law": "power_law_plateau", "beta": 0.3, "t0": 1, "E_inf": 2000}}})"),
+                    Catch::Contains("medium.viscoelastic.E_inf") && Catch::Contains("[0, E)"));
+}
+
 TEST_CASE("fit in time: the hereditary Jacobian through Jets against differences of the residuals", "[fit][time]") {
   for (const char* law : {R"({"law": "sls", "E_inf": 800, "tau": 0.2})", R"({"law": "power_law", "beta": 0.2, "t0": 1})"}) {
     const Scene s = parse_scene(std::string(R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "layer",
