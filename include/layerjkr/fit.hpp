@@ -215,6 +215,17 @@ struct FitSummary {
   /// Correlation matrix of the free parameters (row-major, NaN when not computed).
   std::vector<std::vector<double>> correlation;
   double rms_residual = 0.0;  ///< root-mean-square force residual [N] (unweighted)
+  /// The samples the fit minimised (weight > 0): n in the statistics below.
+  std::size_t samples_fitted = 0;
+  /// Goodness of fit as lmfit states it, from the unweighted force residuals r of the n fitted
+  /// samples and the k = parameters.size() free parameters: chi_square = sum r^2 [N^2],
+  /// reduced_chi_square = chi_square / (n - k) [N^2], aic = n ln(chi_square / n) + 2 k and
+  /// bic = n ln(chi_square / n) + k ln n (dimensionless; their differences between fits of the
+  /// same samples choose a model: lower is better). NaN where n <= k or chi_square = 0.
+  double chi_square() const;
+  double reduced_chi_square() const;
+  double aic() const;
+  double bic() const;
   double initial_cost = 0.0, final_cost = 0.0;  ///< Ceres costs (dimensionless)
   std::size_t points = 0;             ///< samples on the branch
   std::size_t points_in_contact = 0;  ///< of which the model puts in contact

@@ -10,6 +10,7 @@ import numpy.typing as npt
 from . import _core, _fit_views
 from ._core import Scene
 from ._common import _finite_or_none
+from ._fit_statistics import STATISTICS_FIELDS, FitStatistics, statistics_dict
 
 
 class NamedArray(np.ndarray):
@@ -94,17 +95,17 @@ _SUMMARY_FIELDS = ("converged", "termination", "iterations", "model", "family", 
                    "points_in_contact", "identifiable", "identifiability_known", "identifiability_reason",
                    "identifiability", "unidentifiable", "no_move_reason", "warnings", "notices", "initial_cost",
                    "final_cost", "solve_seconds", "contact_point", "noise", "runs_z", "residual_structure",
-                   "force_noise", "radius_noise", "force_noise_given", "radius_noise_given")
+                   "force_noise", "radius_noise", "force_noise_given", "radius_noise_given") + STATISTICS_FIELDS
 
 
-class FitResult:
+class FitResult(FitStatistics):
     """A fitted curve (the library's FitSummary): estimates with standard errors, their
     covariance and correlation, identifiability, warnings, and the data with the fitted curve.
 
     ``values``, ``errors``, ``covariance`` and ``correlation`` are :class:`NamedArray`
     indexed by the names in ``parameters``; ``provenance`` says what the fit was made from
-    (version, scene, options, the inputs' SHA-256). Picklable (plain Python and numpy values).
-    """
+    (version, scene, options, the inputs' SHA-256); ``chisqr``, ``redchi``, ``aic``, ``bic``,
+    ``ndata`` and ``nvarys`` as lmfit names them. Picklable (plain Python and numpy values)."""
 
     __slots__ = ("_s", "_f", "_params", "_corr", "_arrays", "_brief_text", "_branch", "_provenance")
 
@@ -300,11 +301,6 @@ class FitResult:
         return self._field("termination")
 
     @property
-    def rms_residual(self) -> float:
-        """Root-mean-square force residual [N]."""
-        return self._field("rms_residual")
-
-    @property
     def contact_point(self) -> Dict[str, Any]:
         """The contact point the fit used: ``method``; ``value`` [m] (the fitted delta0 for
         "fit", else the method's point) and ``stderr`` [m] (delta0's standard error, or the
@@ -354,7 +350,7 @@ class FitResult:
                            for k, p in self._params.items()},
             "correlation": {a: {b: _finite_or_none(float(corr[i, k])) for k, b in enumerate(names)}
                             for i, a in enumerate(names)},
-            "rms_residual": f["rms_residual"], "excluded": f["excluded_count"],
+            "rms_residual": f["rms_residual"], "statistics": statistics_dict(f), "excluded": f["excluded_count"],
             "pull_off_force": _finite_or_none(f["pull_off_force"]), "baseline_slope": f["baseline_slope"],
             "baseline_slope_stderr": f["baseline_slope_stderr"], "baseline_offset": f["baseline_offset"],
             "points": f["points"],

@@ -491,6 +491,11 @@ PYBIND11_MODULE(_core, m) {
         return c;
       })
       .def_readonly("rms_residual", &FitSummary::rms_residual)
+      .def_readonly("samples_fitted", &FitSummary::samples_fitted)
+      .def_property_readonly("chi_square", &FitSummary::chi_square)
+      .def_property_readonly("reduced_chi_square", &FitSummary::reduced_chi_square)
+      .def_property_readonly("aic", &FitSummary::aic)
+      .def_property_readonly("bic", &FitSummary::bic)
       .def_readonly("initial_cost", &FitSummary::initial_cost)
       .def_readonly("final_cost", &FitSummary::final_cost)
       .def_readonly("points", &FitSummary::points)

@@ -413,3 +413,22 @@ def test_no_adhesion_reports_w_at_its_bound_with_an_upper_bound_and_the_reasons(
     assert "no adhesive signal" in r.reasons["w"] and r.reasons["E"] == ""
     d_ = r.as_dict()
     assert d_["parameters"]["w"]["upper_bound"] == r.upper_bound["w"] and d_["no_move_reason"] == r.no_move_reason
+
+
+def test_goodness_of_fit_under_lmfits_names(source):
+    # Issue 42: chisqr, redchi, aic, bic, ndata and nvarys as lmfit defines them, from the fit's
+    # own residuals, kept through pickling.
+    rows = [l.split(",") for l in (source / "data/curves/hydrogel_film_two_term.csv").read_text().splitlines()
+            if l and l[0] not in "#d"]
+    d, P, seg = (np.array([float(r[k]) for r in rows]) for k in range(3))
+    r = layerjkr.fit(d, P, str(source / "data/scenes/hydrogel_film_two_term.json"), segment=seg, branch="all")
+    chi = float(np.sum((r.P - r.P_fit) ** 2))
+    n, k = r.ndata, r.nvarys
+    assert (n, k) == (len(d), 4)
+    assert r.chisqr == pytest.approx(chi, rel=1e-12)
+    assert r.redchi == pytest.approx(chi / (n - k), rel=1e-12)
+    assert r.aic == pytest.approx(n * np.log(chi / n) + 2 * k, rel=1e-12)
+    assert r.bic == pytest.approx(n * np.log(chi / n) + k * np.log(n), rel=1e-12)
+    assert r.rms_residual == pytest.approx(np.sqrt(chi / n), rel=1e-12)
+    again = pickle.loads(pickle.dumps(r))
+    assert (again.aic, again.bic, again.ndata) == (r.aic, r.bic, r.ndata)

@@ -52,6 +52,11 @@ json report_json(const FitSummary& s, Branch branch) {
   }
   j["correlation"] = corr;
   j["rms_residual"] = s.rms_residual;
+  j["statistics"] = {{"samples_fitted", s.samples_fitted},
+                     {"chi_square", finite_or_null(s.chi_square())},
+                     {"reduced_chi_square", finite_or_null(s.reduced_chi_square())},
+                     {"aic", finite_or_null(s.aic())},
+                     {"bic", finite_or_null(s.bic())}};
   j["excluded"] = s.excluded_count;
   j["pull_off_force"] = finite_or_null(s.pull_off_force);
   j["baseline_slope"] = s.baseline_slope;

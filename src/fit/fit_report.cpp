@@ -41,6 +41,25 @@ void FitOptions::validate() const {
     throw DomainError(fn, "exclusion_sigmas", exclusion_sigmas, "finite and >= 0 (0: keep every sample)");
 }
 
+double FitSummary::chi_square() const {
+  return static_cast<double>(samples_fitted) * rms_residual * rms_residual;
+}
+
+double FitSummary::reduced_chi_square() const {
+  const std::size_t k = parameters.size();
+  return samples_fitted > k ? chi_square() / static_cast<double>(samples_fitted - k) : std::nan("");
+}
+
+double FitSummary::aic() const {
+  const double n = static_cast<double>(samples_fitted), k = static_cast<double>(parameters.size());
+  return n > k && chi_square() > 0.0 ? n * std::log(chi_square() / n) + 2.0 * k : std::nan("");
+}
+
+double FitSummary::bic() const {
+  const double n = static_cast<double>(samples_fitted), k = static_cast<double>(parameters.size());
+  return n > k && chi_square() > 0.0 ? n * std::log(chi_square() / n) + k * std::log(n) : std::nan("");
+}
+
 std::string FitSummary::brief_report() const {
   std::ostringstream o;
   o.precision(6);
@@ -48,6 +67,9 @@ std::string FitSummary::brief_report() const {
     << " iterations (" << termination << ")\n";
   o << "  model " << model << " (" << to_string(family) << "), " << points << " samples, " << points_in_contact
     << " in contact, rms residual " << rms_residual << " N\n";
+  if (samples_fitted > parameters.size())
+    o << "  chi-square " << chi_square() << " N^2 over " << samples_fitted << " samples and " << parameters.size()
+      << " free: reduced " << reduced_chi_square() << " N^2, AIC " << aic() << ", BIC " << bic() << "\n";
   if (baseline_slope != 0.0)
     o << "  baseline tilt " << baseline_slope << " +- " << baseline_slope_stderr
       << " N/m (from the samples off contact; the data were detilted)\n";

@@ -319,6 +319,7 @@ void FitRun::record(FitSummary* out) {
       ++kept;
     }
   out->rms_residual = std::sqrt(ss / static_cast<double>(std::max<std::size_t>(kept, 1)));
+  out->samples_fitted = kept;
   for (std::size_t j = 0; j < x_.size(); ++j) {
     out->parameters[j].value = map_.value_at(j, x_.data());
     out->parameters[j].standard_error = kNaN;

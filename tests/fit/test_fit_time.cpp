@@ -178,6 +178,42 @@ TEST_CASE("fit in time: a power law with a plateau gives back E, beta and E_inf 
                     Catch::Contains("medium.viscoelastic.E_inf") && Catch::Contains("[0, E)"));
 }
 
+TEST_CASE("fit in time: AIC and BIC, as lmfit defines them, choose the law that made the curve", "[fit][time]") {
+  // Issue 42: every fit states chi-square, AIC and BIC so that laws can be compared on one curve.
+  const std::string head = R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "half_space",
+      "E": 2000, "nu": 0.49, "viscoelastic": )";
+  SimulationOptions o;
+  o.max_indentation = 1e-6;
+  o.speed = 2e-6;
+  o.dwell = 3.0;
+  o.points_per_branch = 150;
+  o.noise = 2e-12;
+  const CurveData c = simulate_curve(parse_scene(head + R"({"law": "power_law_plateau", "beta": 0.3, "t0": 1,
+      "E_inf": 600}}})"), o);
+  FitOptions plateau;
+  plateau.free = {FitParameter::E, FitParameter::beta, FitParameter::E_inf, FitParameter::delta0};
+  plateau.branch = Branch::all;
+  FitOptions power = plateau;
+  power.free = {FitParameter::E, FitParameter::beta, FitParameter::delta0};
+  const FitSummary with = fit(c, parse_scene(head + R"({"law": "power_law_plateau", "beta": 0.2, "t0": 1,
+      "E_inf": 300}}})"), plateau);
+  const FitSummary without = fit(c, parse_scene(head + R"({"law": "power_law", "beta": 0.2, "t0": 1}}})"), power);
+  // The statistics from the fit's own arrays, written out (lmfit: chisqr, aic, bic).
+  double chi = 0.0;
+  for (std::size_t i = 0; i < with.P.size(); ++i) chi += (with.P[i] - with.P_fit[i]) * (with.P[i] - with.P_fit[i]);
+  const double n = static_cast<double>(with.samples_fitted);
+  CHECK(with.samples_fitted == c.size());  // every sample weighs in a fit of the whole history
+  CHECK(with.chi_square() == Approx(chi).epsilon(1e-12));
+  CHECK(with.reduced_chi_square() == Approx(chi / (n - 4.0)).epsilon(1e-12));
+  CHECK(with.aic() == Approx(n * std::log(chi / n) + 8.0).epsilon(1e-12));
+  CHECK(with.bic() == Approx(n * std::log(chi / n) + 4.0 * std::log(n)).epsilon(1e-12));
+  INFO("plateau: AIC " << with.aic() << ", BIC " << with.bic() << "; plain power law: AIC " << without.aic() << ", BIC "
+                       << without.bic());
+  CHECK(with.aic() < without.aic() - 10.0);
+  CHECK(with.bic() < without.bic() - 10.0);
+  CHECK(with.brief_report().find("AIC ") != std::string::npos);
+}
+
 TEST_CASE("fit in time: the hereditary Jacobian through Jets against differences of the residuals", "[fit][time]") {
   for (const char* law : {R"({"law": "sls", "E_inf": 800, "tau": 0.2})", R"({"law": "power_law", "beta": 0.2, "t0": 1})"}) {
     const Scene s = parse_scene(std::string(R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "layer",
