@@ -103,6 +103,28 @@ TEST_CASE("power law with a plateau: Lee-Radok loading against its closed form, 
   CHECK_THROWS_WITH(RelaxationLaw::power_law_plateau(beta, t0, 1.0), Catch::Contains("E_inf/E") && Catch::Contains("[0, 1)"));
 }
 
+TEST_CASE("the peers' parameters in ours: docs/models.md's worked examples", "[viscoelastic]") {
+  // Issue 42: ViscoIndent's sPLR, springpot and SLS2 and PyFMRheo's power law, written as their
+  // sources state E(t), against our laws with the documented mapping.
+  const auto splr = [](double t) { return (2000.0 - 500.0) * std::pow(t, -0.3) + 500.0; };  // E1, Einf, alpha
+  const RelaxationLaw at1 = RelaxationLaw::power_law_plateau(0.3, 1.0, 500.0 / 2000.0);
+  const double E_half = 500.0 + 1500.0 * std::pow(0.5, -0.3);  // the same law written at t0 = 0.5 s
+  CHECK(E_half == Approx(2346.7).epsilon(1e-5));
+  const RelaxationLaw at_half = RelaxationLaw::power_law_plateau(0.3, 0.5, 500.0 / E_half);
+  for (double t : {0.01, 0.25, 1.0, 2.0, 30.0}) {
+    CHECK(2000.0 * at1.relative_modulus(t) == Approx(splr(t)).epsilon(1e-13));
+    CHECK(E_half * at_half.relative_modulus(t) == Approx(splr(t)).epsilon(1e-13));
+  }
+  CHECK(splr(2.0) == Approx(1718.38).epsilon(1e-6));
+  const RelaxationLaw pyfmrheo = RelaxationLaw::power_law(0.2, 1.0);  // E0 (t/t0)^-betaE
+  CHECK(1000.0 * pyfmrheo.relative_modulus(0.25) == Approx(1000.0 * std::pow(0.25, -0.2)).epsilon(1e-14));
+  CHECK(1000.0 * pyfmrheo.relative_modulus(0.25) == Approx(1319.5).epsilon(1e-5));
+  const RelaxationLaw sls2 = RelaxationLaw::standard_linear_solid(300.0 / 1000.0, 0.4);  // Es1 e^-t/tau + Es2
+  for (double t : {0.0, 0.1, 0.4, 3.0})
+    CHECK(1000.0 * sls2.relative_modulus(t) == Approx(700.0 * std::exp(-t / 0.4) + 300.0).epsilon(1e-13));
+  CHECK(1000.0 * sls2.relative_modulus(0.4) == Approx(557.5).epsilon(1e-4));
+}
+
 TEST_CASE("standard linear solid: the recursion against quadrature of the exact hereditary integral", "[viscoelastic]") {
   const double ratio = 0.3, tau = 0.05, t_end = 0.4;
   const RelaxationLaw law = RelaxationLaw::standard_linear_solid(ratio, tau);
