@@ -7,6 +7,8 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <fstream>
+#include <string>
 #include <vector>
 
 #include "layerjkr/layerjkr.hpp"
@@ -115,6 +117,47 @@ void BM_FitJointThreeSpeeds(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(fit_joint(curves, s, f));
 }
 BENCHMARK(BM_FitJointThreeSpeeds)->Unit(benchmark::kMillisecond);
+
+// afmformats' real dwell curves (../shared/data/instrument): a stress relaxation on a cell (pause,
+// extend, 30 s at constant height, retract; 11 935 samples) and a creep on brain tissue (3 s at
+// constant force; 9 000 samples), fitted with a power law on a 5 um paraboloid over the whole
+// history - and, the floor, the elastic fit of the same curve's approach. Skipped without ../shared.
+const char* kDwellScene = R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "half_space",
+    "E": 1000, "nu": 0.5, "viscoelastic": {"law": "power_law", "beta": 0.2, "t0": 1}}})";
+
+CurveData dwell_curve(const std::string& name, bool* found) {
+  const std::string path = std::string(LAYERJKR_SOURCE_DIR) + "/../shared/data/instrument/" + name;
+  *found = std::ifstream(path).good();
+  return *found ? to_curve_data(InstrumentReader(path).curve(0), path) : CurveData{};
+}
+
+void BM_FitRealDwell(benchmark::State& state, const std::string& name, bool in_time) {
+  bool found = false;
+  const CurveData c = dwell_curve(name, &found);
+  if (!found) {
+    state.SkipWithError("needs ../shared/data/instrument");
+    return;
+  }
+  Scene s = parse_scene(kDwellScene);
+  FitOptions f;
+  f.free = {FitParameter::E, FitParameter::delta0, FitParameter::P0};
+  if (in_time) {
+    f.free.insert(f.free.begin() + 1, FitParameter::beta);
+    f.branch = Branch::all;
+  } else {
+    s.medium.relaxation = RelaxationLaw{};
+  }
+  for (auto _ : state) benchmark::DoNotOptimize(fit(c, s, f));
+  state.counters["samples"] = static_cast<double>(c.size());
+}
+BENCHMARK_CAPTURE(BM_FitRealDwell, stress_relaxation_power_law, "fmt-jpk-sr_cell1-0008.jpk-force", true)
+    ->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_FitRealDwell, stress_relaxation_elastic_floor, "fmt-jpk-sr_cell1-0008.jpk-force", false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FitRealDwell, creep_power_law, "fmt-jpk-cc_pr14-brain-2021.06.30.jpk-force", true)
+    ->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_FitRealDwell, creep_elastic_floor, "fmt-jpk-cc_pr14-brain-2021.06.30.jpk-force", false)
+    ->Unit(benchmark::kMillisecond);
 
 const char* kElastomer = R"({"indenter": {"shape": "paraboloid", "R": 1e-3}, "medium": {"type": "half_space", "E": 1e6,
     "nu": 0.5}, "w": )";
