@@ -51,6 +51,10 @@ struct SimulationOptions {
   /// A rest at the deepest point [s], >= 0 (needs speed): dwell samples (segment 2) at the
   /// approach's sampling interval, at most kMaxDwellSamples of them.
   double dwell = 0.0;
+  /// The lever's hydrodynamic drag b [N s/m], finite and >= 0 (needs speed): every force gains
+  /// b v, v the base's speed towards the sample - the approach's speed while approaching, minus the
+  /// retract's while retracting, 0 at rest - as a lever moving in liquid measures it.
+  double drag = 0.0;
   /// What drives a retract with crack kinetics: fixed_grips (the indenter follows the ramp) or
   /// cantilever (the base of a lever of cantilever_stiffness [N/m] follows it; the tip is at
   /// delta = z - P/k). Other scenes' retracts follow the fixed-grips branch to the pull-off.

@@ -55,11 +55,12 @@ enum class Branch { approach, retract, all };
 /// A fitted quantity (fit.hpp): "K", "G", "w", "delta0", "P0", "E", "R", "sigma0" (the
 /// Dugdale stress of a Maugis-Dugdale fit), and in time "E_inf" and "tau" (a standard linear
 /// solid's relaxed modulus and time), "beta" (a power law's exponent), "v_star" and "n" (crack
-/// kinetics). from_string also reads "T" (a Filonenko-Borodich tension) as G, "w0" as w, "V" as
+/// kinetics), "drag" (the lever's hydrodynamic drag coefficient b [N s/m]: the measured force
+/// carries b v, v the base's speed towards the sample). from_string also reads "T" (a Filonenko-Borodich tension) as G, "w0" as w, "V" as
 /// v_star and "N" as n.
-enum class FitParameter { K, G, w, delta0, P0, E, R, sigma0, E_inf, tau, beta, v_star, n };
+enum class FitParameter { K, G, w, delta0, P0, E, R, sigma0, E_inf, tau, beta, v_star, n, drag };
 /// How many FitParameter values there are.
-inline constexpr int kFitParameterCount = 13;
+inline constexpr int kFitParameterCount = 14;
 /// The SI unit of a fitted quantity: "N/m^3", "N/m", "J/m^2", "m", "N", "Pa", "s", "m/s" or "" (beta, n).
 const char* unit_of(FitParameter p);
 

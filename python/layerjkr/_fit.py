@@ -122,7 +122,8 @@ class Simulation(NamedTuple):
 def simulate(scene: SceneLike, *, max_indentation: float, speed: float = 0.0, retract_speed: float = 0.0,
              dwell: float = 0.0, points: int = 500, free_fraction: float = 0.5, noise: float = 0.0, seed: int = 1,
              with_radius: bool = False, branch: Branch = "all", delta0: float = 0.0, P0: float = 0.0,
-             control: Literal["grips", "cantilever"] = "grips", stiffness: Optional[float] = None) -> Simulation:
+             control: Literal["grips", "cantilever"] = "grips", stiffness: Optional[float] = None,
+             drag: float = 0.0) -> Simulation:
     """A synthetic curve of a scene: the fit's own physics, at equilibrium or in time.
 
     Parameters
@@ -157,6 +158,9 @@ def simulate(scene: SceneLike, *, max_indentation: float, speed: float = 0.0, re
         base (``stiffness`` [N/m]).
     stiffness : float, optional
         The cantilever's stiffness [N/m] (``control="cantilever"``).
+    drag : float, default 0
+        The lever's hydrodynamic drag b [N s/m], >= 0 (needs ``speed``): every force gains b v, v
+        the base's speed towards the sample (a fit in time frees it as ``"drag"``).
 
     Returns
     -------
@@ -182,7 +186,8 @@ def simulate(scene: SceneLike, *, max_indentation: float, speed: float = 0.0, re
         points=n, free_fraction=_number("free_fraction", free_fraction),
         noise=_number("noise", noise), seed=seed_, with_radius=bool(with_radius),
         branch=_text("branch", branch), delta0=_number("delta0", delta0), P0=_number("P0", P0),
-        control=_text("control", control), stiffness=0.0 if stiffness is None else _number("stiffness", stiffness))
+        control=_text("control", control), stiffness=0.0 if stiffness is None else _number("stiffness", stiffness),
+        drag=_number("drag", drag))
     t, d, p, a, seg, source, notes = _core.simulate(_as_scene(scene), o)
     return Simulation(t, d, p, a, np.asarray(seg, dtype=np.int64), source, tuple(notes))
 

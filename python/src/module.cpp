@@ -226,7 +226,7 @@ py::tuple simulate_py(const Scene& scene, const SimulationOptions& o) {
 SimulationOptions simulation_options(double max_indentation, double speed, double retract_speed, double dwell,
                                      std::size_t points, double free_fraction, double noise, std::uint64_t seed,
                                      bool with_radius, const std::string& branch, double delta0, double P0,
-                                     const std::string& control, double stiffness) {
+                                     const std::string& control, double stiffness, double drag) {
   SimulationOptions o;
   o.max_indentation = max_indentation;
   o.speed = speed;
@@ -242,6 +242,7 @@ SimulationOptions simulation_options(double max_indentation, double speed, doubl
   o.P0 = P0;
   o.control = parse_enum<RetractControl>(control, "control");
   o.cantilever_stiffness = stiffness;
+  o.drag = drag;
   o.validate();
   return o;
 }
@@ -594,7 +595,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("simulation_options", &simulation_options, py::kw_only(), py::arg("max_indentation"), py::arg("speed"),
         py::arg("retract_speed"), py::arg("dwell"), py::arg("points"), py::arg("free_fraction"), py::arg("noise"),
         py::arg("seed"), py::arg("with_radius"), py::arg("branch"), py::arg("delta0"), py::arg("P0"), py::arg("control"),
-        py::arg("stiffness"));
+        py::arg("stiffness"), py::arg("drag") = 0.0);
   m.def("simulate", &simulate_py, py::arg("scene"), py::arg("options"));
   m.def("fit_batch", &fit_batch_py, py::arg("curves"), py::arg("scene"), py::arg("options"), py::arg("jobs"),
         py::arg("display_points") = 0);

@@ -87,3 +87,16 @@ def test_docs_in_time_example_runs():
     exec(compile(block, "docs/python.md", "exec"), names)
     assert abs(names["r"].values["tau"] - 0.2) < 3 * names["r"].errors["tau"]
     assert names["j"].fit.parameters[:3] == ("E", "E_inf", "tau")
+
+
+def test_the_levers_drag_from_python():
+    # Issue 42: simulate(drag=) adds b v; fit(free="...,drag") finds it within its error bar.
+    truth = {"indenter": {"shape": "paraboloid", "R": 5e-6},
+             "medium": {"type": "half_space", "E": 2000, "nu": 0.49,
+                        "viscoelastic": {"law": "power_law", "beta": 0.2, "t0": 1}}}
+    s = layerjkr.simulate(truth, max_indentation=1e-6, speed=5e-6, points=200, noise=5e-12, drag=5e-5, seed=2)
+    r = layerjkr.fit(s.delta, s.P, truth, segment=s.segment, t=s.t, free="E,beta,drag,delta0,P0", branch="all")
+    assert abs(r.values["drag"] - 5e-5) < 3 * r.errors["drag"]
+    assert r.parameters == ("E", "beta", "drag", "delta0", "P0")
+    with pytest.raises(layerjkr.InputError, match="needs a speed"):
+        layerjkr.simulate(truth, max_indentation=1e-6, drag=1e-6)

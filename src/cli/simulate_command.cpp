@@ -26,6 +26,9 @@ void add_simulate_options(CLI::App& c, SimulateArguments& a) {
   c.add_option("--delta0", o.delta0, "Contact-point offset added to every delta [m]");
   c.add_option("--P0", o.P0, "Force baseline added to every P [N]");
   c.add_option("--noise", o.noise, "Standard deviation of Gaussian force noise [N]");
+  c.add_option("--drag", o.drag,
+               "The lever's hydrodynamic drag b [N s/m]: every force gains b v, v the base's speed towards the sample "
+               "(needs --speed; fit --free drag finds it)");
   c.add_option("--seed", o.seed, "Seed of the noise (default 1)");
   c.add_flag("--with-radius", o.with_radius, "Also write the contact radius a [m]");
   c.add_option("--branch", a.branch, "approach, retract or all (default all)");

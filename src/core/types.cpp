@@ -40,7 +40,7 @@ LAYERJKR_NAMES(FitParameter, {FitParameter::K, "K"}, {FitParameter::G, "G"}, {Fi
                {FitParameter::delta0, "delta0"}, {FitParameter::P0, "P0"}, {FitParameter::E, "E"},
                {FitParameter::R, "R"}, {FitParameter::sigma0, "sigma0"}, {FitParameter::E_inf, "E_inf"},
                {FitParameter::tau, "tau"}, {FitParameter::beta, "beta"}, {FitParameter::v_star, "v_star"},
-               {FitParameter::n, "n"})
+               {FitParameter::n, "n"}, {FitParameter::drag, "drag"})
 LAYERJKR_NAMES(LossType, {LossType::none, "none"}, {LossType::huber, "huber"}, {LossType::cauchy, "cauchy"})
 LAYERJKR_NAMES(RetractWindow, {RetractWindow::all, "all"}, {RetractWindow::to_pull_off, "pull_off"},
                {RetractWindow::force_fraction, "fraction"})
@@ -84,6 +84,7 @@ const char* unit_of(FitParameter p) {
     case FitParameter::v_star: return "m/s";
     case FitParameter::beta:
     case FitParameter::n: return "";
+    case FitParameter::drag: return "N s/m";
   }
   return "";
 }

@@ -22,6 +22,7 @@ struct ParameterMap {
   bool G_log = false;               ///< full foundation: G = ref * exp(x)
   double s_scale = 1.0;             ///< s = sqrt(w) = s_scale * x
   double beta_scale = 0.1;          ///< beta = ref + beta_scale * x (E_inf, tau, v_star, n: ref * exp(x))
+  double drag_scale = 0.0;          ///< drag = drag_scale * x [N s/m]: the force span over the largest speed
 
   /// A joint fit's global map (joint_fit.cpp): per slot, the curve a delta0 or P0 belongs to (-1
   /// shared) and its reference; empty for one curve, whose slot[] says everything.
@@ -41,6 +42,9 @@ struct ParameterMap {
   /// Physical parameters and offsets from x (T = double or a Jet seeded in slots 0..n-1).
   template <class T>
   void physical(const T* x, CurveParameters<T>* p, T* delta0, T* P0) const;
+  /// The drag coefficient b [N s/m] at x (0 where not free): the model adds b v at each sample.
+  template <class T>
+  T drag(const T* x) const;
   /// d(physical)/dx for the reported parameter p at x.
   double derivative(FitParameter q, const double* x) const;
   /// Reported physical value of p at x (w, not s).
@@ -56,6 +60,10 @@ struct FitData {
   /// keeps the cost continuous where the model's pull-off moves across samples.
   std::vector<signed char> contact;
   double a_scale = 1.0;                          ///< divides contact-radius residuals [m]
+  /// Fits in time: the base's speed towards the sample at each sample [m/s] - per segment, the
+  /// slope of the base position delta + P/k (delta without k) over time, read from the data before
+  /// the fit - which a free drag multiplies (empty otherwise).
+  std::vector<double> velocity;
   /// Median force and MAD noise of the shallowest quarter of the samples [N].
   double baseline = 0.0, noise = 0.0;
   /// The offset [N] subtracted from P (FitOptions::remove_offset), 0 when none was.

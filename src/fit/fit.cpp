@@ -36,6 +36,10 @@ void require_supported(const CurveModel& model, const FitOptions& options, const
                                    "the scene's adhesion is '") +
                        to_string(scene.adhesion.model) + "' on model '" + model.model_name() + "'");
   for (FitParameter q : options.free)
+    if (q == FitParameter::drag)
+      throw InputError("fit: free parameter drag (the lever's hydrodynamic drag) is fitted in time, with a relaxing "
+                       "medium (medium.viscoelastic) and the curve's times; elastic fits do not model it yet");
+  for (FitParameter q : options.free)
     if (q == FitParameter::E_inf || q == FitParameter::tau || q == FitParameter::beta || q == FitParameter::v_star ||
         q == FitParameter::n)
       throw InputError(std::string("fit: free parameter ") + to_string(q) + " belongs to a law in time: " +

@@ -44,7 +44,8 @@ void set_modulus(json& medium, double E) {
 void set_value(json& root, FitParameter q, double value) {
   switch (q) {
     case FitParameter::delta0:
-    case FitParameter::P0: return;  // the data's offsets
+    case FitParameter::P0:
+    case FitParameter::drag: return;  // the data's offsets and the lever's drag, not the scene's
     case FitParameter::w: root["w"] = value; return;
     case FitParameter::E: set_modulus(object_at(root, "medium", q), value); return;
     case FitParameter::K:

@@ -60,6 +60,17 @@ template void ParameterMap::physical<Jet2>(const Jet2*, CurveParameters<Jet2>*, 
 template void ParameterMap::physical<Jet4>(const Jet4*, CurveParameters<Jet4>*, Jet4*, Jet4*) const;
 template void ParameterMap::physical<Jet8>(const Jet8*, CurveParameters<Jet8>*, Jet8*, Jet8*) const;
 
+template <class T>
+T ParameterMap::drag(const T* x) const {
+  return is_free(FitParameter::drag) ? T(drag_scale) * x[index(FitParameter::drag)] : T(0.0);
+}
+
+template double ParameterMap::drag<double>(const double*) const;
+template Jet1 ParameterMap::drag<Jet1>(const Jet1*) const;
+template Jet2 ParameterMap::drag<Jet2>(const Jet2*) const;
+template Jet4 ParameterMap::drag<Jet4>(const Jet4*) const;
+template Jet8 ParameterMap::drag<Jet8>(const Jet8*) const;
+
 double ParameterMap::value(FitParameter q, const double* x) const {
   CurveParameters<double> p;
   double d0 = 0.0, P0 = 0.0;
@@ -78,6 +89,7 @@ double ParameterMap::value(FitParameter q, const double* x) const {
     case FitParameter::beta: return p.beta;
     case FitParameter::v_star: return p.v_star;
     case FitParameter::n: return p.n;
+    case FitParameter::drag: return drag(x);
   }
   return kNaN;
 }
@@ -98,6 +110,7 @@ double ParameterMap::derivative(FitParameter q, const double* x) const {
     case FitParameter::w: return 2.0 * s_scale * s_scale * xv;
     case FitParameter::delta0: return L;
     case FitParameter::P0: return F;
+    case FitParameter::drag: return drag_scale;
   }
   return kNaN;
 }
@@ -109,7 +122,8 @@ double ParameterMap::fixed_value(FitParameter q) const {
     case FitParameter::G: return f.G;
     case FitParameter::w: return f.s * f.s;
     case FitParameter::delta0:
-    case FitParameter::P0: return 0.0;
+    case FitParameter::P0:
+    case FitParameter::drag: return 0.0;
     case FitParameter::E: return f.E;
     case FitParameter::R: return f.R;
     case FitParameter::sigma0: return f.sigma0;

@@ -29,6 +29,9 @@ void SimulationOptions::validate() const {
   for (const auto& [name, v] : {std::pair{"speed", speed}, {"retract_speed", retract_speed}})
     if (!(v == 0.0 || (v >= kSpeedRange[0] && v <= kSpeedRange[1]))) throw DomainError(fn, name, v, speeds);
   if (!(dwell >= 0.0 && std::isfinite(dwell))) throw DomainError(fn, "dwell", dwell, "finite and >= 0 [s]");
+  if (!(drag >= 0.0 && std::isfinite(drag))) throw DomainError(fn, "drag", drag, "finite and >= 0 [N s/m]");
+  if (drag > 0.0 && !(speed > 0.0))
+    throw InputError(std::string(fn) + ": drag = " + format_double(drag) + " N s/m needs a speed (the force is b v)");
   if (speed > 0.0 && dwell > 0.0) {
     // The dwell's samples come at the approach's interval: bounded before any is made.
     const double dt = (1.0 + free_fraction) * max_indentation / (speed * static_cast<double>(points_per_branch - 1));
@@ -267,7 +270,9 @@ CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
     const Sample& s = samples[i];
     if ((o.branch == Branch::approach && s.segment != 0) || (o.branch == Branch::retract && s.segment != 1)) continue;
     c.delta.push_back(answers[i].delta + o.delta0);
-    c.P.push_back(answers[i].P + o.P0 + (o.noise > 0.0 ? o.noise * gauss(rng) : 0.0));
+    // The lever's drag: b times the base's speed towards the sample (a dwell rests).
+    const double v = s.segment == 0 ? o.speed : s.segment == 1 ? -(o.retract_speed > 0.0 ? o.retract_speed : o.speed) : 0.0;
+    c.P.push_back(answers[i].P + o.P0 + o.drag * v + (o.noise > 0.0 ? o.noise * gauss(rng) : 0.0));
     c.segment.push_back(s.segment);
     if (o.speed > 0.0) c.t.push_back(s.t);
     if (o.with_radius) c.a.push_back(answers[i].a);

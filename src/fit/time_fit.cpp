@@ -21,8 +21,44 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool time_parameter(FitParameter q) {
   return q == FitParameter::E_inf || q == FitParameter::tau || q == FitParameter::beta || q == FitParameter::v_star ||
-         q == FitParameter::n;
+         q == FitParameter::n || q == FitParameter::drag;
 }
+
+namespace {
+
+std::vector<double> base_velocity(const CurveData& curve, std::size_t n) {
+  // The base, where the lever is held: the tip's indentation plus the lever's deflection P/k (the
+  // tip itself under grips, k unknown). Its speed is the slope of a straight line through each
+  // segment's samples: the instrument's ramp, not the noise of neighbouring samples.
+  const double k = curve.spring_constant;
+  std::vector<double> v(n, 0.0);
+  for (std::size_t begin = 0; begin < n;) {
+    std::size_t end = begin + 1;
+    const int label = curve.segment.empty() ? 0 : curve.segment[begin];
+    while (end < n && (curve.segment.empty() || curve.segment[end] == label)) ++end;
+    const std::size_t m = end - begin;
+    if (m >= 2) {
+      double st = 0.0, sz = 0.0;
+      for (std::size_t i = begin; i < end; ++i) {
+        st += curve.t[i];
+        sz += curve.delta[i] + (k > 0.0 ? curve.P[i] / k : 0.0);
+      }
+      const double tm = st / static_cast<double>(m), zm = sz / static_cast<double>(m);
+      double stt = 0.0, stz = 0.0;
+      for (std::size_t i = begin; i < end; ++i) {
+        const double dt = curve.t[i] - tm;
+        stt += dt * dt;
+        stz += dt * (curve.delta[i] + (k > 0.0 ? curve.P[i] / k : 0.0) - zm);
+      }
+      const double slope = stt > 0.0 ? stz / stt : 0.0;
+      std::fill(v.begin() + static_cast<std::ptrdiff_t>(begin), v.begin() + static_cast<std::ptrdiff_t>(end), slope);
+    }
+    begin = end;
+  }
+  return v;
+}
+
+}  // namespace
 
 void check_request(const CurveData& curve, const Scene& scene, const FitOptions& o) {
   const bool relaxes = scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic;
@@ -48,6 +84,8 @@ void check_request(const CurveData& curve, const Scene& scene, const FitOptions&
       no = "is a one-term Prony law's (\"sls\", or \"prony\" with one g)";
     else if (q == FitParameter::beta && !(relaxes && law.kind == RelaxationLaw::Kind::power_law))
       no = "is a power law's (\"power_law\")";
+    else if (q == FitParameter::drag && !relaxes)
+      no = "is fitted with a relaxing medium (medium.viscoelastic): the crack-kinetics fit does not model it yet";
     else if ((q == FitParameter::v_star || q == FitParameter::n) && relaxes)
       no = "belongs to crack kinetics (adhesion.kinetics)";
     else if ((q == FitParameter::w || q == FitParameter::sigma0 || q == FitParameter::R) && relaxes)
@@ -98,6 +136,8 @@ FitData select_time_data(const CurveData& curve, const FitOptions& options, doub
   *span = hi - lo;
   *force_span = phi - plo;
   if (!(*force_span > 0.0)) throw InputError(curve.source + ": P is constant on the chosen branch; nothing to fit");
+  if (std::find(options.free.begin(), options.free.end(), FitParameter::drag) != options.free.end())
+    data.velocity = base_velocity(curve, data.P.size());
   if (data.residuals() <= options.free.size())
     throw InputError(curve.source + ": the " + to_string(options.branch) + " branch has " +
                      std::to_string(data.residuals()) + " samples; fitting " + std::to_string(options.free.size()) +
@@ -146,6 +186,12 @@ FitSummary fit_in_time(const CurveData& curve, const Scene& scene, const FitOpti
   out.model = model->model_name();
   out.family = relaxes ? FitFamily::hereditary : FitFamily::kinetic;
   ParameterMap map = make_parameter_map(options, resolved, fixed, span, force_span);
+  if (!data.velocity.empty()) {
+    double fastest = 0.0;
+    for (double v : data.velocity) fastest = std::max(fastest, std::abs(v));
+    if (!(fastest > 0.0)) throw InputError(curve.source + ": free parameter drag needs the base to move; it rests throughout");
+    map.drag_scale = force_span / fastest;  // x = 1: a drag force the size of the force span
+  }
   out.warnings.insert(out.warnings.end(), fixed.warnings.begin(), fixed.warnings.end());
   out.notices.insert(out.notices.end(), curve.notes.begin(), curve.notes.end());
   out.notices.insert(out.notices.end(), resolved.notices.begin(), resolved.notices.end());

@@ -13,7 +13,7 @@ namespace layerjkr::detail {
 /// The fit of a scene whose medium relaxes or whose adhesion has kinetics (fit.hpp).
 FitSummary fit_in_time(const CurveData& curve, const Scene& scene, const FitOptions& options);
 
-/// E_inf, tau, beta, v_star, n: the parameters of a law in time.
+/// E_inf, tau, beta, v_star, n: the parameters of a law in time; drag, the lever's in liquid.
 bool time_parameter(FitParameter q);
 /// What a fit in time refuses, before any work (InputError naming the curve): a curve without
 /// time, (P, a) data, the options only an equilibrium curve has (contact-point methods, ranges, a

@@ -70,11 +70,12 @@ bool HereditaryEvaluator::sweep(const double* x, bool jacobian) {
   if (law_.plateau_form && !(p.E_inf >= 0.0 && p.E_inf < p.E)) return false;
   p.s = 0.0;  // the elastic force: no adhesion
   CurveParameters<J> pj;
-  J d0j(delta0), P0j(P0);
+  J d0j(delta0), P0j(P0), dragj(map_.drag(x));
   if constexpr (kJet) {
     std::array<J, J::DIMENSION> xj;
     for (std::size_t j = 0; j < n_free; ++j) xj[j] = J(x[j], static_cast<int>(j));
     map_.physical(xj.data(), &pj, &d0j, &P0j);
+    dragj = map_.drag(xj.data());
     pj.s = J(0.0);
   } else {
     pj = p;
@@ -112,7 +113,7 @@ bool HereditaryEvaluator::sweep(const double* x, bool jacobian) {
   contact_count_ = 0;
   const double F = map_.F;
   for (std::size_t i = 0; i < n; ++i) {
-    const J Pi = h.P[i] + P0j;
+    const J Pi = data_.velocity.empty() ? h.P[i] + P0j : h.P[i] + P0j + dragj * data_.velocity[i];
     const double value = value_of(Pi);
     if (!std::isfinite(value)) return false;
     const double sw = data_.sqrt_weight[i];

@@ -47,9 +47,7 @@ void start_in_time(const CurveData& curve, const Scene& elastic, const Scene& sc
   FitOptions e = options;
   e.free.clear();
   for (FitParameter q : options.free)
-    if (q != FitParameter::E_inf && q != FitParameter::tau && q != FitParameter::beta && q != FitParameter::v_star &&
-        q != FitParameter::n)
-      e.free.push_back(q);
+    if (!time_parameter(q)) e.free.push_back(q);
   e.compute_covariance = false;
   e.extra_starts = 0;
   // The approach alone: a relaxing medium's retract and a kinetic retract would bend an elastic fit
