@@ -73,6 +73,9 @@ JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& sce
   if (curves.size() < 2)
     throw InputError("fit_joint: give at least 2 curves (given " + std::to_string(curves.size()) + ")");
   if (!scene.profile) throw InputError("fit_joint: the scene has no indenter profile");
+  if (std::find(options.free.begin(), options.free.end(), FitParameter::drag) != options.free.end())
+    throw InputError("fit_joint: free parameter drag is fitted on one curve at a time (fit); a joint fit does not "
+                     "share it yet");
   if (scene.medium.relaxation.kind == RelaxationLaw::Kind::elastic && !scene.adhesion.kinetics)
     throw InputError("fit_joint: a joint fit shares a law in time across speeds; this scene's medium does not relax "
                      "and its adhesion has no kinetics (an elastic model's curves each have their own answer: fit them "

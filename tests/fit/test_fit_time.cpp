@@ -252,6 +252,7 @@ TEST_CASE("fit in time: the lever's drag is recovered where it is and found abse
   Scene elastic = truth;
   elastic.medium.relaxation = RelaxationLaw{};
   CHECK_THROWS_WITH(fit(c, elastic, f), Catch::Contains("drag") && Catch::Contains("relaxing medium"));
+  CHECK_THROWS_WITH(fit_joint({c, c}, truth, f), Catch::Contains("fit_joint: free parameter drag"));
   o.speed = 0.0;
   o.drag = 1e-6;
   CHECK_THROWS_WITH(simulate_curve(truth, o), Catch::Contains("drag = 1e-06 N s/m needs a speed"));
