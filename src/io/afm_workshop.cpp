@@ -52,19 +52,9 @@ AfmWorkshopRecord read_afm_workshop(std::string_view text, const std::string& so
     throw InputError(source + ": AFM Workshop force-distance file: " + what);
   };
   AfmWorkshopRecord r;
-  std::size_t pos = 0, line = 0;
-  // The next line, trimmed, counted in `line`; nullopt at the end of the text.
-  const auto next_line = [&]() -> std::optional<std::string_view> {
-    if (pos >= text.size()) return std::nullopt;
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view t = trim(text.substr(pos, end - pos));
-    pos = end + 1;
-    ++line;
-    return t;
-  };
+  TextLines lines(text);
   std::string_view header;
-  while (const auto next = next_line()) {
+  while (const auto next = lines.next()) {
     const std::string_view t = *next;
     if (t.find("Z-Sense(nm)") != std::string_view::npos) {
       header = t;
@@ -95,7 +85,7 @@ AfmWorkshopRecord read_afm_workshop(std::string_view text, const std::string& so
   r.spring_constant = set_value(r.header, "Force Constant, nN/nm");  // nN/nm = N/m
   if (const std::optional<double> gain = set_value(r.header, "Light Lever Gain, mV/nm")) r.sensitivity = 1e-6 / *gain;
   if (!columns) return r;
-  while (const auto next = next_line()) {
+  while (const auto next = lines.next()) {
     const std::string_view t = *next;
     if (t.empty()) continue;
     split(t, cells);
@@ -104,7 +94,7 @@ AfmWorkshopRecord read_afm_workshop(std::string_view text, const std::string& so
       double z = 0.0, f = 0.0;
       if (static_cast<std::size_t>(std::max(zc, fc)) >= cells.size() || !parse_finite(cells[static_cast<std::size_t>(zc)], z) ||
           !parse_finite(cells[static_cast<std::size_t>(fc)], f))
-        fail("line " + std::to_string(line) + ": '" + printable(std::string(t), 60) + "' is not a row of numbers");
+        fail("line " + std::to_string(lines.line()) + ": '" + printable(std::string(t), 60) + "' is not a row of numbers");
       r.z[side].push_back(z * 1e-9);
       r.signal[side].push_back(r.volts ? f : f * 1e-9);
     }

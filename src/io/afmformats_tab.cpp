@@ -19,19 +19,6 @@ namespace {
 const std::vector<std::string> kColumns = {"force", "tip position", "height (measured)", "height (piezo)", "segment",
                                            "time", "index"};
 
-std::vector<std::string> split_tabs(std::string_view line) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t tab = line.find('\t', start);
-    std::string_view cell = line.substr(start, tab == std::string_view::npos ? std::string_view::npos : tab - start);
-    while (!cell.empty() && (cell.back() == '\r' || cell.back() == ' ')) cell.remove_suffix(1);
-    out.emplace_back(cell);
-    if (tab == std::string_view::npos) return out;
-    start = tab + 1;
-  }
-}
-
 }  // namespace
 
 bool is_afmformats_tab(std::string_view text) {
@@ -70,13 +57,14 @@ CurveData parse_afmformats_tab(std::string_view text, const std::string& source,
   for (++k; k < lines.size() && !(lines[k].rfind("# ", 0) == 0 && lines[k].find('\t') != std::string_view::npos); ++k) {
   }
   if (k == lines.size()) fail("has no line of column names ('# force<TAB>...') after its metadata");
-  std::vector<std::string> tokens = split_tabs(lines[k].substr(2));
+  std::vector<std::string_view> tokens;
+  split(lines[k].substr(2), tokens, '\t');
   std::vector<std::string> names;
-  std::vector<std::string> glued;  // afmformats 0.13.3: the first row on the header's line
+  std::vector<std::string_view> glued;  // afmformats 0.13.3: the first row on the header's line
   for (std::size_t i = 0; i < tokens.size(); ++i) {
-    const std::string& t = tokens[i];
+    const std::string_view t = tokens[i];
     if (std::find(kColumns.begin(), kColumns.end(), t) != kColumns.end()) {
-      names.push_back(t);
+      names.emplace_back(t);
       continue;
     }
     for (const std::string& c : kColumns)
@@ -87,7 +75,7 @@ CurveData parse_afmformats_tab(std::string_view text, const std::string& source,
         break;
       }
     if (!glued.empty()) break;
-    fail("column '" + printable(t) + "' is not one it knows (" + [] {
+    fail("column '" + printable(std::string(t)) + "' is not one it knows (" + [] {
       std::string all;
       for (const std::string& c : kColumns) all += (all.empty() ? "" : ", ") + c;
       return all;
@@ -117,14 +105,15 @@ CurveData parse_afmformats_tab(std::string_view text, const std::string& source,
                       (meta.contains("instrument") && meta["instrument"].is_string()
                            ? " (" + printable(meta["instrument"].get<std::string>()) + ")"
                            : std::string()));
-  const auto add_row = [&](const std::vector<std::string>& cells, std::size_t line) {
+  const auto add_row = [&](const std::vector<std::string_view>& cells, std::size_t line) {
     if (cells.size() != names.size())
       fail("line " + std::to_string(line) + " has " + std::to_string(cells.size()) + " cells, the header names " +
            std::to_string(names.size()));
     const auto number = [&](std::size_t c) {
       double v = 0.0;
       if (!parse_finite(cells[c], v))
-        fail("line " + std::to_string(line) + ": '" + printable(cells[c]) + "' (" + names[c] + ") is not a finite number");
+        fail("line " + std::to_string(line) + ": '" + printable(std::string(cells[c])) + "' (" + names[c] +
+             ") is not a finite number");
       return v;
     };
     const double P = number(*force);
@@ -133,10 +122,10 @@ CurveData parse_afmformats_tab(std::string_view text, const std::string& source,
     d.delta.push_back(-tip_position);
     int label = 0;
     if (segment) {
-      const std::string& s = cells[*segment];
+      const std::string_view s = cells[*segment];
       if (s == "True" || s == "1") label = 1;
       else if (!(s == "False" || s == "0"))
-        fail("line " + std::to_string(line) + ": segment '" + printable(s) + "' is not False/True or 0/1");
+        fail("line " + std::to_string(line) + ": segment '" + printable(std::string(s)) + "' is not False/True or 0/1");
     }
     d.segment.push_back(label);
     if (time) d.t.push_back(number(*time));
@@ -146,9 +135,11 @@ CurveData parse_afmformats_tab(std::string_view text, const std::string& source,
     d.notes.push_back("the first sample is written on the column names' line (afmformats 0.13.3's writer): read as "
                       "the first sample");
   }
+  std::vector<std::string_view> cells;
   for (std::size_t i = k + 1; i < lines.size(); ++i) {
     if (lines[i].empty() || lines[i][0] == '#') continue;
-    add_row(split_tabs(lines[i]), i + 1);
+    split(lines[i], cells, '\t');
+    add_row(cells, i + 1);
   }
   if (d.P.empty()) fail("holds no rows");
   d.validate();

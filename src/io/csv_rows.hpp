@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <string_view>
 #include <system_error>
 #include <vector>
@@ -17,16 +18,44 @@ inline std::string_view trim(std::string_view s) {
   return s.substr(b, e - b + 1);
 }
 
-inline void split(std::string_view line, std::vector<std::string_view>& cells) {
+/// The cells of `line` between `separator`s (a comma, or a tab in the vendors' text exports), trimmed.
+inline void split(std::string_view line, std::vector<std::string_view>& cells, char separator = ',') {
   cells.clear();
   std::size_t start = 0;
   for (;;) {
-    const std::size_t comma = line.find(',', start);
-    cells.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
+    const std::size_t at = line.find(separator, start);
+    cells.push_back(trim(line.substr(start, at == std::string_view::npos ? std::string_view::npos : at - start)));
+    if (at == std::string_view::npos) break;
+    start = at + 1;
   }
 }
+
+/// Every line of a text, trimmed, blank ones included, counted from 1 (the vendors' exports, whose
+/// headers and rows a reader tells apart itself); a leading UTF-8 byte-order mark is skipped.
+class TextLines {
+ public:
+  explicit TextLines(std::string_view text) : text_(text) {
+    if (text_.substr(0, 3) == "\xEF\xBB\xBF") text_.remove_prefix(3);
+  }
+  /// The next line, or nullopt at the end of the text.
+  std::optional<std::string_view> next() {
+    if (pos_ >= text_.size()) return std::nullopt;
+    std::size_t end = text_.find('\n', pos_);
+    if (end == std::string_view::npos) end = text_.size();
+    const std::string_view t = trim(text_.substr(pos_, end - pos_));
+    pos_ = end + 1;
+    ++line_;
+    return t;
+  }
+  /// The number of the line next() returned last.
+  std::size_t line() const { return line_; }
+  /// True if a whole line (ending in a newline) is ahead: a text's first bytes may end mid-line.
+  bool complete_line_ahead() const { return text_.find('\n', pos_) != std::string_view::npos; }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0, line_ = 0;
+};
 
 /// The data rows of a CSV text: skips blank and '#' comment lines, counts lines from 1.
 class CsvRows {

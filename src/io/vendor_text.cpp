@@ -18,40 +18,6 @@
 namespace layerjkr::detail {
 namespace {
 
-// The lines of `text`, trimmed of '\r' and blanks, a view each.
-class Lines {
- public:
-  explicit Lines(std::string_view text) : text_(text) {
-    if (text_.substr(0, 3) == "\xEF\xBB\xBF") text_.remove_prefix(3);
-  }
-  std::optional<std::string_view> next() {
-    if (pos_ >= text_.size()) return std::nullopt;
-    std::size_t end = text_.find('\n', pos_);
-    if (end == std::string_view::npos) end = text_.size();
-    const std::string_view t = trim(text_.substr(pos_, end - pos_));
-    pos_ = end + 1;
-    ++line_;
-    return t;
-  }
-  std::size_t line() const { return line_; }
-  bool complete_line_ahead() const { return text_.find('\n', pos_) != std::string_view::npos; }
-
- private:
-  std::string_view text_;
-  std::size_t pos_ = 0, line_ = 0;
-};
-
-void split_tabs(std::string_view line, std::vector<std::string_view>& cells) {
-  cells.clear();
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t tab = line.find('\t', start);
-    cells.push_back(trim(line.substr(start, tab == std::string_view::npos ? std::string_view::npos : tab - start)));
-    if (tab == std::string_view::npos) break;
-    start = tab + 1;
-  }
-}
-
 // A number written with a decimal comma or point.
 bool parse_decimal(std::string_view cell, double& v) {
   std::array<char, 64> buf{};
@@ -63,7 +29,7 @@ bool parse_decimal(std::string_view cell, double& v) {
 
 // Three numbers from a line of tab-separated cells, or nullopt.
 std::optional<std::array<double, 3>> three_numbers(std::string_view line, std::vector<std::string_view>& cells) {
-  split_tabs(line, cells);
+  split(line, cells, '\t');
   std::array<double, 3> v{};
   if (cells.size() != 3) return std::nullopt;
   for (std::size_t i = 0; i < 3; ++i)
@@ -86,7 +52,7 @@ std::optional<std::size_t> first_unpadded(const std::vector<double>& defl) {
 }  // namespace
 
 bool is_ntmdt_txt(std::string_view text) {
-  Lines lines(text);
+  TextLines lines(text);
   if (!lines.complete_line_ahead()) return false;  // a first line cut short cannot be judged
   std::vector<std::string_view> cells;
   const auto first = lines.next();
@@ -101,7 +67,7 @@ CurveData parse_ntmdt_txt(std::string_view text, const std::string& source, cons
     fail_at(source, kind,
             "holds no calibration (height [nm] and the deflection signal [nA] only): give the cantilever's spring "
             "constant [N/m] (--spring-constant) and the deflection sensitivity [m per A of the signal] (--sensitivity)");
-  Lines lines(text);
+  TextLines lines(text);
   std::vector<std::string_view> cells;
   std::vector<double> height, approach, retract;
   while (const auto line = lines.next()) {
@@ -147,13 +113,13 @@ CurveData parse_chiaro_txt(std::string_view text, const std::string& source, con
     fail_at(source, kind, "states its units (Load in uN, lengths in nm); give no units option");
   if (options.sensitivity > 0.0)
     fail_at(source, kind, "its deflection (Cantilever) is measured in nm: a sensitivity does not apply");
-  Lines lines(text);
+  TextLines lines(text);
   std::vector<std::string_view> cells;
   double file_k = 0.0;
   std::optional<std::size_t> time, load, cantilever, piezo;
   std::size_t columns = 0;
   while (const auto line = lines.next()) {
-    split_tabs(*line, cells);
+    split(*line, cells, '\t');
     if (cells.size() >= 2 && cells[0] == "k (N/m)" && !parse_decimal(cells[1], file_k))
       fail_at(source, kind, "line " + std::to_string(lines.line()) + ": k (N/m) '" + printable(std::string(cells[1]), 30) +
                                 "' is not a number");
@@ -178,7 +144,7 @@ CurveData parse_chiaro_txt(std::string_view text, const std::string& source, con
   d.spring_constant = k;
   while (const auto line = lines.next()) {
     if (line->empty()) continue;
-    split_tabs(*line, cells);
+    split(*line, cells, '\t');
     std::array<double, 4> v{};
     const std::array<std::size_t, 4> at{*time, *load, *cantilever, *piezo};
     bool ok = cells.size() == columns;
