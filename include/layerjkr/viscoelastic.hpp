@@ -32,15 +32,25 @@ namespace layerjkr {
 ///   power_law_plateau (a power law with `plateau_form`): psi = p + (1 - p)(t/t0)^-beta, p =
 ///              E_inf/E in [0, 1): E(t) = E_inf + (E - E_inf)(t/t0)^-beta, which relaxes towards
 ///              E_inf instead of 0 (the scene's "power_law_plateau" with E_inf in Pa).
+///   fractional: psi = p + (1 - p) E_beta(-(t/tau)^beta), E_beta the Mittag-Leffler function, p =
+///              E_inf/E in [0, 1), beta in [0.01, 0.95], tau [s] > 0: the fractional standard linear
+///              solid (a spring E_inf in parallel with a spring E - E_inf in series with a springpot of
+///              exponent beta; "fractional_sls"), the fractional Maxwell model at p = 0
+///              ("fractional_maxwell"). E is instantaneous (psi(0+) = 1); psi ~ 1 - (t/tau)^beta /
+///              Gamma(1 + beta) early and p + (1 - p)(t/tau)^-beta / Gamma(1 - beta) late. beta -> 1
+///              is the standard linear solid. (The fractional Kelvin-Voigt model, a spring E_inf in
+///              parallel with a springpot, E_inf + c t^-beta / Gamma(1 - beta), is power_law_plateau
+///              with E = E(t0): docs/models.md.)
 struct RelaxationLaw {
-  enum class Kind { elastic, prony, power_law };
+  enum class Kind { elastic, prony, power_law, fractional };
   Kind kind = Kind::elastic;
   std::vector<double> g, tau;  ///< prony: weights in (0, 1] summing to <= 1, times [s] > 0
-  double beta = 0.0;           ///< power_law: exponent in [0, 1)
+  double beta = 0.0;           ///< power_law: exponent in [0, 1); fractional: in [0.01, 0.95]
   double t0 = 1.0;             ///< power_law: the time [s] at which E(t0) = E, > 0
-  double plateau = 0.0;        ///< power_law: E_inf/E in [0, 1) (0: the plain power law)
-  /// Made by power_law_plateau (a scene's "power_law_plateau"): its E_inf was given in Pa, and a
-  /// fit may free E_inf.
+  double tau_f = 1.0;          ///< fractional: the relaxation time tau [s], > 0
+  double plateau = 0.0;        ///< power_law, fractional: E_inf/E in [0, 1) (0: no plateau)
+  /// Made by power_law_plateau or fractional_sls (a scene's "power_law_plateau", "fractional_sls"):
+  /// its E_inf was given in Pa, and a fit may free E_inf.
   bool plateau_form = false;
   /// Made by standard_linear_solid (a scene's "sls"): one Prony term whose relaxed modulus E_inf
   /// was given in Pa, so a fit that frees E holds E_inf (not the ratio) where it is not free.
@@ -53,8 +63,12 @@ struct RelaxationLaw {
   static RelaxationLaw power_law(double beta, double t0);
   /// E(t) = E_inf + (E - E_inf)(t/t0)^-beta (`E_inf_ratio` = E_inf/E in [0, 1)).
   static RelaxationLaw power_law_plateau(double beta, double t0, double E_inf_ratio);
+  /// E(t) = E_inf + (E - E_inf) E_beta(-(t/tau)^beta) (`E_inf_ratio` = E_inf/E in [0, 1)).
+  static RelaxationLaw fractional_sls(double beta, double tau, double E_inf_ratio);
+  /// E(t) = E E_beta(-(t/tau)^beta): the fractional SLS without its parallel spring.
+  static RelaxationLaw fractional_maxwell(double beta, double tau);
 
-  /// psi(t) for t > 0 [s]; accurate to rounding.
+  /// psi(t) for t > 0 [s]; accurate to rounding (the fractional law: to 1e-10, from its spectrum).
   double relative_modulus(double t) const;
   /// Throws DomainError naming the first invalid field, its value and the valid range.
   void validate() const;

@@ -67,7 +67,8 @@ def _range(name: str, value: Optional[Tuple[float, float]]) -> Optional[Tuple[fl
 _FIT_PARAMETERS_DOC = """
     free : sequence of str or str, default ("E", "w", "delta0", "P0")
         Parameters to identify: K, G (or T), w, delta0, P0, E, R, sigma0, and in time E_inf, tau
-        (a standard linear solid), beta (a power law; with E_inf a power_law_plateau), v_star, n
+        (a standard linear solid), beta (a power law; with E_inf a power_law_plateau), beta and tau
+        (a fractional law; with E_inf a fractional_sls), v_star, n
         (crack kinetics), drag (the lever's drag [N s/m] in liquid, with a relaxing medium); a
         comma-separated string is accepted too. The others come from the
         scene (delta0 = P0 = 0 unless freed). The baseline P0 is free by default, as instrument curves need: with it

@@ -76,14 +76,15 @@ void check_request(const CurveData& curve, const Scene& scene, const FitOptions&
   if (o.baseline == Baseline::tilt) refuse("a tilted baseline is not fitted in time: use baseline constant");
   for (FitParameter q : o.free) {
     const bool sls = law.kind == RelaxationLaw::Kind::prony && law.g.size() == 1;
+    const bool fractional = law.kind == RelaxationLaw::Kind::fractional;
     std::string no;
     if (q == FitParameter::E_inf && !(relaxes && (sls || law.plateau_form)))
-      no = "is a one-term Prony law's (\"sls\", or \"prony\" with one g) or a power law's with a plateau "
-           "(\"power_law_plateau\")";
-    else if (q == FitParameter::tau && !(relaxes && sls))
-      no = "is a one-term Prony law's (\"sls\", or \"prony\" with one g)";
-    else if (q == FitParameter::beta && !(relaxes && law.kind == RelaxationLaw::Kind::power_law))
-      no = "is a power law's (\"power_law\")";
+      no = "is a one-term Prony law's (\"sls\", or \"prony\" with one g) or a law's with a plateau "
+           "(\"power_law_plateau\", \"fractional_sls\")";
+    else if (q == FitParameter::tau && !(relaxes && (sls || fractional)))
+      no = "is a one-term Prony law's (\"sls\", or \"prony\" with one g) or a fractional law's";
+    else if (q == FitParameter::beta && !(relaxes && (law.kind == RelaxationLaw::Kind::power_law || fractional)))
+      no = "is a power law's (\"power_law\") or a fractional law's (\"fractional_sls\", \"fractional_maxwell\")";
     else if (q == FitParameter::drag && !relaxes)
       no = "is fitted with a relaxing medium (medium.viscoelastic): the crack-kinetics fit does not model it yet";
     else if ((q == FitParameter::v_star || q == FitParameter::n) && relaxes)
@@ -160,6 +161,7 @@ void law_values(const Scene& scene, SceneParameters* fixed) {
     v.tau = law.tau[0];
   }
   v.beta = law.beta;
+  if (law.kind == RelaxationLaw::Kind::fractional) v.tau = law.tau_f;
   if (law.plateau_form) v.E_inf = v.E * law.plateau;
   if (scene.adhesion.kinetics) {
     v.v_star = scene.adhesion.kinetics->v_star;

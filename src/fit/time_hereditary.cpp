@@ -27,6 +27,8 @@ RelaxationKernel<T> kernel_at(const RelaxationLaw& law, const CurveParameters<T>
     case RelaxationLaw::Kind::power_law:
       // The plateau law holds E_inf in Pa (free or the scene's): its ratio moves with E.
       return power_law_kernel<T>(p.beta, law.t0, t_lo, t_hi, law.plateau_form ? T(p.E_inf / p.E) : T(0.0));
+    case RelaxationLaw::Kind::fractional:
+      return fractional_kernel<T>(p.beta, p.tau, t_lo, t_hi, law.plateau_form ? T(p.E_inf / p.E) : T(0.0));
     case RelaxationLaw::Kind::elastic:
       break;
   }
@@ -67,6 +69,9 @@ bool HereditaryEvaluator::sweep(const double* x, bool jacobian) {
   if (!(p.E > 0.0 && std::isfinite(p.E)) || !std::isfinite(delta0) || !std::isfinite(P0)) return false;
   if (prony1 && !(p.E_inf >= 0.0 && std::isfinite(p.E_inf) && p.tau > 0.0 && std::isfinite(p.tau))) return false;
   if (law_.kind == RelaxationLaw::Kind::power_law && !(p.beta >= 0.0 && p.beta < 1.0)) return false;
+  if (law_.kind == RelaxationLaw::Kind::fractional &&
+      !(p.beta >= fractional::kBetaMin && p.beta <= fractional::kBetaMax && p.tau > 0.0 && std::isfinite(p.tau)))
+    return false;
   if (law_.plateau_form && !(p.E_inf >= 0.0 && p.E_inf < p.E)) return false;
   p.s = 0.0;  // the elastic force: no adhesion
   CurveParameters<J> pj;

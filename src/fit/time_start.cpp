@@ -106,6 +106,21 @@ void start_in_time(const CurveData& curve, const Scene& elastic, const Scene& sc
         const double E = E_for(r + (1.0 - r) * std::pow(0.5 * T / law.t0, -b));
         candidates.push_back({E, law.plateau_form ? r * E : E_inf0, tau0, b, v0});
       }
+  } else if (relaxes && law.kind == RelaxationLaw::Kind::fractional) {
+    std::vector<double> betas{beta0}, taus{tau0}, ratios{law.plateau};
+    if (has(options.free, FitParameter::beta)) betas = {beta0, 0.15, 0.35, 0.6};
+    if (has(options.free, FitParameter::tau)) taus = {tau0, T / 30, T / 3, 3 * T};
+    if (law.plateau_form) {
+      ratios = {map.fixed_value(FitParameter::E_inf) / map.fixed_value(FitParameter::E)};
+      if (has(options.free, FitParameter::E_inf)) ratios = {ratios[0] > 0.0 ? ratios[0] : 0.1, 0.3, 0.6};
+    }
+    for (double b : betas)
+      for (double tau : taus)
+        for (double r : ratios) {
+          // The law's value at half the loading stands for its mean there, as for the power law.
+          const double E = E_for(RelaxationLaw::fractional_sls(b, tau, r).relative_modulus(0.5 * T));
+          candidates.push_back({E, law.plateau_form ? r * E : E_inf0, tau, b, v0});
+        }
   } else if (relaxes) {
     double g_inf = 1.0, mean = 1.0;  // a longer Prony law: its mean over the loading
     for (std::size_t i = 0; i < law.g.size(); ++i) g_inf -= law.g[i];
@@ -188,6 +203,16 @@ void judge_law(const ParameterMap& map, const std::vector<double>& x, const Scen
   }
   if (law.kind == RelaxationLaw::Kind::power_law && map.is_free(FitParameter::beta) && p.beta < 1e-3)
     out->notices.push_back("beta = " + short_number(p.beta) + ": no relaxation the data resolve");
+  if (law.kind == RelaxationLaw::Kind::fractional) {
+    if (map.is_free(FitParameter::tau) && (p.tau < step || p.tau > 10.0 * span))
+      out->warnings.push_back("tau = " + short_number(p.tau) + " s lies outside the data's time scales (" +
+                              short_number(step) + " s between samples, " + short_number(span) +
+                              " s in all): the fractional law's tau and E trade off there; a power law describes the "
+                              "same data with fewer parameters");
+    if (map.is_free(FitParameter::beta) && p.beta > 0.9)
+      out->notices.push_back("beta = " + short_number(p.beta) + " is near the fractional law's limit of 0.95, where it "
+                             "becomes the standard linear solid (\"sls\"): compare the two by AIC");
+  }
 }
 
 }  // namespace layerjkr::detail

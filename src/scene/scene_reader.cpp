@@ -222,7 +222,8 @@ void check_elastic(const Reader& in, const std::string& path, double E, double n
 }
 
 // medium.viscoelastic: {"law": "sls", "E_inf", "tau"} | {"law": "prony", "g", "tau"} |
-// {"law": "power_law", "beta", "t0"} | {"law": "power_law_plateau", "beta", "t0", "E_inf"}; E is the medium's instantaneous modulus (a stack's top
+// {"law": "power_law", "beta", "t0"} | {"law": "power_law_plateau", "beta", "t0", "E_inf"} |
+// {"law": "fractional_sls", "beta", "tau", "E_inf"} | {"law": "fractional_maxwell", "beta", "tau"}; E is the medium's instantaneous modulus (a stack's top
 // layer's: every layer relaxes by the same ratio).
 RelaxationLaw read_relaxation(const Reader& in, const json& med, double E) {
   const std::string path = "medium.viscoelastic";
@@ -258,7 +259,21 @@ RelaxationLaw read_relaxation(const Reader& in, const json& med, double E) {
                                    " Pa, the modulus at t0");
     return in.checked(path, [&] { return RelaxationLaw::power_law_plateau(beta, t0, E_inf / E); });
   }
-  in.fail(path + ".law", "= \"" + law + "\" is unknown (known: sls, prony, power_law, power_law_plateau)");
+  if (law == "fractional_sls" || law == "fractional_maxwell") {
+    const bool plateau = law == "fractional_sls";
+    in.only_keys(v, path, plateau ? std::set<std::string>{"law", "beta", "tau", "E_inf"}
+                                  : std::set<std::string>{"law", "beta", "tau"});
+    const double beta = in.number(v, "beta", path), tau = in.number(v, "tau", path);
+    const double E_inf = plateau ? in.number(v, "E_inf", path) : 0.0;
+    if (!(E_inf >= 0.0 && E_inf < E))
+      in.fail(path + ".E_inf", "= " + format_double(E_inf) + " is invalid; valid range: [0, E) with E = " + format_double(E) +
+                                   " Pa, the instantaneous modulus");
+    return in.checked(path, [&] {
+      return plateau ? RelaxationLaw::fractional_sls(beta, tau, E_inf / E) : RelaxationLaw::fractional_maxwell(beta, tau);
+    });
+  }
+  in.fail(path + ".law", "= \"" + law + "\" is unknown (known: sls, prony, power_law, power_law_plateau, fractional_sls, "
+                         "fractional_maxwell)");
 }
 
 // {"type": "layers", "layers": [{"E", "nu", "h"}, ...], "base": "bonded" | "frictionless" | {"E", "nu"}}

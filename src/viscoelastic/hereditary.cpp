@@ -19,6 +19,8 @@ RelaxationKernel<double> kernel_of(const RelaxationLaw& law, double t_lo, double
       return prony_kernel<double>(1.0 - std::accumulate(law.g.begin(), law.g.end(), 0.0), law.g, law.tau);
     case RelaxationLaw::Kind::power_law:
       return power_law_kernel<double>(law.beta, law.t0, t_lo, t_hi, law.plateau);
+    case RelaxationLaw::Kind::fractional:
+      return fractional_kernel<double>(law.beta, law.tau_f, t_lo, t_hi, law.plateau);
   }
   return prony_kernel<double>(1.0, {}, {});
 }

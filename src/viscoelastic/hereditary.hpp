@@ -258,13 +258,7 @@ bool hereditary_response(const std::vector<double>& t, const std::vector<T>& d, 
       // slope_d int_t_q^t1 psi(t_k - s) ds = Phi_q for t1 in [t_q, t_{q+1}].
       const double tq = value_of(knots.time[q]), tn = value_of(knots.time[q + 1]);
       const double sdv = value_of(knots.slope_d[q + 1]), target = value_of(phi) / sdv;
-      RelaxationKernel<double> Kv;
-      Kv.power = K.power;
-      Kv.beta = value_of(K.beta);
-      Kv.plateau = value_of(K.plateau);
-      Kv.t0 = K.t0;
-      Kv.c = cv;
-      Kv.u = uv;
+      const RelaxationKernel<double> Kv = K.values();
       const auto g = [&](double s) { return Kv.integral(t[k] - s, t[k] - tq) - target; };
       double t1 = target > 0.0 ? tn : tq;
       if (target > 0.0 && g(tn) > 0.0) {

@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "layerjkr/error.hpp"
+#include "relaxation_kernel.hpp"
 
 namespace layerjkr {
 namespace {
@@ -54,6 +55,23 @@ RelaxationLaw RelaxationLaw::power_law_plateau(double beta, double t0, double E_
   return law;
 }
 
+RelaxationLaw RelaxationLaw::fractional_sls(double beta, double tau, double E_inf_ratio) {
+  RelaxationLaw law;
+  law.kind = Kind::fractional;
+  law.beta = beta;
+  law.tau_f = tau;
+  law.plateau = E_inf_ratio;
+  law.plateau_form = true;
+  law.validate();
+  return law;
+}
+
+RelaxationLaw RelaxationLaw::fractional_maxwell(double beta, double tau) {
+  RelaxationLaw law = fractional_sls(beta, tau, 0.0);
+  law.plateau_form = false;
+  return law;
+}
+
 void RelaxationLaw::validate() const {
   const char* fn = "RelaxationLaw";
   switch (kind) {
@@ -79,6 +97,14 @@ void RelaxationLaw::validate() const {
       if (!(t0 > 0.0 && std::isfinite(t0))) throw DomainError(fn, "t0", t0, "finite and > 0 [s]");
       if (!(plateau >= 0.0 && plateau < 1.0)) throw DomainError(fn, "E_inf/E", plateau, "[0, 1)");
       return;
+    case Kind::fractional:
+      if (!(beta >= detail::fractional::kBetaMin && beta <= detail::fractional::kBetaMax))
+        throw DomainError(fn, "beta", beta,
+                          "[0.01, 0.95] (beta -> 1 is the standard linear solid, \"sls\"; the spectrum's quadrature "
+                          "costs 1/(1 - beta))");
+      if (!(tau_f > 0.0 && std::isfinite(tau_f))) throw DomainError(fn, "tau", tau_f, "finite and > 0 [s]");
+      if (!(plateau >= 0.0 && plateau < 1.0)) throw DomainError(fn, "E_inf/E", plateau, "[0, 1)");
+      return;
   }
 }
 
@@ -93,6 +119,8 @@ double RelaxationLaw::relative_modulus(double t) const {
     }
     case Kind::power_law:
       return plateau + (1.0 - plateau) * std::pow(t / t0, -beta);
+    case Kind::fractional:
+      return detail::fractional_kernel<double>(beta, tau_f, t, t, plateau).value(t);
   }
   return 1.0;
 }
@@ -110,6 +138,11 @@ std::string RelaxationLaw::describe() const {
         return "power_law_plateau(beta = " + format_double(beta) + ", t0 = " + format_double(t0) +
                " s, E_inf/E = " + format_double(plateau) + ")";
       return "power_law(beta = " + format_double(beta) + ", t0 = " + format_double(t0) + " s)";
+    case Kind::fractional:
+      if (plateau_form)
+        return "fractional_sls(beta = " + format_double(beta) + ", tau = " + format_double(tau_f) +
+               " s, E_inf/E = " + format_double(plateau) + ")";
+      return "fractional_maxwell(beta = " + format_double(beta) + ", tau = " + format_double(tau_f) + " s)";
   }
   return "";
 }

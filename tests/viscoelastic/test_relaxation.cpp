@@ -103,6 +103,16 @@ TEST_CASE("power law with a plateau: Lee-Radok loading against its closed form, 
   CHECK_THROWS_WITH(RelaxationLaw::power_law_plateau(beta, t0, 1.0), Catch::Contains("E_inf/E") && Catch::Contains("[0, 1)"));
 }
 
+TEST_CASE("the fractional Kelvin-Voigt model is the plateau law (docs/models.md)", "[viscoelastic]") {
+  // A spring E_inf = 400 Pa parallel to a springpot c = 900 Pa s^b, b = 0.35: E(t) = E_inf + c t^-b / Gamma(1 - b),
+  // written from the springpot's constitutive law (stress c D^b strain; a unit strain step relaxes as c t^-b / Gamma(1 - b)).
+  const double E_inf = 400.0, c = 900.0, b = 0.35, t0 = 0.5;
+  const auto fkv = [&](double t) { return E_inf + c * std::pow(t, -b) / std::tgamma(1.0 - b); };
+  const double E = fkv(t0);
+  const RelaxationLaw law = RelaxationLaw::power_law_plateau(b, t0, E_inf / E);
+  for (double t : {1e-3, 0.1, 0.5, 2.0, 60.0}) CHECK(E * law.relative_modulus(t) == Approx(fkv(t)).epsilon(1e-13));
+}
+
 TEST_CASE("the peers' parameters in ours: docs/models.md's worked examples", "[viscoelastic]") {
   // Issue 42: ViscoIndent's sPLR, springpot and SLS2 and PyFMRheo's power law, written as their
   // sources state E(t), against our laws with the documented mapping.
