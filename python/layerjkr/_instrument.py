@@ -65,7 +65,9 @@ def read_instrument(path: Union[str, "os.PathLike[str]"], *, curves: Optional[Cu
     -------
     list of dict
         Per curve: delta (= -tip position) [m] and P [N] as float64 arrays, segment (0
-        approach, 1 retract), index (the curve's number in the file), spring_constant [N/m],
+        approach, 1 retract, 2 dwell), t [s] (each sample's time from the segments' durations, as
+        ``layerjkr export`` writes it; None where the file gives none), index (the curve's number
+        in the file), spring_constant [N/m],
         sensitivity, x, y [m], grid_x, grid_y. ``read_instrument(p, curves=(a, b))`` equals
         ``read_instrument(p)[a:b]``.
 

@@ -37,6 +37,8 @@ py::dict curve_dict(const InstrumentCurve& c, const std::string& path, double sp
   item["spring_constant"] = c.spring_constant, item["sensitivity"] = c.sensitivity;
   item["delta"] = to_array(d.delta), item["P"] = to_array(d.P);
   item["segment"] = py::array_t<int>(static_cast<py::ssize_t>(d.segment.size()), d.segment.data());
+  // The samples' times [s] where the file gives segment durations (fits in time need them); else None.
+  item["t"] = d.t.empty() ? py::object(py::none()) : py::object(to_array(d.t));
   return item;
 }
 

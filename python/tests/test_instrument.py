@@ -15,6 +15,9 @@ def test_read_instrument_matches_the_reference(instrument_dir, source):
     assert len(curves) == 4
     assert curves[0]["delta"].dtype == np.float64 and curves[0]["segment"].shape == curves[0]["P"].shape
     assert all(c["spring_constant"] > 0 for c in curves)
+    # Each sample's time from the segments' durations, as `layerjkr export` writes it: fits in time need it.
+    assert curves[0]["t"].shape == curves[0]["P"].shape and np.all(np.diff(curves[0]["t"]) > 0)
+    assert curves[0]["t"][0] == 0.0
     assert reference  # the C++ suite checks every value; here: the binding reads the same file
     with pytest.raises(layerjkr.InputError):
         layerjkr.read_instrument(source / "README.md")
@@ -205,3 +208,24 @@ def test_hdf5_is_refused_saying_where_it_is_read(source):
     # The wheel carries no libhdf5 (34 libraries on Debian): the CLI reads afmformats' .h5 exports.
     with pytest.raises(layerjkr.InputError, match="not read by this program.*layerjkr export FILE.h5"):
         layerjkr.read_instrument(source / "tests/data/instrument/fmt-hdf5-fd_version_0.13.3.h5")
+
+
+def test_a_dwell_file_fitted_in_time_from_python_is_the_clis_fit(instrument_dir, cli, tmp_path):
+    # afmformats' stress-relaxation curve: read_instrument's t and segment give Python the CLI's fit.
+    import subprocess
+    path = instrument_dir / "fmt-jpk-sr_cell1-0008.jpk-force"
+    scene = {"indenter": {"shape": "paraboloid", "R": 5e-6},
+             "medium": {"type": "half_space", "E": 1000, "nu": 0.5,
+                        "viscoelastic": {"law": "power_law", "beta": 0.2, "t0": 1}}}
+    c = layerjkr.read_instrument(path)[0]
+    r = layerjkr.fit(c["delta"], c["P"], scene, free="E,beta,delta0,P0", segment=c["segment"], t=c["t"],
+                     branch="all", spring_constant=c["spring_constant"])
+    scene_file = tmp_path / "scene.json"
+    scene_file.write_text(json.dumps(scene))
+    out = tmp_path / "fit.json"
+    run = subprocess.run([cli, "fit", str(path), "--scene", str(scene_file), "--free", "E,beta,delta0,P0",
+                          "--branch", "all", "--out", str(out)], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    values = {name: p["value"] for name, p in json.loads(out.read_text())["parameters"].items()}
+    assert r.values["E"] == pytest.approx(values["E"], rel=1e-9)
+    assert r.values["beta"] == pytest.approx(values["beta"], rel=1e-9)
