@@ -49,8 +49,10 @@ enum class SceneModel { winkler, half_space, leading, two_term, edge_corrected, 
 /// How a foundation's P_H is computed: "closed_form", or the ODE route "ode" (model.hpp).
 enum class Solver { closed_form, ode };
 
-/// Which part of a curve a fit uses: "approach", "retract", "all".
-enum class Branch { approach, retract, all };
+/// Which part of a curve a fit uses: "approach", "retract", "all"; and for fits in time of a
+/// curve with a dwell (segment 2 between approach and retract), "dwell" (the dwell's samples, the
+/// approach as their history) and "approach_dwell" (both: everything before the retract).
+enum class Branch { approach, retract, all, dwell, approach_dwell };
 
 /// A fitted quantity (fit.hpp): "K", "G", "w", "delta0", "P0", "E", "R", "sigma0" (the
 /// Dugdale stress of a Maugis-Dugdale fit), and in time "E_inf" and "tau" (a standard linear

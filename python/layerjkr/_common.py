@@ -13,7 +13,7 @@ from ._core import InputError, Scene
 
 
 SceneLike = Union[Scene, Dict[str, Any], str, "os.PathLike[str]"]
-Branch = Literal["approach", "retract", "all"]
+Branch = Literal["approach", "retract", "all", "dwell", "approach_dwell"]
 Control = Literal["auto", "load", "cantilever", "grips"]
 BaselineKind = Literal["constant", "tilt"]
 Window = Literal["all", "pull_off", "fraction"]

@@ -73,8 +73,9 @@ _FIT_PARAMETERS_DOC = """
         comma-separated string is accepted too. The others come from the
         scene (delta0 = P0 = 0 unless freed). The baseline P0 is free by default, as instrument curves need: with it
         fixed, a fit whose answer moves by more than 3 error bars when P0 is freed warns so.
-    branch : {"approach", "retract", "all"}, default "approach"
-        Which part of the curve to fit.
+    branch : {"approach", "retract", "all", "dwell", "approach_dwell"}, default "approach"
+        Which part of the curve to fit; "dwell" and "approach_dwell" are fits in time of a curve
+        with a dwell (its samples alone, or with the approach; what precedes enters as history).
     control : {"auto", "load", "cantilever", "grips"}, default "auto"
         What controls the retract: a cantilever where its stiffness is known (auto), load
         control, a cantilever of known stiffness, or fixed grips.

@@ -35,7 +35,8 @@ LAYERJKR_NAMES(SceneModel, {SceneModel::winkler, "winkler"}, {SceneModel::half_s
                {SceneModel::full, "full"}, {SceneModel::incompressible, "incompressible"},
                {SceneModel::uniform, "uniform"})
 LAYERJKR_NAMES(Solver, {Solver::closed_form, "closed_form"}, {Solver::ode, "ode"})
-LAYERJKR_NAMES(Branch, {Branch::approach, "approach"}, {Branch::retract, "retract"}, {Branch::all, "all"})
+LAYERJKR_NAMES(Branch, {Branch::approach, "approach"}, {Branch::retract, "retract"}, {Branch::all, "all"},
+               {Branch::dwell, "dwell"}, {Branch::approach_dwell, "approach_dwell"})
 LAYERJKR_NAMES(FitParameter, {FitParameter::K, "K"}, {FitParameter::G, "G"}, {FitParameter::w, "w"},
                {FitParameter::delta0, "delta0"}, {FitParameter::P0, "P0"}, {FitParameter::E, "E"},
                {FitParameter::R, "R"}, {FitParameter::sigma0, "sigma0"}, {FitParameter::E_inf, "E_inf"},

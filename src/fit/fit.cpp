@@ -144,6 +144,10 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
     out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
     return out;
   }
+  if (options.branch == Branch::dwell || options.branch == Branch::approach_dwell)
+    throw InputError(curve.source + ": the " + to_string(options.branch) + " branch is fitted in time: give the medium a "
+                                    "relaxation law (medium.viscoelastic); an elastic model holds the force while the "
+                                    "indenter rests");
   // An elastic model holds the force while the indenter rests: dwell samples are not its to fit.
   const CurveData data = curve.without_dwell();
   if (data.radius_only() && detail::steered_contact(options))

@@ -63,8 +63,13 @@ void diagnose_residuals(const FitData& data, double force_span, FitSummary* out)
   if (delta_noise > 0.0 && kept.size() >= 3) {
     double slope2 = 0.0;
     std::size_t count = 0;
+    // Not across a dwell (segment 2, fits in time): there the model's force moves with time at a
+    // near-constant indentation, so the force change over a step of noise is no slope (it inflated
+    // a stress-relaxation dwell's noise 43x, hiding its misfit).
+    const auto resting = [&](std::size_t i) { return i < data.segment.size() && data.segment[i] == 2; };
     for (std::size_t k = 1; k + 1 < kept.size(); ++k) {
       const std::size_t a = kept[k - 1], b = kept[k + 1];
+      if (resting(a) || resting(b)) continue;
       const double dd = data.delta[b] - data.delta[a];
       if (std::abs(dd) > 4.0 * delta_noise) {  // a step the noise does not dominate
         const double slope = (out->P_fit[b] - out->P_fit[a]) / dd;

@@ -223,6 +223,9 @@ double kinetic_release(const AdhesiveSolution& sol, const Scene& scene, const Si
 
 CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
   o.validate();
+  if (o.branch == Branch::dwell || o.branch == Branch::approach_dwell)
+    throw InputError("simulate: branch = " + std::string(to_string(o.branch)) +
+                     " is a fit's choice; simulate writes approach, retract or all (a dwell is in all)");
   const bool relaxes = scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic;
   const bool kinetics = scene.adhesion.kinetics.has_value();
   if ((relaxes || kinetics) && !(o.speed > 0.0))

@@ -74,6 +74,9 @@ void check_request(const CurveData& curve, const Scene& scene, const FitOptions&
            "method and no indentation or force range");
   if (o.retract_window != RetractWindow::all) refuse("the retract window would cut the history: use retract_window all");
   if (o.baseline == Baseline::tilt) refuse("a tilted baseline is not fitted in time: use baseline constant");
+  if ((o.branch == Branch::dwell || o.branch == Branch::approach_dwell) && !relaxes)
+    refuse("the " + std::string(to_string(o.branch)) + " branch is a relaxing medium's: crack kinetics fit approach, "
+           "retract or all");
   for (FitParameter q : o.free) {
     const bool sls = law.kind == RelaxationLaw::Kind::prony && law.g.size() == 1;
     const bool fractional = law.kind == RelaxationLaw::Kind::fractional;
@@ -114,10 +117,18 @@ FitData select_time_data(const CurveData& curve, const FitOptions& options, doub
   double largest = 0.0;
   for (std::size_t i = 0; i < curve.size(); ++i) largest = std::max(largest, curve.weight.empty() ? 1.0 : curve.weight[i]);
   const auto segment = [&](std::size_t i) { return curve.segment.empty() ? (retract[i] ? 1 : 0) : curve.segment[i]; };
+  const bool dwell_branch = options.branch == Branch::dwell || options.branch == Branch::approach_dwell;
+  bool approached = false;
+  std::size_t dwell_samples = 0;
   for (std::size_t i = 0; i < curve.size(); ++i) {
     const int s = segment(i);
     if (options.branch == Branch::approach && s != 0 && i > 0 && segment(i - 1) == 0) break;  // the approach's end
-    const bool weighted = options.branch == Branch::all || (options.branch == Branch::approach ? s == 0 : s == 1);
+    if (dwell_branch && s == 1) break;  // nothing after the dwell changes it
+    approached = approached || s == 0;
+    const bool in_dwell = s == 2 && approached;  // a pause before the approach is off the surface
+    dwell_samples += in_dwell ? 1 : 0;
+    bool weighted = options.branch == Branch::all || (options.branch == Branch::approach ? s == 0 : s == 1);
+    if (dwell_branch) weighted = in_dwell || (options.branch == Branch::approach_dwell && s == 0);
     data.delta.push_back(curve.delta[i]);
     data.P.push_back(curve.P[i] - base.offset);
     data.t.push_back(curve.t[i]);
@@ -125,6 +136,9 @@ FitData select_time_data(const CurveData& curve, const FitOptions& options, doub
     data.retract.push_back(s == 1);
     data.sqrt_weight.push_back(weighted ? std::sqrt((curve.weight.empty() ? 1.0 : curve.weight[i]) / largest) : 0.0);
   }
+  if (dwell_branch && dwell_samples == 0)
+    throw InputError(curve.source + ": the " + to_string(options.branch) + " branch needs a dwell (samples of segment 2 "
+                                    "between the approach and the retract); this curve has none");
   double lo = data.delta[0], hi = lo, plo = kNaN, phi = kNaN;
   for (std::size_t i = 0; i < data.P.size(); ++i) {
     lo = std::min(lo, data.delta[i]);
@@ -227,6 +241,7 @@ FitSummary fit_in_time(const CurveData& curve, const Scene& scene, const FitOpti
   explain_no_move(run, data, map, &out);
   out.baseline_offset = data.offset;
   diagnose_residuals(data, force_span, &out);
+  name_misfit_in_time(data, map.drag(x.data()), &out);
   diagnose_indentation(data, &out);
   record_model_notes(*model, data, force_span, &out);
   const std::size_t history = static_cast<std::size_t>(std::count_if(

@@ -42,4 +42,12 @@ void start_in_time(const CurveData& curve, const Scene& elastic, const Scene& sc
 void judge_law(const ParameterMap& map, const std::vector<double>& x, const Scene& scene, const FitData& data,
                FitSummary* out);
 
+/// Where a fit in time whose residuals are not noise misses, named and measured, as one warning:
+/// each piece of the history (the pause before the approach, the approach, the dwell, the retract,
+/// a pause after it) by its share of the residuals' sum of squares and its rms against the noise;
+/// the relaxation the dwell shows beyond the law's (and the time scale of one exponential that
+/// takes most of it); a retract below the fit's lowest force (adhesion); a baseline step between
+/// the curve's ends off contact (drift). `drag` [N s/m] is the fitted lever's drag.
+void name_misfit_in_time(const FitData& data, double drag, FitSummary* out);
+
 }  // namespace layerjkr::detail

@@ -42,7 +42,7 @@ TEST_CASE("every registered enum spells each enumerator once and parses it back"
   check_round_trip<MediumType>(6);
   check_round_trip<SceneModel>(11);
   check_round_trip<Solver>(2);
-  check_round_trip<Branch>(3);
+  check_round_trip<Branch>(5);
   check_round_trip<FitParameter>(14);
   check_round_trip<LossType>(3);
   check_round_trip<RetractWindow>(3);
@@ -62,7 +62,7 @@ TEST_CASE("the registry keeps the schema's spellings", "[types]") {
   CHECK(std::string(to_string(RetractControl::fixed_grips)) == "grips");
   CHECK(std::string(to_string(InstrumentFormat::jpk_qi_data)) == "jpk-qi-data");
   CHECK(std::string(to_string(ModelKind::full_foundation)) == "full_foundation");
-  CHECK(known_names<Branch>() == "approach, retract, all");
+  CHECK(known_names<Branch>() == "approach, retract, all, dwell, approach_dwell");
   CHECK(from_string<FitParameter>("T") == FitParameter::G);  // a Filonenko-Borodich tension
   CHECK(std::string(to_string(static_cast<Branch>(42))) == "unknown");
 }
