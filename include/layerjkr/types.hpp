@@ -58,11 +58,12 @@ enum class Branch { approach, retract, all, dwell, approach_dwell };
 /// Dugdale stress of a Maugis-Dugdale fit), and in time "E_inf" and "tau" (a standard linear
 /// solid's relaxed modulus and time), "beta" (a power law's exponent), "v_star" and "n" (crack
 /// kinetics), "drag" (the lever's hydrodynamic drag coefficient b [N s/m]: the measured force
-/// carries b v, v the base's speed towards the sample). from_string also reads "T" (a Filonenko-Borodich tension) as G, "w0" as w, "V" as
+/// carries b v, v the base's speed towards the sample), "E_2" and "tau_2" (the second arm of a
+/// two-term generalised Maxwell law, "maxwell2": its modulus [Pa] and time [s]). from_string also reads "T" (a Filonenko-Borodich tension) as G, "w0" as w, "V" as
 /// v_star and "N" as n.
-enum class FitParameter { K, G, w, delta0, P0, E, R, sigma0, E_inf, tau, beta, v_star, n, drag };
+enum class FitParameter { K, G, w, delta0, P0, E, R, sigma0, E_inf, tau, beta, v_star, n, drag, E_2, tau_2 };
 /// How many FitParameter values there are.
-inline constexpr int kFitParameterCount = 14;
+inline constexpr int kFitParameterCount = 16;
 /// The SI unit of a fitted quantity: "N/m^3", "N/m", "J/m^2", "m", "N", "Pa", "s", "m/s" or "" (beta, n).
 const char* unit_of(FitParameter p);
 

@@ -52,6 +52,9 @@ struct RelaxationLaw {
   /// Made by power_law_plateau or fractional_sls (a scene's "power_law_plateau", "fractional_sls"):
   /// its E_inf was given in Pa, and a fit may free E_inf.
   bool plateau_form = false;
+  /// Made by maxwell2 (a scene's "maxwell2"): two Prony terms whose moduli were given in Pa, so a
+  /// fit may free E_inf, tau, E_2 and tau_2.
+  bool two_term_form = false;
   /// Made by standard_linear_solid (a scene's "sls"): one Prony term whose relaxed modulus E_inf
   /// was given in Pa, so a fit that frees E holds E_inf (not the ratio) where it is not free.
   bool standard_linear_solid_form = false;
@@ -60,6 +63,9 @@ struct RelaxationLaw {
   /// (`E_inf_ratio` = E_inf/E in [0, 1], `tau` [s] > 0).
   static RelaxationLaw standard_linear_solid(double E_inf_ratio, double tau);
   static RelaxationLaw prony(std::vector<double> g, std::vector<double> tau);
+  /// The two-term generalised Maxwell law E(t) = E_inf + (E - E_inf - E_2) exp(-t/tau) + E_2 exp(-t/tau_2)
+  /// (`E_inf_ratio` = E_inf/E, `E2_ratio` = E_2/E, both >= 0 with E_inf + E_2 < E; times [s] > 0).
+  static RelaxationLaw maxwell2(double E_inf_ratio, double tau, double E2_ratio, double tau_2);
   static RelaxationLaw power_law(double beta, double t0);
   /// E(t) = E_inf + (E - E_inf)(t/t0)^-beta (`E_inf_ratio` = E_inf/E in [0, 1)).
   static RelaxationLaw power_law_plateau(double beta, double t0, double E_inf_ratio);

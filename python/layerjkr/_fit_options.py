@@ -16,8 +16,8 @@ from ._common import _integer, _number, _positive, _text
 
 
 # The names a fit frees (FitParameter's string registry, with its aliases T, w0 and V).
-_PARAMETER_NAMES = ("K", "G", "T", "w", "w0", "delta0", "P0", "E", "R", "sigma0", "E_inf", "tau", "beta",
-                    "v_star", "V", "n", "drag")
+_PARAMETER_NAMES = ("K", "G", "T", "w", "w0", "delta0", "P0", "E", "R", "sigma0", "E_inf", "tau", "E_2", "tau_2",
+                    "beta", "v_star", "V", "n", "drag")
 
 
 def _parameter_name(name: str) -> str:
@@ -68,7 +68,8 @@ _FIT_PARAMETERS_DOC = """
     free : sequence of str or str, default ("E", "w", "delta0", "P0")
         Parameters to identify: K, G (or T), w, delta0, P0, E, R, sigma0, and in time E_inf, tau
         (a standard linear solid), beta (a power law; with E_inf a power_law_plateau), beta and tau
-        (a fractional law; with E_inf a fractional_sls), v_star, n
+        (a fractional law; with E_inf a fractional_sls), E_2 and tau_2 (with E_inf and tau: a
+        two-term Maxwell law, maxwell2), v_star, n
         (crack kinetics), drag (the lever's drag [N s/m] in liquid, with a relaxing medium); a
         comma-separated string is accepted too. The others come from the
         scene (delta0 = P0 = 0 unless freed). The baseline P0 is free by default, as instrument curves need: with it

@@ -131,7 +131,7 @@ Prepared prepare(const FitArguments& a) {
 void add_fit_options(CLI::App& c, FitArguments& a) {
   c.add_option("--scene", a.scene, "Scene JSON: indenter, medium, model; starting values")->required();
   c.add_option("--free", a.free, "Parameters to fit, comma-separated: K,G (or T),w,delta0,P0,E,R,sigma0, and in time "
-                                 "E_inf,tau (a standard linear solid), beta (a power law; with E_inf a power_law_plateau), beta,tau (a fractional law; with E_inf a fractional_sls), v_star,n (crack kinetics), drag (the lever's drag in liquid)")->required();
+                                 "E_inf,tau (a standard linear solid), beta (a power law; with E_inf a power_law_plateau), beta,tau (a fractional law; with E_inf a fractional_sls), E_2,tau_2 (with E_inf,tau: a two-term Maxwell law, maxwell2), v_star,n (crack kinetics), drag (the lever's drag in liquid)")->required();
   c.add_option("--loss", a.loss, "Robust loss: none | huber:SCALE | cauchy:SCALE (SCALE in N)");
   c.add_option("--branch", a.branch, "approach | retract | all | dwell | approach_dwell (default approach; the dwell branches are fits in time of a curve with a dwell: its samples alone, or with the approach, the history before them entering as history)");
   c.add_option("--units", a.units, "Units of the CSV: LENGTH,FORCE, e.g. nm,nN (default m,N)");

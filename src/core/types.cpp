@@ -41,7 +41,8 @@ LAYERJKR_NAMES(FitParameter, {FitParameter::K, "K"}, {FitParameter::G, "G"}, {Fi
                {FitParameter::delta0, "delta0"}, {FitParameter::P0, "P0"}, {FitParameter::E, "E"},
                {FitParameter::R, "R"}, {FitParameter::sigma0, "sigma0"}, {FitParameter::E_inf, "E_inf"},
                {FitParameter::tau, "tau"}, {FitParameter::beta, "beta"}, {FitParameter::v_star, "v_star"},
-               {FitParameter::n, "n"}, {FitParameter::drag, "drag"})
+               {FitParameter::n, "n"}, {FitParameter::drag, "drag"}, {FitParameter::E_2, "E_2"},
+               {FitParameter::tau_2, "tau_2"})
 LAYERJKR_NAMES(LossType, {LossType::none, "none"}, {LossType::huber, "huber"}, {LossType::cauchy, "cauchy"})
 LAYERJKR_NAMES(RetractWindow, {RetractWindow::all, "all"}, {RetractWindow::to_pull_off, "pull_off"},
                {RetractWindow::force_fraction, "fraction"})
@@ -80,8 +81,10 @@ const char* unit_of(FitParameter p) {
     case FitParameter::P0: return "N";
     case FitParameter::E:
     case FitParameter::sigma0:
-    case FitParameter::E_inf: return "Pa";
-    case FitParameter::tau: return "s";
+    case FitParameter::E_inf:
+    case FitParameter::E_2: return "Pa";
+    case FitParameter::tau:
+    case FitParameter::tau_2: return "s";
     case FitParameter::v_star: return "m/s";
     case FitParameter::beta:
     case FitParameter::n: return "";

@@ -21,7 +21,7 @@ struct ParameterMap {
   double G_scale = 1.0;             ///< linear G: G = G_scale * x
   bool G_log = false;               ///< full foundation: G = ref * exp(x)
   double s_scale = 1.0;             ///< s = sqrt(w) = s_scale * x
-  double beta_scale = 0.1;          ///< beta = ref + beta_scale * x (E_inf, tau, v_star, n: ref * exp(x))
+  double beta_scale = 0.1;          ///< beta = ref + beta_scale * x (E_inf, tau, E_2, tau_2, v_star, n: ref * exp(x))
   double drag_scale = 0.0;          ///< drag = drag_scale * x [N s/m]: the force span over the largest speed
 
   /// A joint fit's global map (joint_fit.cpp): per slot, the curve a delta0 or P0 belongs to (-1

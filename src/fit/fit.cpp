@@ -41,7 +41,7 @@ void require_supported(const CurveModel& model, const FitOptions& options, const
                        "medium (medium.viscoelastic) and the curve's times; elastic fits do not model it yet");
   for (FitParameter q : options.free)
     if (q == FitParameter::E_inf || q == FitParameter::tau || q == FitParameter::beta || q == FitParameter::v_star ||
-        q == FitParameter::n)
+        q == FitParameter::n || q == FitParameter::E_2 || q == FitParameter::tau_2)
       throw InputError(std::string("fit: free parameter ") + to_string(q) + " belongs to a law in time: " +
                        (q == FitParameter::v_star || q == FitParameter::n ? "crack kinetics (adhesion.kinetics)"
                                                                           : "a relaxing medium (medium.viscoelastic)") +
@@ -107,7 +107,8 @@ ParameterMap detail::make_parameter_map(const FitOptions& options, const Resolve
   map.L = span;
   map.F = force_span;
   for (FitParameter q : {FitParameter::K, FitParameter::E, FitParameter::R, FitParameter::G, FitParameter::sigma0,
-                         FitParameter::E_inf, FitParameter::tau, FitParameter::beta, FitParameter::v_star, FitParameter::n})
+                         FitParameter::E_inf, FitParameter::tau, FitParameter::beta, FitParameter::v_star, FitParameter::n,
+                         FitParameter::E_2, FitParameter::tau_2})
     map.ref[static_cast<int>(q)] = map.fixed_value(q);
   // E_inf is fitted on a log scale around its reference: a scene's E_inf = 0 would pin it there.
   if (map.is_free(FitParameter::E_inf) && !(map.ref[static_cast<int>(FitParameter::E_inf)] > 0.0))

@@ -176,7 +176,7 @@ void judge_plausibility(FitSummary* out) {
   for (const ParameterEstimate& e : out->parameters) {
     const std::string name = to_string(e.parameter), value = short_number(e.value);
     const bool modulus = e.parameter == FitParameter::E || e.parameter == FitParameter::K ||
-                         e.parameter == FitParameter::E_inf;
+                         e.parameter == FitParameter::E_inf || e.parameter == FitParameter::E_2;
     if (!std::isfinite(e.value))
       why = name + " is not finite";
     else if (modulus && !(e.value >= kPlausibleModulus[0] && e.value <= kPlausibleModulus[1]))

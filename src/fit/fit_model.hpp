@@ -30,8 +30,9 @@ struct CurveParameters {
   T R{};    ///< paraboloid radius [m] (when the profile is a paraboloid)
   T sigma0{};  ///< Dugdale stress [Pa] (Maugis-Dugdale adhesion)
   /// In time (time_fit.hpp): a standard linear solid's relaxed modulus [Pa] and time [s], a power
-  /// law's exponent, crack kinetics' speed [m/s] and exponent. The curve families ignore them.
-  T E_inf{}, tau{}, beta{}, v_star{}, n{};
+  /// law's exponent, crack kinetics' speed [m/s] and exponent, a two-term Maxwell law's second arm
+  /// (modulus [Pa], time [s]). The curve families ignore them.
+  T E_inf{}, tau{}, beta{}, v_star{}, n{}, E_2{}, tau_2{};
 };
 
 /// delta(a) and P(a) of the adhesive curve for one model family.

@@ -78,7 +78,7 @@ double third_difference_noise(const std::vector<double>& v, const std::vector<st
 /// the fit is not called identifiable.
 void diagnose_residuals(const FitData& data, double force_span, FitSummary* out);
 
-/// Moduli (E, K, G, E_inf) a fit may return [Pa]: beyond them no material is meant, whatever the
+/// Moduli (E, K, G, E_inf, E_2) a fit may return [Pa]: beyond them no material is meant, whatever the
 /// solver's tolerances say.
 constexpr double kPlausibleModulus[2] = {1e-3, 1e15};
 /// The largest work of adhesion a fit may return [J/m^2] (covalent bonds are a few J/m^2).

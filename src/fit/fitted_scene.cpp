@@ -71,9 +71,11 @@ void set_value(json& root, FitParameter q, double value) {
     }
     case FitParameter::E_inf:
     case FitParameter::tau:
-    case FitParameter::beta: {
+    case FitParameter::beta:
+    case FitParameter::E_2:
+    case FitParameter::tau_2: {
       json& law = object_at(object_at(root, "medium", q), "viscoelastic", q);
-      const char* key = q == FitParameter::E_inf ? "E_inf" : (q == FitParameter::tau ? "tau" : "beta");
+      const char* key = to_string(q);  // the scene's keys are the parameters' names
       if (!law.contains(key)) no_place(q, std::string("the relaxation law has no \"") + key + "\"");
       law[key] = value;
       return;

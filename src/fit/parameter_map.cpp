@@ -45,6 +45,8 @@ void ParameterMap::physical(const T* x, CurveParameters<T>* p, T* delta0, T* P0)
   };
   p->E_inf = logarithmic(FitParameter::E_inf, f.E_inf);
   p->tau = logarithmic(FitParameter::tau, f.tau);
+  p->E_2 = logarithmic(FitParameter::E_2, f.E_2);
+  p->tau_2 = logarithmic(FitParameter::tau_2, f.tau_2);
   p->v_star = logarithmic(FitParameter::v_star, f.v_star);
   p->n = logarithmic(FitParameter::n, f.n);
   p->beta = get(FitParameter::beta) ? ref[idx(FitParameter::beta)] + beta_scale * *get(FitParameter::beta) : T(f.beta);
@@ -90,6 +92,8 @@ double ParameterMap::value(FitParameter q, const double* x) const {
     case FitParameter::v_star: return p.v_star;
     case FitParameter::n: return p.n;
     case FitParameter::drag: return drag(x);
+    case FitParameter::E_2: return p.E_2;
+    case FitParameter::tau_2: return p.tau_2;
   }
   return kNaN;
 }
@@ -103,6 +107,8 @@ double ParameterMap::derivative(FitParameter q, const double* x) const {
     case FitParameter::sigma0:
     case FitParameter::E_inf:
     case FitParameter::tau:
+    case FitParameter::E_2:
+    case FitParameter::tau_2:
     case FitParameter::v_star:
     case FitParameter::n: return value(q, x);
     case FitParameter::beta: return beta_scale;
@@ -132,6 +138,8 @@ double ParameterMap::fixed_value(FitParameter q) const {
     case FitParameter::beta: return f.beta;
     case FitParameter::v_star: return f.v_star;
     case FitParameter::n: return f.n;
+    case FitParameter::E_2: return f.E_2;
+    case FitParameter::tau_2: return f.tau_2;
   }
   return kNaN;
 }

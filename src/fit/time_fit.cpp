@@ -21,7 +21,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool time_parameter(FitParameter q) {
   return q == FitParameter::E_inf || q == FitParameter::tau || q == FitParameter::beta || q == FitParameter::v_star ||
-         q == FitParameter::n || q == FitParameter::drag;
+         q == FitParameter::n || q == FitParameter::drag || q == FitParameter::E_2 || q == FitParameter::tau_2;
 }
 
 namespace {
@@ -79,13 +79,15 @@ void check_request(const CurveData& curve, const Scene& scene, const FitOptions&
            "retract or all");
   for (FitParameter q : o.free) {
     const bool sls = law.kind == RelaxationLaw::Kind::prony && law.g.size() == 1;
-    const bool fractional = law.kind == RelaxationLaw::Kind::fractional;
+    const bool fractional = law.kind == RelaxationLaw::Kind::fractional, two_term = law.two_term_form;
     std::string no;
-    if (q == FitParameter::E_inf && !(relaxes && (sls || law.plateau_form)))
-      no = "is a one-term Prony law's (\"sls\", or \"prony\" with one g) or a law's with a plateau "
-           "(\"power_law_plateau\", \"fractional_sls\")";
-    else if (q == FitParameter::tau && !(relaxes && (sls || fractional)))
-      no = "is a one-term Prony law's (\"sls\", or \"prony\" with one g) or a fractional law's";
+    if (q == FitParameter::E_inf && !(relaxes && (sls || two_term || law.plateau_form)))
+      no = "is a one-term Prony law's (\"sls\", or \"prony\" with one g), a two-term Maxwell law's (\"maxwell2\") or a "
+           "law's with a plateau (\"power_law_plateau\", \"fractional_sls\")";
+    else if (q == FitParameter::tau && !(relaxes && (sls || two_term || fractional)))
+      no = "is a one-term Prony law's (\"sls\", or \"prony\" with one g), a two-term Maxwell law's or a fractional law's";
+    else if ((q == FitParameter::E_2 || q == FitParameter::tau_2) && !(relaxes && two_term))
+      no = "is a two-term Maxwell law's second arm (\"maxwell2\")";
     else if (q == FitParameter::beta && !(relaxes && (law.kind == RelaxationLaw::Kind::power_law || fractional)))
       no = "is a power law's (\"power_law\") or a fractional law's (\"fractional_sls\", \"fractional_maxwell\")";
     else if (q == FitParameter::drag && !relaxes)
@@ -176,6 +178,12 @@ void law_values(const Scene& scene, SceneParameters* fixed) {
   }
   v.beta = law.beta;
   if (law.kind == RelaxationLaw::Kind::fractional) v.tau = law.tau_f;
+  if (law.two_term_form) {  // psi = E_inf/E + g[0] exp(-t/tau[0]) + g[1] exp(-t/tau[1])
+    v.E_inf = v.E * (1.0 - law.g[0] - law.g[1]);
+    v.tau = law.tau[0];
+    v.E_2 = v.E * law.g[1];
+    v.tau_2 = law.tau[1];
+  }
   if (law.plateau_form) v.E_inf = v.E * law.plateau;
   if (scene.adhesion.kinetics) {
     v.v_star = scene.adhesion.kinetics->v_star;

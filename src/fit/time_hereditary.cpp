@@ -16,6 +16,9 @@ RelaxationKernel<T> kernel_at(const RelaxationLaw& law, const CurveParameters<T>
       if (law.g.size() == 1) {
         const T ratio = p.E_inf / p.E;  // E_inf/E: psi = ratio + (1 - ratio) exp(-t/tau)
         return prony_kernel<T>(ratio, {T(1.0) - ratio}, {p.tau});
+      } else if (law.two_term_form) {  // E(t) = E_inf + (E - E_inf - E_2) exp(-t/tau) + E_2 exp(-t/tau_2)
+        const T r_inf = p.E_inf / p.E, r_2 = p.E_2 / p.E;
+        return prony_kernel<T>(r_inf, {T(1.0) - r_inf - r_2, r_2}, {p.tau, p.tau_2});
       } else {
         std::vector<T> g, tau;
         for (std::size_t i = 0; i < law.g.size(); ++i) {
@@ -73,6 +76,9 @@ bool HereditaryEvaluator::sweep(const double* x, bool jacobian) {
       !(p.beta >= fractional::kBetaMin && p.beta <= fractional::kBetaMax && p.tau > 0.0 && std::isfinite(p.tau)))
     return false;
   if (law_.plateau_form && !(p.E_inf >= 0.0 && p.E_inf < p.E)) return false;
+  if (law_.two_term_form && !(p.E_inf >= 0.0 && p.E_2 >= 0.0 && p.E_inf + p.E_2 <= p.E && p.tau > 0.0 &&
+                              p.tau_2 > 0.0 && std::isfinite(p.tau) && std::isfinite(p.tau_2)))
+    return false;
   p.s = 0.0;  // the elastic force: no adhesion
   CurveParameters<J> pj;
   J d0j(delta0), P0j(P0), dragj(map_.drag(x));

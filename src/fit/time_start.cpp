@@ -78,7 +78,7 @@ void start_in_time(const CurveData& curve, const Scene& elastic, const Scene& sc
   const bool E_free = has(options.free, FitParameter::E);
   const auto E_for = [&](double psi_mean) { return E_free ? E_elastic / psi_mean : map.fixed_value(FitParameter::E); };
   struct Candidate {
-    double E, E_inf, tau, beta, v_star, w_factor = 1.0;
+    double E, E_inf, tau, beta, v_star, w_factor = 1.0, E_2 = 0.0, tau_2 = 0.0;
   };
   std::vector<Candidate> candidates;
   const double E_inf0 = map.ref[static_cast<int>(FitParameter::E_inf)], tau0 = map.ref[static_cast<int>(FitParameter::tau)];
@@ -106,6 +106,31 @@ void start_in_time(const CurveData& curve, const Scene& elastic, const Scene& sc
         const double E = E_for(r + (1.0 - r) * std::pow(0.5 * T / law.t0, -b));
         candidates.push_back({E, law.plateau_form ? r * E : E_inf0, tau0, b, v0});
       }
+  } else if (relaxes && law.two_term_form) {
+    // A fast and a slow arm: the fast one from a thirtieth to a third of the loading, the slow one
+    // from the loading to ten times it, each with the scene's own values.
+    const double E0 = map.fixed_value(FitParameter::E);
+    const double r_inf0 = map.fixed_value(FitParameter::E_inf) / E0, r_20 = map.fixed_value(FitParameter::E_2) / E0;
+    const double tau_20 = map.ref[static_cast<int>(FitParameter::tau_2)];
+    std::vector<double> taus{tau0}, taus_2{tau_20}, r_infs{r_inf0}, r_2s{r_20};
+    if (has(options.free, FitParameter::tau)) taus = {tau0, T / 30, T / 5};
+    if (has(options.free, FitParameter::tau_2)) taus_2 = {tau_20, T, 10 * T};
+    if (has(options.free, FitParameter::E_inf)) r_infs = {r_inf0 > 0.0 ? r_inf0 : 0.25, 0.3};
+    if (has(options.free, FitParameter::E_2)) r_2s = {r_20, 0.3};
+    for (double tau : taus)
+      for (double tau_2 : taus_2)
+        for (double r_inf : r_infs)
+          for (double r_2 : r_2s) {
+            if (!(r_inf + r_2 < 1.0) || !(tau < tau_2)) continue;
+            const double mean = r_inf + (1.0 - r_inf - r_2) * mean_relaxation_sls(0.0, tau, T) +
+                                r_2 * mean_relaxation_sls(0.0, tau_2, T);
+            const double E = E_for(mean);
+            Candidate c{E, r_inf * E, tau, beta0, v0};
+            c.E_2 = r_2 * E;
+            c.tau_2 = tau_2;
+            candidates.push_back(c);
+          }
+    if (candidates.empty()) candidates.push_back({E_for(1.0), r_inf0 * E0, tau0, beta0, v0, 1.0, r_20 * E0, tau_20});
   } else if (relaxes && law.kind == RelaxationLaw::Kind::fractional) {
     std::vector<double> betas{beta0}, taus{tau0}, ratios{law.plateau};
     if (has(options.free, FitParameter::beta)) betas = {beta0, 0.15, 0.35, 0.6};
@@ -154,6 +179,10 @@ void start_in_time(const CurveData& curve, const Scene& elastic, const Scene& sc
     if (relaxes) set_log(FitParameter::E, c.E);
     set_log(FitParameter::E_inf, c.E_inf);
     set_log(FitParameter::tau, c.tau);
+    if (c.tau_2 > 0.0) {
+      set_log(FitParameter::E_2, c.E_2);
+      set_log(FitParameter::tau_2, c.tau_2);
+    }
     set_log(FitParameter::v_star, c.v_star);
     if (map.is_free(FitParameter::beta))
       x[static_cast<std::size_t>(map.index(FitParameter::beta))] = (c.beta - map.ref[static_cast<int>(FitParameter::beta)]) / map.beta_scale;
@@ -173,6 +202,7 @@ void start_in_time(const CurveData& curve, const Scene& elastic, const Scene& sc
   std::string law_start;
   for (FitParameter q : options.free)
     if (q == FitParameter::E || q == FitParameter::E_inf || q == FitParameter::tau || q == FitParameter::beta ||
+        q == FitParameter::E_2 || q == FitParameter::tau_2 ||
         q == FitParameter::v_star || (q == FitParameter::w && !relaxes))
       law_start += (law_start.empty() ? "" : ", ") + std::string(to_string(q)) + " = " + short_number(map.value(q, x.data()));
   out->notices.push_back("start: " + (said.empty() ? std::string("the scene's values") : "an elastic fit of the " +
@@ -203,6 +233,15 @@ void judge_law(const ParameterMap& map, const std::vector<double>& x, const Scen
   }
   if (law.kind == RelaxationLaw::Kind::power_law && map.is_free(FitParameter::beta) && p.beta < 1e-3)
     out->notices.push_back("beta = " + short_number(p.beta) + ": no relaxation the data resolve");
+  if (law.two_term_form)
+    for (FitParameter q : {FitParameter::tau, FitParameter::tau_2}) {
+      const double v = map.value(q, x.data());
+      if (map.is_free(q) && (v < step || v > 10.0 * span))
+        out->warnings.push_back(std::string(to_string(q)) + " = " + short_number(v) + " s lies outside the data's time scales (" +
+                                short_number(step) + " s between samples, " + short_number(span) +
+                                " s in all): that arm is a constant or an instant to these data; one arm (\"sls\") may "
+                                "describe them as well - compare by AIC");
+    }
   if (law.kind == RelaxationLaw::Kind::fractional) {
     if (map.is_free(FitParameter::tau) && (p.tau < step || p.tau > 10.0 * span))
       out->warnings.push_back("tau = " + short_number(p.tau) + " s lies outside the data's time scales (" +

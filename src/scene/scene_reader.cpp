@@ -223,7 +223,8 @@ void check_elastic(const Reader& in, const std::string& path, double E, double n
 
 // medium.viscoelastic: {"law": "sls", "E_inf", "tau"} | {"law": "prony", "g", "tau"} |
 // {"law": "power_law", "beta", "t0"} | {"law": "power_law_plateau", "beta", "t0", "E_inf"} |
-// {"law": "fractional_sls", "beta", "tau", "E_inf"} | {"law": "fractional_maxwell", "beta", "tau"}; E is the medium's instantaneous modulus (a stack's top
+// {"law": "fractional_sls", "beta", "tau", "E_inf"} | {"law": "fractional_maxwell", "beta", "tau"} |
+// {"law": "maxwell2", "E_inf", "tau", "E_2", "tau_2"}; E is the medium's instantaneous modulus (a stack's top
 // layer's: every layer relaxes by the same ratio).
 RelaxationLaw read_relaxation(const Reader& in, const json& med, double E) {
   const std::string path = "medium.viscoelastic";
@@ -259,6 +260,16 @@ RelaxationLaw read_relaxation(const Reader& in, const json& med, double E) {
                                    " Pa, the modulus at t0");
     return in.checked(path, [&] { return RelaxationLaw::power_law_plateau(beta, t0, E_inf / E); });
   }
+  if (law == "maxwell2") {
+    in.only_keys(v, path, {"law", "E_inf", "tau", "E_2", "tau_2"});
+    const double E_inf = in.number(v, "E_inf", path), tau = in.number(v, "tau", path);
+    const double E_2 = in.number(v, "E_2", path), tau_2 = in.number(v, "tau_2", path);
+    if (!(E_inf >= 0.0 && E_2 > 0.0 && E_inf + E_2 < E))
+      in.fail(path, "has E_inf = " + format_double(E_inf) + " Pa and E_2 = " + format_double(E_2) +
+                        " Pa; valid: E_inf >= 0, E_2 > 0 and E_inf + E_2 < E = " + format_double(E) +
+                        " Pa, the instantaneous modulus (the first arm has E - E_inf - E_2)");
+    return in.checked(path, [&] { return RelaxationLaw::maxwell2(E_inf / E, tau, E_2 / E, tau_2); });
+  }
   if (law == "fractional_sls" || law == "fractional_maxwell") {
     const bool plateau = law == "fractional_sls";
     in.only_keys(v, path, plateau ? std::set<std::string>{"law", "beta", "tau", "E_inf"}
@@ -272,8 +283,8 @@ RelaxationLaw read_relaxation(const Reader& in, const json& med, double E) {
       return plateau ? RelaxationLaw::fractional_sls(beta, tau, E_inf / E) : RelaxationLaw::fractional_maxwell(beta, tau);
     });
   }
-  in.fail(path + ".law", "= \"" + law + "\" is unknown (known: sls, prony, power_law, power_law_plateau, fractional_sls, "
-                         "fractional_maxwell)");
+  in.fail(path + ".law", "= \"" + law + "\" is unknown (known: sls, prony, maxwell2, power_law, power_law_plateau, "
+                         "fractional_sls, fractional_maxwell)");
 }
 
 // {"type": "layers", "layers": [{"E", "nu", "h"}, ...], "base": "bonded" | "frictionless" | {"E", "nu"}}

@@ -26,6 +26,15 @@ RelaxationLaw RelaxationLaw::standard_linear_solid(double E_inf_ratio, double ta
   return law;
 }
 
+RelaxationLaw RelaxationLaw::maxwell2(double E_inf_ratio, double tau, double E2_ratio, double tau_2) {
+  if (!(E_inf_ratio >= 0.0 && E2_ratio > 0.0 && E_inf_ratio + E2_ratio < 1.0))
+    throw DomainError("RelaxationLaw::maxwell2", "(E_inf + E_2)/E", E_inf_ratio + E2_ratio,
+                      "[0, 1) with E_inf >= 0 and E_2 > 0 (the first arm's modulus E - E_inf - E_2 must be > 0)");
+  RelaxationLaw law = prony({1.0 - E_inf_ratio - E2_ratio, E2_ratio}, {tau, tau_2});
+  law.two_term_form = true;
+  return law;
+}
+
 RelaxationLaw RelaxationLaw::prony(std::vector<double> g, std::vector<double> tau) {
   RelaxationLaw law;
   law.kind = Kind::prony;
@@ -130,6 +139,9 @@ std::string RelaxationLaw::describe() const {
     case Kind::elastic:
       return "elastic";
     case Kind::prony:
+      if (two_term_form && g.size() == 2)
+        return "maxwell2(E_inf/E = " + format_double(1.0 - g[0] - g[1]) + ", tau = " + format_double(tau[0]) +
+               " s, E_2/E = " + format_double(g[1]) + ", tau_2 = " + format_double(tau[1]) + " s)";
       if (standard_linear_solid_form && g.size() == 1)
         return "sls(E_inf/E = " + format_double(1.0 - g[0]) + ", tau = " + format_double(tau[0]) + " s)";
       return "prony(g = " + list(g) + ", tau = " + list(tau) + " s)";

@@ -43,7 +43,7 @@ TEST_CASE("every registered enum spells each enumerator once and parses it back"
   check_round_trip<SceneModel>(11);
   check_round_trip<Solver>(2);
   check_round_trip<Branch>(5);
-  check_round_trip<FitParameter>(14);
+  check_round_trip<FitParameter>(16);
   check_round_trip<LossType>(3);
   check_round_trip<RetractWindow>(3);
   check_round_trip<RetractControl>(4);

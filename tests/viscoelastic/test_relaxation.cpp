@@ -103,6 +103,18 @@ TEST_CASE("power law with a plateau: Lee-Radok loading against its closed form, 
   CHECK_THROWS_WITH(RelaxationLaw::power_law_plateau(beta, t0, 1.0), Catch::Contains("E_inf/E") && Catch::Contains("[0, 1)"));
 }
 
+TEST_CASE("the two-term Maxwell law against its closed form", "[viscoelastic]") {
+  // E(t) = E_inf + E_1 exp(-t/tau) + E_2 exp(-t/tau_2) with E = E_inf + E_1 + E_2, written out.
+  const double E = 3000.0, E_inf = 500.0, E_2 = 800.0, tau = 0.1, tau_2 = 2.0;
+  const RelaxationLaw law = RelaxationLaw::maxwell2(E_inf / E, tau, E_2 / E, tau_2);
+  for (double t : {0.0, 0.01, 0.1, 1.0, 5.0, 100.0})
+    CHECK(E * law.relative_modulus(t) ==
+          Approx(E_inf + (E - E_inf - E_2) * std::exp(-t / tau) + E_2 * std::exp(-t / tau_2)).epsilon(1e-13));
+  CHECK(RelaxationLaw::maxwell2(0.25, 0.1, 0.25, 2.0).describe() == "maxwell2(E_inf/E = 0.25, tau = 0.1 s, E_2/E = 0.25, tau_2 = 2 s)");
+  CHECK_THROWS_AS(RelaxationLaw::maxwell2(0.5, 0.1, 0.5, 2.0), DomainError);  // no first arm left
+  CHECK_THROWS_AS(RelaxationLaw::maxwell2(0.2, 0.1, 0.3, 0.0), DomainError);
+}
+
 TEST_CASE("the fractional Kelvin-Voigt model is the plateau law (docs/models.md)", "[viscoelastic]") {
   // A spring E_inf = 400 Pa parallel to a springpot c = 900 Pa s^b, b = 0.35: E(t) = E_inf + c t^-b / Gamma(1 - b),
   // written from the springpot's constitutive law (stress c D^b strain; a unit strain step relaxes as c t^-b / Gamma(1 - b)).

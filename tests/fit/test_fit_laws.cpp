@@ -1,7 +1,8 @@
-// Fits in time with the fractional laws (issue 42): a fractional standard linear solid gives back E,
+// Fits in time with the laws users fit (issue 42): a fractional standard linear solid gives back E,
 // beta, tau and E_inf over noise draws from a start 2x off, the fractional Maxwell model E, beta and
-// tau; AIC and BIC tell the fractional law from the power law with a plateau on a curve one of them
-// made; the fitted values land in the scene's keys; what the fractional laws refuse.
+// tau, the two-term generalised Maxwell law E, E_inf, tau, E_2 and tau_2; AIC and BIC tell the
+// fractional law from the power law with a plateau on a curve one of them made; the fitted values
+// land in the scene's keys; what the laws refuse.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -126,4 +127,50 @@ TEST_CASE("scene: the fractional laws' keys and ranges", "[fit][time]") {
   CHECK_THROWS_WITH(scene_with(2000, R"({"law": "fractional_maxwell", "beta": 1.0, "tau": 0.5})"),
                     Catch::Contains("beta") && Catch::Contains("[0.01, 0.95]"));
   CHECK_THROWS_WITH(scene_with(2000, R"({"law": "fractional_kv", "beta": 0.4})"), Catch::Contains("fractional_maxwell"));
+}
+
+TEST_CASE("fit in time: a two-term Maxwell law gives back both arms over noise draws from 2x off", "[fit][time]") {
+  // E(t) = E_inf + (E - E_inf - E_2) exp(-t/tau) + E_2 exp(-t/tau_2): a fast arm (0.1 s) and a slow
+  // one (2 s) over approach, a 5 s dwell and the retract.
+  const Scene truth = scene_with(3000, R"({"law": "maxwell2", "E_inf": 500, "tau": 0.1, "E_2": 800, "tau_2": 2.0})");
+  const Scene guess = scene_with(6000, R"({"law": "maxwell2", "E_inf": 1000, "tau": 0.2, "E_2": 1600, "tau_2": 4.0})");
+  FitOptions f;
+  f.free = {FitParameter::E,   FitParameter::E_inf, FitParameter::tau,
+            FitParameter::E_2, FitParameter::tau_2, FitParameter::delta0};
+  f.branch = Branch::all;
+  for (std::uint64_t seed = 21; seed <= 26; ++seed) {
+    SimulationOptions o;
+    o.max_indentation = 1e-6;
+    o.speed = 2e-6;
+    o.dwell = 5.0;
+    o.points_per_branch = 200;
+    o.noise = 2e-12;
+    o.seed = seed;
+    const FitSummary s = fit(simulate_curve(truth, o), guess, f);
+    INFO("seed " << seed << ": " << s.brief_report());
+    REQUIRE(s.converged);
+    CHECK(s.identifiable);
+    check_within(s, FitParameter::E, 3000.0);
+    check_within(s, FitParameter::E_inf, 500.0);
+    check_within(s, FitParameter::tau, 0.1);
+    check_within(s, FitParameter::E_2, 800.0);
+    check_within(s, FitParameter::tau_2, 2.0);
+    if (seed == 21) {
+      const Scene fitted = fitted_scene(guess, s.parameters);
+      const RelaxationLaw& law = fitted.medium.relaxation;
+      CHECK(law.two_term_form);
+      CHECK(law.tau[1] == Approx(s[FitParameter::tau_2].value));
+      CHECK(law.g[1] * s[FitParameter::E].value == Approx(s[FitParameter::E_2].value));
+    }
+  }
+  // The second arm is maxwell2's alone; its moduli must leave the first arm a positive one.
+  FitOptions sls = f;
+  sls.free = {FitParameter::E, FitParameter::E_2, FitParameter::delta0};
+  SimulationOptions o;
+  o.max_indentation = 1e-6;
+  o.speed = 2e-6;
+  const Scene one = scene_with(3000, R"({"law": "sls", "E_inf": 500, "tau": 0.1})");
+  CHECK_THROWS_WITH(fit(simulate_curve(one, o), one, sls), Catch::Contains("maxwell2"));
+  CHECK_THROWS_WITH(scene_with(3000, R"({"law": "maxwell2", "E_inf": 2000, "tau": 0.1, "E_2": 1000, "tau_2": 2})"),
+                    Catch::Contains("E_inf + E_2 < E"));
 }
