@@ -118,46 +118,69 @@ void BM_FitJointThreeSpeeds(benchmark::State& state) {
 }
 BENCHMARK(BM_FitJointThreeSpeeds)->Unit(benchmark::kMillisecond);
 
-// afmformats' real dwell curves (../shared/data/instrument): a stress relaxation on a cell (pause,
-// extend, 30 s at constant height, retract; 11 935 samples) and a creep on brain tissue (3 s at
-// constant force; 9 000 samples), fitted with a power law on a 5 um paraboloid over the whole
-// history - and, the floor, the elastic fit of the same curve's approach. Skipped without ../shared.
-const char* kDwellScene = R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "half_space",
-    "E": 1000, "nu": 0.5, "viscoelastic": {"law": "power_law", "beta": 0.2, "t0": 1}}})";
+// Real curves fitted in time over their whole history (issue #42's map-speed targets): afmformats'
+// dwell curves (../shared/data/instrument; skipped without it) - a stress relaxation on a cell
+// (pause, extend, 30 s at constant height, retract; 11 935 samples) and a creep on brain tissue
+// (3 s at constant force; 9 000 samples) - and JPK's bundled spot3 curve (2 000 samples, no dwell),
+// on a 5 um paraboloid (spot3: its 40 nm tip): a power law (E, beta), a standard linear solid (E,
+// E_inf, tau) and a fractional SLS (E, beta, tau, E_inf), with delta0 and P0; and, the floor, the
+// elastic fit of the same curve's approach.
+const char* kDwellIndenter = R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "half_space",
+    "E": 1000, "nu": 0.5)";
+const char* kSpotIndenter = R"({"indenter": {"shape": "paraboloid", "R": 4e-8}, "medium": {"type": "half_space",
+    "E": 1e5, "nu": 0.5)";
 
-CurveData dwell_curve(const std::string& name, bool* found) {
-  const std::string path = std::string(LAYERJKR_SOURCE_DIR) + "/../shared/data/instrument/" + name;
+CurveData real_curve(const std::string& name, bool* found) {
+  const std::string bundled = std::string(LAYERJKR_SOURCE_DIR) + "/data/instrument/" + name;
+  const std::string shared = std::string(LAYERJKR_SOURCE_DIR) + "/../shared/data/instrument/" + name;
+  const std::string path = std::ifstream(bundled).good() ? bundled : shared;
   *found = std::ifstream(path).good();
   return *found ? to_curve_data(InstrumentReader(path).curve(0), path) : CurveData{};
 }
 
-void BM_FitRealDwell(benchmark::State& state, const std::string& name, bool in_time) {
+void BM_FitRealInTime(benchmark::State& state, const std::string& name, const std::string& law) {
   bool found = false;
-  const CurveData c = dwell_curve(name, &found);
+  const CurveData c = real_curve(name, &found);
   if (!found) {
     state.SkipWithError("needs ../shared/data/instrument");
     return;
   }
-  Scene s = parse_scene(kDwellScene);
+  const std::string head = name.find("spot3") != std::string::npos ? kSpotIndenter : kDwellIndenter;
   FitOptions f;
   f.free = {FitParameter::E, FitParameter::delta0, FitParameter::P0};
-  if (in_time) {
-    f.free.insert(f.free.begin() + 1, FitParameter::beta);
-    f.branch = Branch::all;
+  f.branch = Branch::all;
+  std::string scene = head + "}}";
+  if (law == "power_law") {
+    scene = head + R"(, "viscoelastic": {"law": "power_law", "beta": 0.2, "t0": 1}}})";
+    f.free.push_back(FitParameter::beta);
+  } else if (law == "sls") {
+    scene = head + R"(, "viscoelastic": {"law": "sls", "E_inf": 300, "tau": 1}}})";
+    f.free.insert(f.free.end(), {FitParameter::E_inf, FitParameter::tau});
+  } else if (law == "fractional_sls") {
+    scene = head + R"(, "viscoelastic": {"law": "fractional_sls", "beta": 0.4, "tau": 1, "E_inf": 200}}})";
+    f.free.insert(f.free.end(), {FitParameter::beta, FitParameter::tau, FitParameter::E_inf});
   } else {
-    s.medium.relaxation = RelaxationLaw{};
+    f.branch = Branch::approach;  // the elastic floor
   }
+  const Scene s = parse_scene(scene);
   for (auto _ : state) benchmark::DoNotOptimize(fit(c, s, f));
   state.counters["samples"] = static_cast<double>(c.size());
 }
-BENCHMARK_CAPTURE(BM_FitRealDwell, stress_relaxation_power_law, "fmt-jpk-sr_cell1-0008.jpk-force", true)
-    ->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK_CAPTURE(BM_FitRealDwell, stress_relaxation_elastic_floor, "fmt-jpk-sr_cell1-0008.jpk-force", false)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_FitRealDwell, creep_power_law, "fmt-jpk-cc_pr14-brain-2021.06.30.jpk-force", true)
-    ->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK_CAPTURE(BM_FitRealDwell, creep_elastic_floor, "fmt-jpk-cc_pr14-brain-2021.06.30.jpk-force", false)
-    ->Unit(benchmark::kMillisecond);
+const char* kRelax = "fmt-jpk-sr_cell1-0008.jpk-force";
+const char* kCreep = "fmt-jpk-cc_pr14-brain-2021.06.30.jpk-force";
+const char* kSpot = "fmt-jpk-fd_spot3-0192.jpk-force";
+BENCHMARK_CAPTURE(BM_FitRealInTime, stress_relaxation_power_law, kRelax, "power_law")->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_FitRealInTime, stress_relaxation_sls, kRelax, "sls")->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_FitRealInTime, stress_relaxation_fractional_sls, kRelax, "fractional_sls")->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_FitRealInTime, stress_relaxation_elastic_floor, kRelax, "elastic")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FitRealInTime, creep_power_law, kCreep, "power_law")->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_FitRealInTime, creep_sls, kCreep, "sls")->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_FitRealInTime, creep_fractional_sls, kCreep, "fractional_sls")->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_FitRealInTime, creep_elastic_floor, kCreep, "elastic")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FitRealInTime, spot3_power_law, kSpot, "power_law")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FitRealInTime, spot3_sls, kSpot, "sls")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FitRealInTime, spot3_fractional_sls, kSpot, "fractional_sls")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FitRealInTime, spot3_elastic_floor, kSpot, "elastic")->Unit(benchmark::kMillisecond);
 
 const char* kElastomer = R"({"indenter": {"shape": "paraboloid", "R": 1e-3}, "medium": {"type": "half_space", "E": 1e6,
     "nu": 0.5}, "w": )";
