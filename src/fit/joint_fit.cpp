@@ -22,8 +22,10 @@ using detail::ResidualModel;
 
 bool per_curve(FitParameter q) { return q == FitParameter::delta0 || q == FitParameter::P0; }
 
-// Shared parameters that vary in log (all but beta and w) start at the alone fits' geometric mean.
-bool logarithmic(FitParameter q) { return q != FitParameter::beta && q != FitParameter::w && q != FitParameter::G; }
+// Shared parameters that vary in log (all but beta, w, G and drag) start at the alone fits' geometric mean.
+bool logarithmic(FitParameter q) {
+  return q != FitParameter::beta && q != FitParameter::w && q != FitParameter::G && q != FitParameter::drag;
+}
 
 // One curve of the joint fit: its data, model, local map and evaluator (addresses stable).
 struct Part {
@@ -73,9 +75,6 @@ JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& sce
   if (curves.size() < 2)
     throw InputError("fit_joint: give at least 2 curves (given " + std::to_string(curves.size()) + ")");
   if (!scene.profile) throw InputError("fit_joint: the scene has no indenter profile");
-  if (std::find(options.free.begin(), options.free.end(), FitParameter::drag) != options.free.end())
-    throw InputError("fit_joint: free parameter drag is fitted on one curve at a time (fit); a joint fit does not "
-                     "share it yet");
   if (scene.medium.relaxation.kind == RelaxationLaw::Kind::elastic && !scene.adhesion.kinetics)
     throw InputError("fit_joint: a joint fit shares a law in time across speeds; this scene's medium does not relax "
                      "and its adhesion has no kinetics (an elastic model's curves each have their own answer: fit them "
@@ -120,6 +119,11 @@ JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& sce
     F = std::max(F, force_span);
     parts.push_back(std::move(part));
   }
+  // One drag for one lever in one liquid: x = 1 is a drag force the size of the force span at the
+  // fastest base speed of any curve.
+  double fastest = 0.0;
+  for (const auto& part : parts)
+    for (double v : part->data.velocity) fastest = std::max(fastest, std::abs(v));
   // The layout: shared parameters first, then each curve's delta0 and P0.
   std::vector<FitParameter> shared, own;
   for (FitParameter q : options.free) (per_curve(q) ? own : shared).push_back(q);
@@ -166,10 +170,12 @@ JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& sce
       global.G_log = p.map.G_log;
       global.s_scale = p.map.s_scale;
       global.beta_scale = p.map.beta_scale;
+      global.drag_scale = fastest > 0.0 ? F / fastest : 1.0;
       for (FitParameter q : own) global.slot[static_cast<int>(q)] = -1;  // per curve: slot_curve says whose
       for (std::size_t s = 0; s < shared.size(); ++s) global.slot[static_cast<int>(shared[s])] = static_cast<int>(s);
     }
     p.map.s_scale = global.s_scale;
+    p.map.drag_scale = global.drag_scale;
     for (FitParameter q : options.free) {
       const auto pos = static_cast<std::size_t>(std::find(global.free.begin(), global.free.end(), q) - global.free.begin());
       p.slot.push_back(per_curve(q) ? shared.size() + k * own.size() +
@@ -183,6 +189,7 @@ JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& sce
   for (std::size_t s = 0; s < shared.size(); ++s) {
     if (shared[s] == FitParameter::w) x[s] = std::sqrt(std::max(start[s], 0.0)) / global.s_scale;
     if (shared[s] == FitParameter::G && !global.G_log) x[s] = start[s] / global.G_scale;
+    if (shared[s] == FitParameter::drag) x[s] = start[s] / global.drag_scale;
   }
   detail::JointEvaluator ev(joint_parts, global.free.size());
   // One FitData over every curve, for the cost's scale, the record and the degrees of freedom.

@@ -252,10 +252,43 @@ TEST_CASE("fit in time: the lever's drag is recovered where it is and found abse
   Scene elastic = truth;
   elastic.medium.relaxation = RelaxationLaw{};
   CHECK_THROWS_WITH(fit(c, elastic, f), Catch::Contains("drag") && Catch::Contains("relaxing medium"));
-  CHECK_THROWS_WITH(fit_joint({c, c}, truth, f), Catch::Contains("fit_joint: free parameter drag"));
   o.speed = 0.0;
   o.drag = 1e-6;
   CHECK_THROWS_WITH(simulate_curve(truth, o), Catch::Contains("drag = 1e-06 N s/m needs a speed"));
+}
+
+TEST_CASE("fit in time: one drag shared by curves at three speeds", "[fit][time]") {
+  // One lever in one liquid: b v grows with the speed while the law does not; a joint fit shares b.
+  const Scene truth = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "half_space",
+      "E": 2000, "nu": 0.49, "viscoelastic": {"law": "power_law", "beta": 0.2, "t0": 1}}})");
+  const Scene guess = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5e-6}, "medium": {"type": "half_space",
+      "E": 4000, "nu": 0.49, "viscoelastic": {"law": "power_law", "beta": 0.1, "t0": 1}}})");
+  FitOptions f;
+  f.free = {FitParameter::E, FitParameter::beta, FitParameter::drag, FitParameter::delta0, FitParameter::P0};
+  f.branch = Branch::all;
+  const double b = 5e-5;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    std::vector<CurveData> curves;
+    for (double v : {1e-6, 4e-6, 1.6e-5}) {
+      SimulationOptions o;
+      o.max_indentation = 1e-6;
+      o.speed = v;
+      o.points_per_branch = 200;
+      o.noise = 5e-12;
+      o.P0 = 1e-11;
+      o.drag = b;
+      o.seed = seed * 10 + curves.size();
+      curves.push_back(simulate_curve(truth, o));
+    }
+    const JointFitSummary j = fit_joint(curves, guess, f);
+    INFO("seed " << seed << ": " << j.fit.brief_report());
+    REQUIRE(j.fit.converged);
+    check_within(j.fit, FitParameter::drag, b);
+    check_within(j.fit, FitParameter::E, 2000.0);
+    check_within(j.fit, FitParameter::beta, 0.2);
+    // Shared, the drag's error bar is below each curve's own.
+    for (const FitSummary& alone : j.alone) CHECK(j.fit[FitParameter::drag].standard_error < alone[FitParameter::drag].standard_error);
+  }
 }
 
 TEST_CASE("fit in time: the hereditary Jacobian through Jets against differences of the residuals", "[fit][time]") {
