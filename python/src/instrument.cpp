@@ -4,6 +4,8 @@
 // Python layer (python/layerjkr/__init__.py), which owns the slice semantics.
 #include "instrument.hpp"
 
+#include "convert.hpp"
+
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -22,12 +24,6 @@ namespace py = pybind11;
 
 namespace layerjkr::python {
 namespace {
-
-py::array_t<double> to_array(const std::vector<double>& v) {
-  py::array_t<double> out(static_cast<py::ssize_t>(v.size()));
-  std::copy(v.begin(), v.end(), out.mutable_data());
-  return out;
-}
 
 py::dict curve_dict(const InstrumentCurve& c, const std::string& path, double spring_constant = 0.0,
                     double sensitivity = 0.0) {

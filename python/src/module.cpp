@@ -9,20 +9,17 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <exception>
-#include <mutex>
 #include <limits>
 #include <optional>
 #include <string>
-#include <thread>
 #include <tuple>
 #include <utility>
 #include <vector>
 
+#include "bindings.hpp"
+#include "convert.hpp"
 #include "instrument.hpp"
 #include "layerjkr/layerjkr.hpp"
 
@@ -31,9 +28,10 @@ using namespace layerjkr;
 
 namespace {
 
-using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-/// Segment labels: a numpy int64 array passes without a Python object per sample.
-using Labels = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+using python::Array;
+using python::Labels;
+using python::to_array;
+using python::to_vector;
 
 // The layerjkr.Error hierarchy: DomainError and InputError are also ValueErrors,
 // NumericalError an ArithmeticError, so generic handlers catch them too.
@@ -53,23 +51,6 @@ py::handle new_exception(py::module_& m, const char* name, py::handle bases, con
   return py::handle(type);
 }
 
-std::vector<double> to_vector(const Array& a, const char* name) {
-  if (a.ndim() != 1)
-    throw InputError(std::string(name) + " must be a 1-D array; got " + std::to_string(a.ndim()) + " dimensions");
-  return std::vector<double>(a.data(), a.data() + a.size());
-}
-
-py::array_t<double> to_array(const std::vector<double>& v) {
-  py::array_t<double> out(static_cast<py::ssize_t>(v.size()));
-  std::copy(v.begin(), v.end(), out.mutable_data());
-  return out;
-}
-
-py::array_t<bool> to_bool_array(const std::vector<bool>& v) {
-  py::array_t<bool> out(static_cast<py::ssize_t>(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) out.mutable_data()[i] = v[i];
-  return out;
-}
 
 py::object point_or_none(const std::optional<CriticalPoint>& p) {
   if (!p) return py::none();
@@ -247,91 +228,6 @@ SimulationOptions simulation_options(double max_indentation, double speed, doubl
   return o;
 }
 
-BatchOptions batch_options(int jobs) {
-  if (jobs < 1) throw InputError("jobs = " + std::to_string(jobs) + " must be >= 1");
-  BatchOptions b;
-  b.jobs = jobs;
-  return b;
-}
-
-// Runs a batch on a helper thread while the calling thread, every 100 ms, takes the GIL for
-// PyErr_CheckSignals: Ctrl-C cancels the batch (no new curve starts; running fits finish) and
-// raises KeyboardInterrupt (or whatever the signal handler raised) within a fit's time, with the
-// finished BatchItems attached as the exception's `batch_items`.
-template <class Run>
-std::vector<BatchItem> run_interruptible(BatchOptions b, Run run) {
-  std::atomic<bool> cancel{false};
-  b.cancelled = [&cancel] { return cancel.load(); };
-  std::vector<BatchItem> items;
-  std::exception_ptr error;
-  bool interrupted = false;
-  {
-    py::gil_scoped_release release;
-    std::mutex m;
-    std::condition_variable cv;
-    bool finished = false;
-    std::thread batch([&] {
-      try {
-        items = run(b);
-      } catch (...) {
-        error = std::current_exception();
-      }
-      const std::lock_guard<std::mutex> guard(m);
-      finished = true;
-      cv.notify_all();
-    });
-    std::unique_lock<std::mutex> lock(m);
-    while (!cv.wait_for(lock, std::chrono::milliseconds(100), [&] { return finished; })) {
-      if (interrupted) continue;
-      lock.unlock();
-      {
-        py::gil_scoped_acquire gil;
-        interrupted = PyErr_CheckSignals() != 0;  // the error stays set for below
-      }
-      if (interrupted) cancel = true;
-      lock.lock();
-    }
-    lock.unlock();
-    batch.join();
-  }
-  if (interrupted) {
-    py::error_already_set raised;
-    py::list done;
-    for (const BatchItem& it : items)
-      if (!it.cancelled) done.append(py::cast(it));
-    if (raised.value()) py::setattr(raised.value(), "batch_items", done);
-    throw raised;
-  }
-  if (error) std::rethrow_exception(error);
-  return items;
-}
-
-std::vector<BatchItem> fit_batch_py(const std::vector<std::pair<Array, Array>>& curves, const Scene& scene,
-                                    const FitOptions& options, int jobs, std::size_t display_points) {
-  BatchOptions b = batch_options(jobs);
-  b.display_points = display_points;
-  std::vector<CurveData> data;
-  for (std::size_t i = 0; i < curves.size(); ++i) {
-    CurveData c;
-    c.delta = to_vector(curves[i].first, "delta");
-    c.P = to_vector(curves[i].second, "P");
-    c.source = "curve " + std::to_string(i);
-    data.push_back(std::move(c));
-  }
-  return run_interruptible(b, [&](const BatchOptions& o) { return fit_batch(data, scene, options, o); });
-}
-
-// curves: (begin, end) positions of each instrument file, checked by the Python layer.
-std::vector<BatchItem> fit_files_py(const std::vector<std::string>& paths, const Scene& scene, const FitOptions& options,
-                                    const CsvOptions& csv, int jobs,
-                                    const std::optional<std::pair<std::size_t, std::size_t>>& curves,
-                                    std::size_t display_points) {
-  BatchOptions b = batch_options(jobs);
-  b.display_points = display_points;
-  if (curves) b.curves = CurveRange{curves->first, curves->second};
-  return run_interruptible(b, [&](const BatchOptions& o) { return fit_files(paths, scene, options, csv, o); });
-}
-
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -459,119 +355,6 @@ PYBIND11_MODULE(_core, m) {
         return std::pair<double, double>{c.length_unit, c.force_unit};
       }, py::arg("units"));
 
-  py::class_<ParameterEstimate>(m, "ParameterEstimate", "One fitted parameter (ParameterEstimate), SI units.")
-      .def_property_readonly("name", [](const ParameterEstimate& p) {  // a joint fit's own: "delta0[2]"
-        return std::string(to_string(p.parameter)) + (p.curve >= 0 ? "[" + std::to_string(p.curve + 1) + "]" : "");
-      })
-      .def_property_readonly("parameter", [](const ParameterEstimate& p) { return std::string(to_string(p.parameter)); })
-      .def_property_readonly("curve", [](const ParameterEstimate& p) -> py::object {
-        return p.curve >= 0 ? py::object(py::int_(p.curve)) : py::object(py::none());
-      })
-      .def_readonly("value", &ParameterEstimate::value)
-      .def_readonly("standard_error", &ParameterEstimate::standard_error)
-      .def_readonly("initial", &ParameterEstimate::initial)
-      .def_readonly("at_bound", &ParameterEstimate::at_bound)
-      .def_readonly("upper_bound", &ParameterEstimate::upper_bound)
-      .def_readonly("identifiable", &ParameterEstimate::identifiable)
-      .def_property_readonly("reason", [](const ParameterEstimate& p) { return python::text(p.reason); });
-
-  py::class_<FitSummary>(m, "FitSummary", "A fit's summary (FitSummary).")
-      .def_readonly("converged", &FitSummary::converged)
-      .def_readonly("termination", &FitSummary::termination)
-      .def_readonly("iterations", &FitSummary::iterations)
-      .def_readonly("model", &FitSummary::model)
-      .def_property_readonly("family", [](const FitSummary& s) { return std::string(to_string(s.family)); })
-      .def_readonly("parameters", &FitSummary::parameters)
-      .def_property_readonly("correlation", [](const FitSummary& s) {
-        const auto n = static_cast<py::ssize_t>(s.parameters.size());
-        py::array_t<double> c({n, n});
-        for (py::ssize_t i = 0; i < n; ++i)
-          for (py::ssize_t k = 0; k < n; ++k)
-            *c.mutable_data(i, k) = s.correlation.empty() ? std::nan("")
-                                                          : s.correlation[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)];
-        return c;
-      })
-      .def_readonly("rms_residual", &FitSummary::rms_residual)
-      .def_readonly("samples_fitted", &FitSummary::samples_fitted)
-      .def_property_readonly("chi_square", &FitSummary::chi_square)
-      .def_property_readonly("reduced_chi_square", &FitSummary::reduced_chi_square)
-      .def_property_readonly("aic", &FitSummary::aic)
-      .def_property_readonly("bic", &FitSummary::bic)
-      .def_readonly("initial_cost", &FitSummary::initial_cost)
-      .def_readonly("final_cost", &FitSummary::final_cost)
-      .def_readonly("points", &FitSummary::points)
-      .def_readonly("points_in_contact", &FitSummary::points_in_contact)
-      .def_readonly("identifiable", &FitSummary::identifiable)
-      .def_readonly("identifiability_known", &FitSummary::identifiability_known)
-      .def_property_readonly("identifiability_reason", [](const FitSummary& s) { return python::text(s.identifiability_reason); })
-      .def_property_readonly("identifiability", [](const FitSummary& s) { return python::text(s.identifiability()); })
-      .def_readonly("unidentifiable", &FitSummary::unidentifiable)
-      .def_property_readonly("no_move_reason", [](const FitSummary& s) { return python::text(s.no_move_reason); })
-      .def_property_readonly("warnings", [](const FitSummary& s) { return python::texts(s.warnings); })
-      .def_property_readonly("notices", [](const FitSummary& s) { return python::texts(s.notices); })
-      .def_readonly("noise", &FitSummary::noise)
-      .def_readonly("runs_z", &FitSummary::runs_z)
-      .def_readonly("residual_structure", &FitSummary::residual_structure)
-      .def_readonly("force_noise", &FitSummary::force_noise)
-      .def_readonly("radius_noise", &FitSummary::radius_noise)
-      .def_readonly("force_noise_given", &FitSummary::force_noise_given)
-      .def_readonly("radius_noise_given", &FitSummary::radius_noise_given)
-      .def_property_readonly("delta", [](const FitSummary& s) { return to_array(s.delta); })
-      .def_property_readonly("P", [](const FitSummary& s) { return to_array(s.P); })
-      .def_property_readonly("P_fit", [](const FitSummary& s) { return to_array(s.P_fit); })
-      .def_property_readonly("t", [](const FitSummary& s) { return to_array(s.t); })
-      .def_property_readonly("excluded", [](const FitSummary& s) { return to_bool_array(s.excluded); })
-      .def_readonly("excluded_count", &FitSummary::excluded_count)
-      .def_readonly("baseline_slope", &FitSummary::baseline_slope)
-      .def_readonly("baseline_slope_stderr", &FitSummary::baseline_slope_stderr)
-      .def_readonly("baseline_offset", &FitSummary::baseline_offset)
-      .def_readonly("pull_off_force", &FitSummary::pull_off_force)
-      .def_readonly("solve_seconds", &FitSummary::solve_seconds)
-      .def_property_readonly("contact_point", [](const FitSummary& s) {
-        const ContactPointReport& c = s.contact_point;
-        py::dict d;
-        d["method"] = std::string(to_string(c.method));
-        d["value"] = c.value;
-        d["stderr"] = c.standard_error;
-        d["baseline"] = c.baseline;
-        d["range_reference"] = c.range_reference;
-        d["approach_samples"] = c.approach_samples;
-        d["samples_in_range"] = c.samples_in_range;
-        return d;
-      })
-      .def("brief_report", [](const FitSummary& s) { return python::text(s.brief_report()); });
-
-  py::class_<BatchItem>(m, "BatchItem", "One curve of a batch (BatchItem).")
-      .def_property_readonly("source", [](const BatchItem& it) { return python::file_name(it.source); })
-      .def_readonly("ok", &BatchItem::ok)
-      .def_property_readonly("error", [](const BatchItem& it) { return python::text(it.error); })
-      .def_readonly("summary", &BatchItem::summary)
-      .def_readonly("curve", &BatchItem::curve)
-      .def_readonly("x", &BatchItem::x)
-      .def_readonly("y", &BatchItem::y)
-      .def_readonly("grid_x", &BatchItem::grid_x)
-      .def_readonly("grid_y", &BatchItem::grid_y)
-      .def_property_readonly("quality", &batch_quality);
-
-  // A map field's image and its TIFF (map_image.hpp): the same placement and writer as fit-map --tiff.
-  m.def("map_image", [](const std::vector<int>& grid_x, const std::vector<int>& grid_y, const std::vector<double>& values) {
-        const MapImage image = map_image(grid_x, grid_y, values);
-        py::array_t<double> out({image.height, image.width});
-        std::copy(image.values.begin(), image.values.end(), out.mutable_data());
-        return out;
-      }, py::arg("grid_x"), py::arg("grid_y"), py::arg("values"));
-  m.def("write_tiff", [](const std::string& path, const py::array_t<double, py::array::c_style | py::array::forcecast>& a,
-                         const std::string& description) {
-        if (a.ndim() != 2 || a.shape(0) < 1 || a.shape(1) < 1)
-          throw InputError("write_tiff " + path + ": the image must be a non-empty 2-D array");
-        MapImage image;
-        image.height = static_cast<std::size_t>(a.shape(0));
-        image.width = static_cast<std::size_t>(a.shape(1));
-        image.values.assign(a.data(), a.data() + a.size());
-        py::gil_scoped_release release;
-        write_tiff(image, path, description);
-      }, py::arg("path"), py::arg("image"), py::arg("description"));
-
   m.def("fit", &fit_arrays, py::arg("delta"), py::arg("P"), py::arg("segment"), py::arg("t"), py::arg("scene"),
         py::arg("options"));
   // The scene a fit describes (fitted_scene): from the scene's JSON as the fit's provenance kept it
@@ -597,55 +380,8 @@ PYBIND11_MODULE(_core, m) {
         py::arg("seed"), py::arg("with_radius"), py::arg("branch"), py::arg("delta0"), py::arg("P0"), py::arg("control"),
         py::arg("stiffness"), py::arg("drag") = 0.0);
   m.def("simulate", &simulate_py, py::arg("scene"), py::arg("options"));
-  m.def("fit_batch", &fit_batch_py, py::arg("curves"), py::arg("scene"), py::arg("options"), py::arg("jobs"),
-        py::arg("display_points") = 0);
-  m.def("fit_files", &fit_files_py, py::arg("paths"), py::arg("scene"), py::arg("options"), py::arg("csv"),
-        py::arg("jobs"), py::arg("curves") = py::none(), py::arg("display_points") = 0);
 
-  // Provenance (provenance.hpp): inputs as (path, size, sha256, error) tuples, the record as JSON text.
-  m.def("record_file", [](const std::string& path) {
-        InputRecord r;
-        {
-          py::gil_scoped_release release;
-          r = record_file(path);
-        }
-        // The path as records hold it (escape_bytes: valid UTF-8, reversible), the reason printable.
-        return py::make_tuple(escape_bytes(r.path), r.size, r.sha256, printable(r.error));
-      },
-      py::arg("path"));
-  m.def("record_bytes", [](const std::string& name, const py::buffer& data) {
-        const py::buffer_info b = data.request();
-        if (!PyBuffer_IsContiguous(b.view(), 'C')) throw InputError(name + ": the array must be C-contiguous to be hashed");
-        const InputRecord r = record_bytes(name, b.ptr, static_cast<std::size_t>(b.size * b.itemsize));
-        return py::make_tuple(r.path, r.size, r.sha256, r.error);
-      },
-      py::arg("name"), py::arg("data"));
-  m.def("provenance", [](const Scene& scene, const FitOptions& options, std::optional<CsvOptions> csv,
-                         const std::vector<std::tuple<std::string, std::uint64_t, std::string, std::string>>& inputs) {
-        std::vector<InputRecord> records;
-        for (const auto& [path, size, sha, error] : inputs) records.push_back({unescape_bytes(path), size, sha, error});
-        return provenance_json(scene, options, csv ? &*csv : nullptr, records);
-      },
-      py::arg("scene"), py::arg("options"), py::arg("csv"), py::arg("inputs"));
-  m.attr("DEFAULT_DISPLAY_POINTS") = kDefaultDisplayPoints;
-  m.def(
-      "prepare_report_dir", [](const std::string& dir, const std::string& flag) { prepare_report_dir(dir, flag); },
-      py::arg("dir"), py::arg("flag"));
-  m.def(
-      "map_report_html",
-      [](const std::vector<BatchItem>& items, const FitOptions& options, const std::string& title,
-         const std::string& subtitle) {
-        MapReportOptions r;
-        r.free = options.free;
-        r.title = title;
-        r.subtitle = subtitle;
-        std::string html;
-        {
-          py::gil_scoped_release release;
-          html = map_report_html(items, r);
-        }
-        return py::bytes(html);
-      },
-      py::arg("items"), py::arg("options"), py::arg("title"), py::arg("subtitle"));
+  layerjkr::python::bind_fit_summary(m);
+  layerjkr::python::bind_batch(m);
   layerjkr::python::bind_instrument(m);
 }

@@ -17,6 +17,7 @@
 #include "core/context_caches.hpp"
 #include "core/gsl_support.hpp"
 #include "core/parallel.hpp"
+#include "models/kernel_transform.hpp"
 #include "models/stack_symbol.hpp"
 #include "layerjkr/error.hpp"
 
@@ -109,72 +110,6 @@ struct Remainder {
     return (*r->q)(u) - std::exp(-kBeta * u) * (r->A + r->B * u);
   }
 };
-
-// int_0^inf fn(u) cos(sigma u) du for fn decaying like u^2 e^{-2u}: the tail beyond
-// u = kCutoff is below 1e-30, so GSL's QAWO on [0, kCutoff] (QAG at sigma = 0) is used, split
-// at `splits` (a stack's switch points, where its symbol has a rounding-size step).
-// `levels`: the bisections QAWO's table of moments covers (each costs its set-up; a stack's
-// segments between switch points need few, and 30 halve its kernel's build against 60).
-// `scale` is the size of fn near 0 (1 for one layer; |q(0)| = E1*/Es* - 1 for a stiff film on a
-// soft substrate): the tolerances are relative to it.
-double cosine_transform(gsl_function fn, double sigma, const std::vector<double>& splits, double scale, int levels) {
-  constexpr std::size_t kLimit = 4000;
-  constexpr double kCutoff = 40.0;
-  struct Workspace {
-    gsl_integration_workspace* ws = gsl_integration_workspace_alloc(kLimit);
-    ~Workspace() { gsl_integration_workspace_free(ws); }
-  } w;
-  std::vector<double> edges{0.0};
-  for (double x : splits)
-    if (x > 0.0 && x < kCutoff) edges.push_back(x);
-  edges.push_back(kCutoff);
-  sigma = std::abs(sigma);
-  double total = 0.0;
-  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
-    const double a = edges[i], b = edges[i + 1];
-    double result = 0.0, abserr = 0.0;
-    int status = GSL_SUCCESS;
-    if (sigma == 0.0) {
-      status = gsl_integration_qag(&fn, a, b, 1e-15 * scale, 1e-13, kLimit, GSL_INTEG_GAUSS41, w.ws, &result, &abserr);
-    } else {
-      gsl_integration_qawo_table* wf = gsl_integration_qawo_table_alloc(sigma, b - a, GSL_INTEG_COSINE, static_cast<std::size_t>(levels));
-      status = gsl_integration_qawo(&fn, a, 1e-15 * scale, 1e-13, kLimit, w.ws, wf, &result, &abserr);
-      gsl_integration_qawo_table_free(wf);
-    }
-    // The integral is O(1) and asked for to 1e-15, so QAWO may report that rounding stops it;
-    // its error estimate says whether the result is still good enough to use.
-    if (status == GSL_EROUND && abserr < 1e-13 * scale) status = GSL_SUCCESS;
-    if (status != GSL_SUCCESS)
-      throw NumericalError(std::string("layerjkr exact layer: kernel transform failed at sigma = ") +
-                           format_double(sigma) + " on u in [" + format_double(a) + ", " + format_double(b) +
-                           "] (" + gsl_strerror(status) + ", error estimate " + format_double(abserr) + ")");
-    total += result;
-  }
-  return total;
-}
-
-// int_0^40 |q(u)| du to a few digits, split where q changes: the size of the transform, which
-// sets the quadrature's absolute tolerance (a thick soft stack has |q| ~ 1e6 where one layer
-// has 1).
-template <class Q>
-double integral_of_abs(const Q& q, const std::vector<double>& splits) {
-  std::vector<double> edges{0.0};
-  for (double x : splits)
-    if (x > 0.0 && x < 40.0) edges.push_back(x);
-  edges.push_back(40.0);
-  double total = 0.0;
-  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
-    // Geometric nodes within each segment (q's features there are on log scales), midpoint rule.
-    const double a = std::max(edges[i], 1e-3 * edges[i + 1]), b = edges[i + 1];
-    constexpr int kNodes = 64;
-    for (int k = 0; k < kNodes; ++k) {
-      const double lo = a * std::pow(b / a, static_cast<double>(k) / kNodes), hi = a * std::pow(b / a, (k + 1.0) / kNodes);
-      total += std::abs(q(0.5 * (lo + hi))) * (hi - lo);
-    }
-    total += std::abs(q(0.5 * a)) * (a - edges[i]);
-  }
-  return total;
-}
 
 double slope_at_zero(double kappa, bool bonded) {  // q'(0) = -L'(0)
   return bonded ? -4.0 * (kappa - 1.0) / ((kappa + 1.0) * (kappa + 1.0)) : -0.5;
