@@ -25,7 +25,8 @@ from ._scene import AdhesionCheck, AutoChoice, FixedGrips, ModelError, scene
 from ._curve import Curve, curve
 from ._summary import Summary, summary
 from ._fit_result import FitResult, NamedArray
-from ._fit import JointFitResult, Simulation, fit, fit_joint, simulate
+from ._simulate import Simulation, simulate
+from ._fit import JointFitResult, fit, fit_joint
 from ._batch import BatchResult, fit_batch, fit_files
 from ._batch_tables import BatchResults
 from ._instrument import Instrument, open_instrument, read_instrument

@@ -13,6 +13,7 @@ import numpy.typing as npt
 from . import _core
 from ._core import InputError, Scene
 from ._common import _float64, _text
+from ._simulate import simulate
 
 
 def fitted_scene(result: Any) -> Scene:
@@ -59,7 +60,6 @@ def evaluate(result: Any, delta: npt.ArrayLike, branch: Optional[str]) -> npt.ND
     # (4 000 samples to 10^(g+1) m for 10^g <= |delta - delta0| < 10^(g+1)): what one point gets
     # never depends on the others asked for with it (one point at 1 cm coarsened the grid of all),
     # and the interpolation is within about 1e-6 of the force wherever the point lies.
-    from ._fit import simulate  # the fit's physics; _fit imports this module's users
     scene = fitted_scene(result)
     offset = d - delta0
     decade = np.floor(np.log10(np.maximum(np.abs(np.where(finite, offset, 1.0)), _SMALLEST_DEPTH)))
