@@ -4,11 +4,14 @@ from __future__ import annotations
 import contextlib
 import os
 import tempfile
+import warnings as _warnings
 from typing import Any, Callable, Dict, Iterator, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy.typing as npt
 
 from . import _core
+from ._core import InputError
+from ._common import ModelWarning
 from ._common import BaselineKind, Branch, ContactPointMethod, Control, CurveRangeLike, Loss, SceneLike, Window, _float64, _integer, _number, _pairs, _path, _positive, _sequence, _text
 from ._scene import _as_scene
 from ._fit_result import FitResult
@@ -43,8 +46,24 @@ class BatchResult(NamedTuple):
         return self.result is not None
 
 
+def _say_failures(items: Sequence[Any], stacklevel: int) -> None:
+    """A batch goes on past a bad curve or file, and says so: a ModelWarning counting the failures
+    and naming the first (every curve failing - a wrong scene, a wrong unit - is the loud case)."""
+    failed = [it for it in items if not it.ok]
+    if not failed:
+        return
+    error = failed[0].error
+    first = error if error.startswith(failed[0].source) else "%s: %s" % (failed[0].source, error)
+    if len(failed) == len(items):
+        message = "every curve of the batch failed (%d of %d); the first: %s" % (len(failed), len(items), first)
+    else:
+        message = "%d of %d curves failed (their items have .error); the first: %s" % (len(failed), len(items), first)
+    _warnings.warn(message, ModelWarning, stacklevel=stacklevel + 1)
+
+
 def _batch(items: Sequence[Any], branch: str,
            provenance: Optional[Callable[[int, Any], Dict[str, Any]]] = None) -> BatchResults:
+    _say_failures(items, stacklevel=3)
     out = []
     for k, it in enumerate(items):
         record = provenance(k, it) if provenance is not None and it.ok else None
@@ -222,6 +241,9 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
     if isinstance(paths, (str, bytes, os.PathLike)):
         paths = [paths]
     paths = [_path("paths[%d]" % k, p) for k, p in enumerate(_sequence("paths", paths))]
+    for k, p in enumerate(paths):  # a name that is nothing is the caller's error, not a failed curve
+        if not os.path.lexists(p):
+            raise InputError("paths[%d] = %r: no such file or directory" % (k, p))
     # As bytes, the file system's own names: a name that is not UTF-8 (os.listdir gives it with
     # surrogates) reaches the file; each result's source gives it back as os.fsdecode would.
     names = [os.fsencode(p) for p in paths]

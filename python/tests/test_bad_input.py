@@ -153,3 +153,19 @@ def test_every_argument_is_checked_by_its_own_name(source):
     ibw = os.fsencode(str(source / "tests/data/instrument/IgorIBWReader_ForceCurve.ibw"))
     assert len(layerjkr.read_instrument(ibw)) == 1
     assert layerjkr.fit_files([ibw], scene, free="E")[0].source.endswith("IgorIBWReader_ForceCurve.ibw")
+
+
+def test_a_batch_says_when_curves_fail_and_a_missing_file_is_an_error(source, tmp_path):
+    # Issue 43: a batch goes on past a bad curve, but never in silence; a name that is nothing is the
+    # caller's error, not a failed curve.
+    d, P, seg = curve_arrays(source)
+    scene = str(source / SCENE)
+    flat = (np.linspace(0.0, 1e-6, 50), np.zeros(50))  # P constant: nothing to fit
+    with pytest.warns(layerjkr.ModelWarning, match=r"1 of 2 curves failed .* the first: curve 1: P is constant"):
+        results = layerjkr.fit_batch([(d, P), flat], scene, free="E,delta0,P0")
+    assert results[0].ok and not results[1].ok
+    with pytest.warns(layerjkr.ModelWarning, match=r"every curve of the batch failed \(2 of 2\)"):
+        layerjkr.fit_batch([flat, flat], scene, free="E")
+    missing = tmp_path / "missing.csv"
+    with pytest.raises(layerjkr.InputError, match=r"paths\[1\] = .*missing\.csv.*: no such file or directory"):
+        layerjkr.fit_files([str(source / "data/curves/hydrogel_film_two_term.csv"), missing], scene, free="E")

@@ -231,6 +231,11 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
     check_record_replaceable(sidecar, o.force);
     record.emplace(sidecar);
   }
+  // Curve files carry no map position: --plot-dir is refused now, before anything is written (the
+  // table, its record or the directory), as --tiff is.
+  if (!o.plot_dir.empty() && !may_carry_map_positions(files))
+    throw InputError("--plot-dir: no input carries map positions (CSV curve files do not; instrument force maps and QI "
+                     "files do)");
   if (!o.plot_dir.empty()) prepare_plot_dir(o.plot_dir, map_plot_names(p.options.free), o.force);
   if (!o.tiff_dir.empty()) prepare_tiff_dir(o.tiff_dir, files, map_tiff_names(files, p.options.free), o.force);
   for (const std::string& line : not_read) std::cerr << "fit-map: " << printable(line) << "\n";
@@ -303,8 +308,14 @@ int map_and_record(const Prepared& p, const std::vector<std::string>& files, con
               << (page ? " (no report written)" : "") << "\n";
     return 128 + sig;
   }
-  if (!o.plot_dir.empty()) plot_map_fields(items, p.options.free, o.plot_dir, o.force);
-  if (!o.tiff_dir.empty()) {
+  // Instrument files whose curves turned out to hold no map position (single curves): the table
+  // stands and the maps are said to be impossible, not an error after the work.
+  const bool placed = std::any_of(items.begin(), items.end(), [](const BatchItem& it) { return it.grid_x >= 0 && it.grid_y >= 0; });
+  if ((!o.plot_dir.empty() || !o.tiff_dir.empty()) && !placed)
+    std::cerr << "fit-map: warning: no fitted curve carries a map position (single curves, not a map): no map "
+                 "drawn" << (o.plot_dir.empty() ? "" : " in --plot-dir") << (o.tiff_dir.empty() ? "" : " or --tiff") << "\n";
+  if (!o.plot_dir.empty() && placed) plot_map_fields(items, p.options.free, o.plot_dir, o.force);
+  if (!o.tiff_dir.empty() && placed) {
     const std::size_t n = write_map_tiffs(items, files, p.options.free, o.tiff_dir);
     std::cerr << "fit-map: " << n << " TIFF image(s) written to " << printable(o.tiff_dir) << "\n";
   }

@@ -97,11 +97,15 @@ std::vector<std::string> map_tiff_names(const std::vector<std::string>& inputs, 
   return names;
 }
 
+bool may_carry_map_positions(const std::vector<std::string>& inputs) {
+  return std::any_of(inputs.begin(), inputs.end(),
+                     [](const std::string& in) { return is_instrument_file(in) || is_asylum_map_export(in); });
+}
+
 void prepare_tiff_dir(const std::string& dir, const std::vector<std::string>& inputs, const std::vector<std::string>& names,
                       bool force) {
   // Curve files carry no map position: refused now, before the work, not after every fit.
-  if (std::none_of(inputs.begin(), inputs.end(),
-                   [](const std::string& in) { return is_instrument_file(in) || is_asylum_map_export(in); }))
+  if (!may_carry_map_positions(inputs))
     throw InputError("--tiff: no input carries map positions (CSV curve files do not; instrument force maps and QI "
                      "files do)");
   // A grid too large for an image is refused now too. A file that cannot be opened is left to the
@@ -153,7 +157,6 @@ std::size_t write_map_tiffs(const std::vector<BatchItem>& items, const std::vect
       ++written;
     }
   }
-  if (written == 0) throw InputError("--tiff: no input carries map positions (instrument force maps and QI files do)");
   return written;
 }
 

@@ -14,6 +14,11 @@ namespace layerjkr::cli {
 /// _stderr, pull_off and rms_residual.
 std::vector<std::string> map_tiff_names(const std::vector<std::string>& inputs, const std::vector<FitParameter>& free);
 
+/// Whether any of `inputs` can carry map positions (an instrument file or an Asylum map export; a
+/// curve CSV cannot): --plot-dir and --tiff refuse, before anything is written, inputs none of
+/// which can.
+bool may_carry_map_positions(const std::vector<std::string>& inputs);
+
 /// Creates DIR and refuses, before any fit, inputs none of which can carry map positions (curve
 /// CSV files), and to replace a file there that is not a TIFF layerjkr wrote (its description
 /// starts "layerjkr fit-map") unless `force`.
@@ -21,7 +26,7 @@ void prepare_tiff_dir(const std::string& dir, const std::vector<std::string>& in
                       bool force);
 
 /// Writes the TIFFs of every input with map pixels (failed curves NaN). Returns how many were
-/// written; InputError if no input has pixels.
+/// written: 0 when no fitted curve had a map position (the caller says so; the table stands).
 std::size_t write_map_tiffs(const std::vector<BatchItem>& items, const std::vector<std::string>& inputs,
                             const std::vector<FitParameter>& free, const std::string& dir);
 

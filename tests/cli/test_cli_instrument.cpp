@@ -127,10 +127,24 @@ TEST_CASE("fit-map --plot-dir draws every fitted field over the map grid", "[cli
     CHECK(std::string(magic + 1, 3) == "PNG");
   }
   for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().extension() == ".png");  // no leftovers
+  // Issue 43: refused before the work - nothing written, no table, no record, no folder.
   const Run csv_only = run("fit-map " + kSource() + " --scene " + hertz_scene() + " --free E,delta0 --out " +
                            unique("c.csv") + " --plot-dir " + unique("none"));
   CHECK(csv_only.code == 2);
+  CHECK(count_lines(csv_only.err) == 1);
   CHECK(csv_only.err.find("no input carries map positions") != std::string::npos);
+  CHECK_FALSE(fs::exists(unique("c.csv")));
+  CHECK_FALSE(fs::exists(unique("c.json")));
+  CHECK_FALSE(fs::exists(unique("none")));
+  // A single curve from an instrument file has no map position: the table stands, and the maps
+  // are said to be impossible (exit 0), not an exit 2 after the work.
+  const Run single = run("fit-map " + kDir + "fmt-jpk-fd_spot3-0192.jpk-force --scene " + hertz_scene() +
+                         " --free E,delta0,P0 --out " + unique("single.csv") + " --plot-dir " + unique("single_plots") +
+                         " --tiff " + unique("single_tiffs"));
+  INFO(single.err);
+  CHECK(single.code == 0);
+  CHECK(single.err.find("no fitted curve carries a map position") != std::string::npos);
+  CHECK(fs::exists(unique("single.csv")));
 }
 
 TEST_CASE("a Bruker curve fits from the file as spot3 does - a force volume maps, whole or by --curves",
