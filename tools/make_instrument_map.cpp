@@ -6,7 +6,8 @@
 //   make_instrument_map qi SIDE OUT.jpk-qi-data [--source DIR]
 //   make_instrument_map nanoscope SIDE OUT.spm [--source DIR]
 //
-// DIR is the shared instrument data (default <source dir>/../shared/data/instrument).
+// DIR holds the source file (default: the QI file bundled in <source dir>/data/instrument; the
+// NanoScope force volume in <source dir>/../shared/data/instrument).
 // Exit 0 with one line "OUT: N curves, B bytes, T s"; 2 with one line if the arguments are
 // bad or the source is absent; 1 if writing fails.
 //
@@ -553,7 +554,7 @@ int usage(const std::string& why) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> args;
-  std::string dir = std::string(LAYERJKR_SOURCE_DIR) + "/../shared/data/instrument";
+  std::string dir;  // empty: each kind's default (above)
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--source") {
@@ -570,6 +571,8 @@ int main(int argc, char** argv) {
   const auto [end, ec] = std::from_chars(args[1].data(), args[1].data() + args[1].size(), side);
   if (ec != std::errc() || end != args[1].data() + args[1].size() || side < 1 || side > kMaxSide)
     return usage("SIDE '" + args[1] + "' is not a whole number in [1, " + std::to_string(kMaxSide) + "]");
+  if (dir.empty())
+    dir = std::string(LAYERJKR_SOURCE_DIR) + (kind == "qi" ? "/data/instrument" : "/../shared/data/instrument");
   const std::string source = dir + "/" + (kind == "qi" ? kQiSource : kNanoscopeSource);
   if (!std::ifstream(source).good()) return usage("the source " + source + " is absent");
   const auto t0 = std::chrono::steady_clock::now();
