@@ -347,6 +347,13 @@ int run_fit_map(const FitArguments& args, const std::vector<std::string>& inputs
   const Prepared p = prepare(args);
   std::vector<std::string> skipped;
   const std::vector<std::string> files = expand_inputs(inputs, &skipped);
+  // --curve picks one curve of a CSV export that holds several; fit-map fits every curve of an
+  // instrument file, so there it would be ignored: refused, pointing at --curves.
+  if (p.csv.curve >= 0)
+    for (const std::string& f : files)
+      if (is_instrument_file(f) || is_asylum_map_export(f))
+        throw InputError("--curve " + std::to_string(p.csv.curve) + " does not apply to " + printable(f) +
+                         ": fit-map fits every curve of an instrument file; select positions with --curves A:B");
   std::vector<std::string> all_inputs = files;
   all_inputs.push_back(args.scene);
   return map_and_record(p, files, all_inputs, curves, outputs, command_line, json::object(), skipped);

@@ -145,7 +145,7 @@ void add_fit_options(CLI::App& c, FitArguments& a) {
   c.add_option("--deflection-sign", a.deflection_sign, "z,deflection data: +1 if deflection > 0 when the sample pushes the tip away, else -1");
   c.add_option("--starts", a.extra_starts, "Extra starts around the data-driven guess (default 0)");
   c.add_option("--max-iterations", a.max_iterations, "Ceres iteration limit (default 200)");
-  c.add_option("--curve", a.curve, "Which curve of a file holding several (instrument map or export)");
+  c.add_option("--curve", a.curve, "Which curve of a file holding several: fit, of an instrument map or export; fit-map, of a CSV export only (an instrument map takes --curves A:B)");
   c.add_option("--baseline", a.baseline, "constant | tilt (a linear baseline from the samples off contact)");
   c.add_flag("--keep-offset", a.keep_offset,
              "With P0 not free: keep the forces as they are (by default an offset of the samples at rest is subtracted, "

@@ -85,6 +85,19 @@ TEST_CASE("a map: fit needs --curve, fit-map gives every curve its row with inde
   CHECK(rows[9].find("zip") != std::string::npos);
 }
 
+TEST_CASE("fit-map refuses --curve on an instrument map instead of ignoring it", "[cli][instrument][errors]") {
+  // Issue 43: --curve picks one curve of a CSV export for fit; fit-map fits every curve of an
+  // instrument file, and accepted --curve there only to ignore it. The bundled QI map.
+  const std::string qi = std::string(LAYERJKR_SOURCE_DIR) + "/data/instrument/fmt-jpk-fd_2020.02.07-16.29.05.036.jpk-qi-data";
+  const std::string table = unique("curve_refused.csv");
+  const Run r = run("fit-map " + qi + " --scene " + hertz_scene() + " --free E,delta0,P0 --curve 2 --out " + table);
+  CHECK(r.code == 2);
+  CHECK(count_lines(r.err) == 1);
+  CHECK(r.err.find("--curve 2 does not apply to") != std::string::npos);
+  CHECK(r.err.find("--curves A:B") != std::string::npos);
+  CHECK_FALSE(fs::exists(table));
+}
+
 TEST_CASE("export rejects files that are not instrument files, with exit 2", "[cli][instrument][errors]") {
   const Run r = run("export " + write_file("x.csv", "delta,P\n1,2\n") + " --out " + unique("o.csv"));
   CHECK(r.code == 2);
