@@ -72,3 +72,26 @@ def test_a_marked_block_is_skipped_and_the_rest_run(tmp_path):
             "```python\nx = 1\n```\n\n```python\nassert x == 1\n```\n")
     assert [line for line, _ in python_blocks(page)] == [7, 11]
     run_page("marked.md", page, tmp_path)
+
+
+def test_provenance_md_shows_the_record_fit_map_writes(tmp_path):
+    # docs/provenance.md's example record: its options, csv and scene as fit-map writes them today
+    # (the keys in order and every value), from the command its command_line gives, on the bundled curve.
+    import json
+    import subprocess
+    cli = os.environ.get("LAYERJKR_CLI")
+    if not cli:
+        pytest.skip("LAYERJKR_CLI is not set (ctest sets it)")
+    text = (SOURCE / "docs" / "provenance.md").read_text()
+    shown = json.loads(text.split("```json\n", 1)[1].split("```", 1)[0])
+    args = shown["command_line"][1:]
+    args[args.index("curves")] = str(SOURCE / "data" / "curves" / "hydrogel_film_two_term.csv")
+    args[args.index("--out") + 1] = str(tmp_path / "results.csv")
+    run = subprocess.run([cli] + args, cwd=SOURCE, capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    record = json.loads((tmp_path / "results.json").read_text())
+    assert list(record) == list(shown)
+    for key in ("options", "csv"):
+        assert list(record[key].items()) == list(shown[key].items()), key
+    for key in ("json", "file", "sha256", "description"):
+        assert record["scene"][key] == shown["scene"][key], key
