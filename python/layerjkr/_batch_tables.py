@@ -45,6 +45,17 @@ class BatchResults(list):  # type: ignore[type-arg]
         self.quality: List[str] = list(quality) if quality else ["" for _ in self]
         """Per curve: fit-map's quality column (ok, warning, not identifiable, not converged, failed)."""
 
+    def __repr__(self) -> str:
+        # A summary of the batch, not every item in full (items print one by one: results[i]).
+        ok = sum(1 for it in self if it.result is not None)
+        quality: Dict[str, int] = {}
+        for q in self.quality:
+            quality[q or "unknown"] = quality.get(q or "unknown", 0) + 1
+        said = ", ".join("%s %d" % (q, n) for q, n in sorted(quality.items()))
+        files = len({it.source.split("#")[0] for it in self})
+        return "BatchResults(%d curves from %d input(s): %d fitted, %d failed; fields %s; quality: %s)" % (
+            len(self), files, ok, len(self) - ok, ", ".join(self._free()) or "-", said or "-")
+
     def _free(self) -> List[str]:
         for it in self:
             if it.result is not None:

@@ -25,6 +25,15 @@ class Simulation(NamedTuple):
     source: str
     notes: Tuple[str, ...] = ()
 
+    def __repr__(self) -> str:
+        # A summary, not 40 kB of arrays: the samples per segment, the time span, the source.
+        names = {0: "approach", 1: "retract", 2: "dwell"}
+        labels, counts = np.unique(self.segment, return_counts=True)
+        parts = ", ".join("%s %d" % (names.get(int(k), "segment %d" % k), n) for k, n in zip(labels, counts))
+        span = ", t %.4g to %.4g s" % (self.t[0], self.t[-1]) if len(self.t) else ""
+        radius = ", with a" if len(self.a) else ""
+        return "Simulation(%d samples: %s%s%s; %s)" % (len(self.P), parts, span, radius, self.source)
+
 
 def simulate(scene: SceneLike, *, max_indentation: float, speed: float = 0.0, retract_speed: float = 0.0,
              dwell: float = 0.0, points: int = 500, free_fraction: float = 0.5, noise: float = 0.0, seed: int = 1,

@@ -262,7 +262,10 @@ PYBIND11_MODULE(_core, m) {
                              "The scene's model key.")
       .def_property_readonly("json", [](const Scene& s) { return s.origin.json; },
                              "The JSON the scene was parsed from ('' for one built in code).")
+      // Its values, as its JSON gives them (E, nu, h, the law's tau ...): a scene is read by what
+      // it holds; one built in code shows its model and indenter.
       .def("__repr__", [](const Scene& s) {
+        if (!s.origin.json.empty()) return "layerjkr.Scene(" + python::text(s.origin.json).cast<std::string>() + ")";
         return "layerjkr.Scene(model='" + std::string(to_string(s.model)) + "', profile='" + s.profile->describe() + "')";
       });
   m.def("parse_scene", &parse_scene, py::arg("json_text"), py::arg("source") = "scene");

@@ -193,3 +193,16 @@ def test_bundled_map_to_xarray_has_the_map_shape_in_metres(source):
     assert np.allclose(np.diff(ds.x.values), 1e-5 / 128)  # the grid's pitch: 10 um over 128 pixels
     assert np.all(np.isfinite(ds["E"].values)) and ds["E"].attrs["units"] == "Pa"
     assert b.to_pandas().shape[0] == len(b)
+
+
+def test_reprs_summarise(fitted):
+    # Issue 43: a Scene shows its values, a Simulation and a batch a summary - not 40 kB of arrays
+    # or every item in full.
+    s, r = fitted
+    scene = layerjkr.scene(JKR)
+    assert '"E":20000.0' in repr(scene) and '"h":5e-06' in repr(scene)
+    text = repr(s)
+    assert len(text) < 200 and text.startswith("Simulation(300 samples: retract 300")
+    batch = layerjkr.fit_batch([(s.delta, s.P), (s.delta, np.zeros_like(s.P))], JKR, free="E, w, delta0", branch="retract")
+    assert repr(batch) == ("BatchResults(2 curves from 2 input(s): 1 fitted, 1 failed; fields E, w, delta0; "
+                           "quality: %s)" % ", ".join("%s 1" % q for q in sorted(batch.quality)))
