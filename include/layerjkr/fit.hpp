@@ -120,6 +120,9 @@ struct FitSummary {
   /// Trust-region iterations summed over the solves that produced the result (the solve from the
   /// start, or the winning extra start, then the refits after exclusion, detilt and holding w).
   int iterations = 0;
+  /// Evaluations of the residuals (each with or without the Jacobian) over the same solves, as
+  /// Ceres counts them (lmfit's nfev): what the fit cost beyond its iterations.
+  int function_evaluations = 0;
   std::string model;        ///< the contact model that was fitted (e.g. "two_term")
   FitFamily family = FitFamily::foundation;  ///< how the model was evaluated
   std::vector<ParameterEstimate> parameters;  ///< the free parameters, in FitOptions order

@@ -5,14 +5,15 @@ import math
 from typing import Any, Dict
 
 #: The library's fields behind the statistics (read with the rest of a FitResult's fields).
-STATISTICS_FIELDS = ("samples_fitted", "chi_square", "reduced_chi_square", "aic", "bic")
+STATISTICS_FIELDS = ("samples_fitted", "chi_square", "reduced_chi_square", "aic", "bic", "function_evaluations")
 
 
 def statistics_dict(fields: Dict[str, Any]) -> Dict[str, Any]:
     """The ``statistics`` object of ``layerjkr fit --out``'s JSON (NaN as None)."""
     out: Dict[str, Any] = {"samples_fitted": int(fields["samples_fitted"])}
-    for key in STATISTICS_FIELDS[1:]:
+    for key in STATISTICS_FIELDS[1:-1]:
         out[key] = fields[key] if math.isfinite(fields[key]) else None
+    out["function_evaluations"] = int(fields["function_evaluations"])
     return out
 
 
@@ -37,6 +38,12 @@ class FitStatistics:
     def ndata(self) -> int:
         """The samples the fit minimised (weight > 0)."""
         return int(self._field("samples_fitted"))
+
+    @property
+    def nfev(self) -> int:
+        """Evaluations of the residuals (with or without the Jacobian) the solves made, as Ceres
+        counts them."""
+        return int(self._field("function_evaluations"))
 
     @property
     def nvarys(self) -> int:

@@ -51,6 +51,7 @@ void bind_fit_summary(py::module_& m) {
       })
       .def_readonly("rms_residual", &FitSummary::rms_residual)
       .def_readonly("samples_fitted", &FitSummary::samples_fitted)
+      .def_readonly("function_evaluations", &FitSummary::function_evaluations)
       .def_property_readonly("chi_square", &FitSummary::chi_square)
       .def_property_readonly("reduced_chi_square", &FitSummary::reduced_chi_square)
       .def_property_readonly("aic", &FitSummary::aic)

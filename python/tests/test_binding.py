@@ -430,5 +430,7 @@ def test_goodness_of_fit_under_lmfits_names(source):
     assert r.aic == pytest.approx(n * np.log(chi / n) + 2 * k, rel=1e-12)
     assert r.bic == pytest.approx(n * np.log(chi / n) + k * np.log(n), rel=1e-12)
     assert r.rms_residual == pytest.approx(np.sqrt(chi / n), rel=1e-12)
+    # nfev (issue 43): Ceres' residual and Jacobian evaluations, at least one per iteration and the start's.
+    assert r.nfev >= r.iterations + 1 and r.as_dict()["statistics"]["function_evaluations"] == r.nfev
     again = pickle.loads(pickle.dumps(r))
-    assert (again.aic, again.bic, again.ndata) == (r.aic, r.bic, r.ndata)
+    assert (again.aic, again.bic, again.ndata, again.nfev) == (r.aic, r.bic, r.ndata, r.nfev)

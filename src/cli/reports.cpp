@@ -56,7 +56,8 @@ json report_json(const FitSummary& s, Branch branch) {
                      {"chi_square", finite_or_null(s.chi_square())},
                      {"reduced_chi_square", finite_or_null(s.reduced_chi_square())},
                      {"aic", finite_or_null(s.aic())},
-                     {"bic", finite_or_null(s.bic())}};
+                     {"bic", finite_or_null(s.bic())},
+                     {"function_evaluations", s.function_evaluations}};
   j["excluded"] = s.excluded_count;
   j["pull_off_force"] = finite_or_null(s.pull_off_force);
   j["baseline_slope"] = s.baseline_slope;

@@ -78,6 +78,8 @@ bool FitRun::solve_linear() {
   summary_.message = "linear least squares: the model is linear in its free parameters here, solved exactly";
   summary_.initial_cost = initial_cost;
   summary_.final_cost = least_squares_cost(ev_.residuals());
+  summary_.num_residual_evaluations = 1;  // the model at the start
+  summary_.num_jacobian_evaluations = 1;  // and at the solution, checked
   ceres::IterationSummary it;
   it.cost = initial_cost;
   it.gradient_max_norm = 0.0;

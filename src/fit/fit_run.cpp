@@ -49,6 +49,14 @@ class BlockCost final : public ceres::CostFunction {
 
 }  // namespace
 
+namespace {
+
+int evaluations_of(const ceres::Solver::Summary& s) {
+  return std::max(0, s.num_residual_evaluations) + std::max(0, s.num_jacobian_evaluations);
+}
+
+}  // namespace
+
 bool finite_solve(const ceres::Solver::Summary& s) {
   if (!std::isfinite(s.initial_cost) || !std::isfinite(s.final_cost)) return false;
   for (const ceres::IterationSummary& it : s.iterations)
@@ -141,6 +149,7 @@ void FitRun::solve() {
                          " (Ceres: " + summary_.message + "); no result is reported");
   }
   iterations_ += static_cast<int>(summary_.iterations.size()) - 1;
+  evaluations_ += evaluations_of(summary_);
   if (first) {
     moved_ = summary_.iterations.size() > 1 &&
              summary_.initial_cost - summary_.final_cost > options_.function_tolerance * summary_.initial_cost;
@@ -202,6 +211,7 @@ void FitRun::try_extra_starts(int count, bool w_from_start) {
       x_ = xs;
       moved = true;
       iterations_ = static_cast<int>(s2.iterations.size()) - 1;
+      evaluations_ = evaluations_of(s2);
     }
   }
   // The covariance needs a problem built on x itself, not on a start's copy: solve once
@@ -222,6 +232,7 @@ bool FitRun::resolve_in_place() {
     return false;
   }
   iterations_ += static_cast<int>(s2.iterations.size()) - 1;
+  evaluations_ += evaluations_of(s2);
   summary_ = s2;
   problem_ = std::move(p2);
   return true;
@@ -303,6 +314,7 @@ void FitRun::record(FitSummary* out) {
   out->converged = summary_.termination_type == ceres::CONVERGENCE;
   out->termination = summary_.message;
   out->iterations = iterations_;
+  out->function_evaluations = evaluations_;
   out->initial_cost = summary_.initial_cost;
   out->final_cost = summary_.final_cost;
   if (!ev_.evaluate(x_.data(), true)) throw NumericalError("fit: the model cannot be evaluated at the solution");

@@ -95,7 +95,8 @@ class FitRun {
   std::unique_ptr<ceres::Problem> problem_;
   int held_ = -1;
   bool solved_ = false;  ///< solve() has run once (the first solve's termination is kept)
-  int iterations_ = 0;  ///< summed over the solves that produced x (record() reports it)
+  int iterations_ = 0;
+  int evaluations_ = 0;  ///< residual and Jacobian evaluations over the same solves  ///< summed over the solves that produced x (record() reports it)
   bool moved_ = true;
   ceres::TerminationType first_termination_ = ceres::CONVERGENCE;
   std::string first_message_;

@@ -212,6 +212,7 @@ TEST_CASE("fit in time: AIC and BIC, as lmfit defines them, choose the law that 
   CHECK(with.aic() < without.aic() - 10.0);
   CHECK(with.bic() < without.bic() - 10.0);
   CHECK(with.brief_report().find("AIC ") != std::string::npos);
+  CHECK(with.function_evaluations >= with.iterations + 1);  // the start's and at least one per iteration
 }
 
 TEST_CASE("fit in time: the lever's drag is recovered where it is and found absent where it is not", "[fit][time]") {
