@@ -27,6 +27,21 @@ def _unit(field: str) -> str:
     return _UNITS[base] if base in _UNITS else _core.unit_of(base)
 
 
+_LONG_NAMES = {"E": "Young's modulus", "w": "work of adhesion", "delta0": "contact point", "P0": "force baseline",
+               "K": "foundation modulus", "G": "foundation shear stiffness", "R": "indenter radius",
+               "sigma0": "Dugdale stress", "E_inf": "relaxed modulus", "tau": "relaxation time",
+               "beta": "relaxation exponent", "E_2": "second arm's modulus", "tau_2": "second arm's relaxation time",
+               "v_star": "crack speed scale", "n": "crack kinetics exponent", "drag": "lever drag coefficient",
+               "rms_residual": "rms force residual", "pull_off": "measured pull-off force"}
+
+
+def _long_name(field: str) -> str:
+    """What a field is, for xarray's long_name (plot labels): the standard error of a parameter too."""
+    if field.endswith("_stderr"):
+        return "standard error of the " + _long_name(field[:-7])
+    return _LONG_NAMES.get(field, field)
+
+
 def _import(module: str, method: str, package: str) -> Any:
     try:
         return __import__(module)
@@ -143,15 +158,27 @@ class BatchResults(list):  # type: ignore[type-arg]
     def to_xarray(self, *, file: Optional[str] = None) -> Any:
         """An xarray Dataset of every field on the map grid: dims (y, x), coordinates ``x`` and
         ``y`` in metres (each column's and row's mean stage position; NaN where a whole column
-        or row failed to read), ``grid_x`` and ``grid_y``; units in each variable's attrs."""
+        or row failed to read), ``grid_x`` and ``grid_y``; each variable's ``units`` and
+        ``long_name`` in its attrs; ``quality`` (fit-map's column, "" where no curve) per pixel; the
+        first fit's provenance record as JSON in the Dataset's attrs."""
+        import json
         xr = _import("xarray", "to_xarray", "python3-xarray")
         items = self._of_file(file, "to_xarray")
         gx = np.array([it.grid_x for it in items])
         gy = np.array([it.grid_y for it in items])
         data = {}
         for field in self.fields():
-            data[field] = (("y", "x"), self._image(items, field), {"units": _unit(field)})
+            data[field] = (("y", "x"), self._image(items, field), {"units": _unit(field), "long_name": _long_name(field)})
         shape = data[self.fields()[0]][1].shape
+        # The quality strings placed as the values are (one placement rule): codes through map_image.
+        where = {id(it): k for k, it in enumerate(self)}
+        labels = sorted(set(self.quality))
+        codes = _core.map_image(list(gx), list(gy), [float(labels.index(self.quality[where[id(it)]])) for it in items])
+        quality = np.array([[labels[int(c)] if np.isfinite(c) else "" for c in row] for row in codes], dtype=object)
+        data["quality"] = (("y", "x"), quality, {"long_name": "fit-map's quality (ok, warning, not identifiable, "
+                                                              "not converged, failed)"})
+        first = next((it.result for it in items if it.result is not None), None)
+        provenance = json.dumps(first.provenance) if first is not None and first.provenance else ""
 
         def axis(positions: npt.NDArray[np.float64], index: npt.NDArray[np.int64], n: int) -> npt.NDArray[np.float64]:
             out = np.full(n, np.nan)
@@ -165,7 +192,7 @@ class BatchResults(list):  # type: ignore[type-arg]
         ys = axis(np.array([it.y for it in items], float), gy, shape[0])
         return xr.Dataset(data, coords={"x": ("x", xs, {"units": "m"}), "y": ("y", ys, {"units": "m"}),
                                         "grid_x": ("x", np.arange(shape[1])), "grid_y": ("y", np.arange(shape[0]))},
-                          attrs={"source": "layerjkr %s" % _core.__version__})
+                          attrs={"source": "layerjkr %s" % _core.__version__, "provenance": provenance})
 
     def to_tiff(self, field: str, path: Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"], *,
                 file: Optional[str] = None) -> None:

@@ -193,6 +193,11 @@ def test_bundled_map_to_xarray_has_the_map_shape_in_metres(source):
     assert np.allclose(np.diff(ds.x.values), 1e-5 / 128)  # the grid's pitch: 10 um over 128 pixels
     assert np.all(np.isfinite(ds["E"].values)) and ds["E"].attrs["units"] == "Pa"
     assert b.to_pandas().shape[0] == len(b)
+    # Issue 43: long names for plots, the quality per pixel (placed as the values are), the record.
+    assert ds["E"].attrs["long_name"] == "Young's modulus"
+    assert ds["E_stderr"].attrs["long_name"] == "standard error of the Young's modulus"
+    assert list(ds["quality"].values[0]) == b.quality
+    assert json.loads(ds.attrs["provenance"])["options"]["free"] == ["E", "delta0", "P0"]
 
 
 def test_reprs_summarise(fitted):
