@@ -83,6 +83,7 @@ def plot(result: Any, ax: Any = None) -> Any:
     """Data, fit and residuals on two axes (matplotlib, imported here); returns the axes."""
     try:
         import matplotlib.pyplot as plt
+        from matplotlib.ticker import EngFormatter
     except ImportError:  # pragma: no cover - matplotlib is optional
         raise ImportError("FitResult.plot needs matplotlib (Debian: python3-matplotlib)") from None
     if not result.delta.size:
@@ -99,12 +100,15 @@ def plot(result: Any, ax: Any = None) -> Any:
     if excluded.any():
         top.plot(x[excluded], P[excluded], "x", ms=3, color="0.6", label="excluded")
     top.plot(x, fit, "-", lw=1.5, label="fit (%s)" % result.model)
-    top.set_ylabel("P [N]")
+    top.set_ylabel("P")
     top.legend(loc="best", fontsize="small")
     bottom.plot(x[kept], (P - fit)[kept], ".", ms=2)
     bottom.axhline(0.0, color="0.5", lw=0.8)
-    bottom.set_xlabel("delta [m]")
-    bottom.set_ylabel("residual [N]")
+    bottom.set_xlabel("delta")
+    bottom.set_ylabel("residual")
+    # SI prefixes on the ticks (200 pN, 1.5 um), not metres and newtons under a 1e-10 offset.
+    for axis, unit in ((top.yaxis, "N"), (bottom.yaxis, "N"), (bottom.xaxis, "m"), (top.xaxis, "m")):
+        axis.set_major_formatter(EngFormatter(unit=unit))
     return top, bottom
 
 

@@ -123,6 +123,13 @@ def test_plot_draws_data_fit_and_residuals(fitted):
     top, bottom = r.plot()
     assert len(top.lines) >= 2 and len(bottom.lines) >= 1
     assert top.lines[0].get_xdata().size > 100
+    # Issue 43: SI-prefixed ticks (pN, um), not N and m under a 1e-10 offset.
+    from matplotlib.ticker import EngFormatter
+    assert isinstance(top.yaxis.get_major_formatter(), EngFormatter) and top.yaxis.get_major_formatter().unit == "N"
+    assert isinstance(bottom.xaxis.get_major_formatter(), EngFormatter) and bottom.xaxis.get_major_formatter().unit == "m"
+    top.figure.canvas.draw()
+    labels = [t.get_text() for t in top.get_yticklabels() if t.get_text()]
+    assert labels and all(l.endswith("N") for l in labels) and "e-" not in top.yaxis.get_offset_text().get_text()
 
 
 def grid_results(fitted):
