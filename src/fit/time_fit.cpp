@@ -67,7 +67,8 @@ void check_request(const CurveData& curve, const Scene& scene, const FitOptions&
                                    : "crack kinetics (" + scene.adhesion.kinetics->describe() + ")";
   const auto refuse = [&](const std::string& why) { throw InputError(curve.source + ": " + what + " is fitted in time; " + why); };
   if (curve.t.empty())
-    refuse("the curve has no time: give a t column [s], or read an instrument file whose segments have durations");
+    refuse("the curve has no time: give each sample's time [s] (a CSV's t column; Python's fit(..., t=)), or read an "
+           "instrument file whose segments have durations");
   if (curve.radius_only()) refuse("(P, a) data have no indentation history to follow");
   if (o.contact_point != ContactPointMethod::fit || o.indentation_range || o.force_range)
     refuse("the contact point is delta0 (free it, or leave it 0), and the history needs every sample: no contact-point "
