@@ -1,0 +1,26 @@
+# The layer rule can fail: in a scratch tree, core/ including fit/ (an include back up, written
+# relative to src/) and a folder without a rank each fail check_layers.cmake, and fit/ including
+# core/ (down) passes. Writes only into SCRATCH_DIR and removes it.
+function(check expect_fail what)
+  execute_process(COMMAND "${CMAKE_COMMAND}" -DSOURCE_DIR=${SCRATCH_DIR} -P "${CHECK}"
+                  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(expect_fail AND code EQUAL 0)
+    file(REMOVE_RECURSE "${SCRATCH_DIR}")
+    message(FATAL_ERROR "the layer rule passed ${what}:\n${out}")
+  endif()
+  if(NOT expect_fail AND NOT code EQUAL 0)
+    file(REMOVE_RECURSE "${SCRATCH_DIR}")
+    message(FATAL_ERROR "the layer rule failed ${what}:\n${err}")
+  endif()
+endfunction()
+file(REMOVE_RECURSE "${SCRATCH_DIR}")
+file(WRITE "${SCRATCH_DIR}/src/core/scalar.hpp" "#pragma once\n")
+file(WRITE "${SCRATCH_DIR}/src/fit/run.hpp" "#pragma once\n#include \"core/scalar.hpp\"\n")
+check(FALSE "an include down (fit/ -> core/)")
+file(WRITE "${SCRATCH_DIR}/src/core/back.cpp" "#include \"fit/run.hpp\"\n")
+check(TRUE "core/ including fit/")
+file(REMOVE "${SCRATCH_DIR}/src/core/back.cpp")
+file(WRITE "${SCRATCH_DIR}/src/newroom/x.cpp" "#include \"core/scalar.hpp\"\n")
+check(TRUE "a folder without a rank")
+file(REMOVE_RECURSE "${SCRATCH_DIR}")
+message(STATUS "the layer rule fails an include back up and a folder without a rank, and passes one down")
