@@ -94,7 +94,7 @@ struct RelaxationLaw {
 /// smooth; for a paraboloid loaded at constant speed (P_H ~ t^1.5 from the start) it is of order
 /// 1.75 in the spacing: 1.6e-6 relative with 4 000 even samples on a power law of beta = 0.2
 /// against Efremov's closed form, 1e-6 against quadrature for a standard linear solid
-/// (tests/viscoelastic/test_relaxation.cpp).
+/// (tests/time/test_relaxation.cpp).
 /// Throws DomainError for a law that does not validate, InputError for vectors of different
 /// lengths or times that are not increasing, and for P_H that decreases (an unloading:
 /// hereditary_response follows it).
@@ -118,10 +118,10 @@ struct HereditaryResponse {
 /// contact), relaxing by `law`: Lee & Radok (1960) up to the deepest sample, then Ting (1966) -
 /// P(t) = int_tc^t1 psi(t - s) dP_H(s) with int_t1^t psi(t - s) d delta(s) = 0 - which holds on the
 /// half-space, the layer and the stack alike (theory.md s.8; verified on a layer against a direct
-/// time-stepping solution, tests/viscoelastic/test_layer_time_stepping.cpp). delta and P_H are
+/// time-stepping solution, tests/time/test_layer_time_stepping.cpp). delta and P_H are
 /// piecewise linear in time between the samples; cost O(N M) as for lee_radok_loading. Accuracy:
 /// against Efremov's closed forms for a power-law paraboloid (loading and Ting's unloading),
-/// tests/viscoelastic/test_hereditary.cpp gives the measured errors.
+/// tests/time/test_hereditary.cpp gives the measured errors.
 /// Throws InputError for vectors of different lengths, times that do not increase, values that
 /// are not finite, or a history that starts in contact (delta[0] > 0: the loading before it is
 /// unknown); DomainError for a law that does not validate.

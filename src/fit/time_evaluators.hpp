@@ -2,7 +2,7 @@
 // whole measured history of the indentation delta_i - delta0 at the samples' times.
 //
 //   HereditaryEvaluator: a relaxing medium without adhesion (viscoelastic.hpp): Lee-Radok up to
-//     the deepest sample, Ting's rule after (src/viscoelastic/hereditary.hpp), over the elastic
+//     the deepest sample, Ting's rule after (src/time/hereditary.hpp), over the elastic
 //     force of the medium's curve model at the instantaneous modulus; exact Jacobians through
 //     ceres::Jet (the kernel's weights and rates, the contact's start, each sample's radius by
 //     implicit differentiation).
@@ -18,7 +18,7 @@
 #include "curve_evaluator.hpp"
 #include "layerjkr/viscoelastic.hpp"
 #include "residual_model.hpp"
-#include "viscoelastic/relaxation_kernel.hpp"
+#include "time/relaxation_kernel.hpp"
 
 namespace layerjkr::detail {
 

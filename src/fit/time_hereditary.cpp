@@ -5,7 +5,7 @@
 #include <numeric>
 
 #include "time_evaluators.hpp"
-#include "viscoelastic/hereditary.hpp"
+#include "time/hereditary.hpp"
 
 namespace layerjkr::detail {
 

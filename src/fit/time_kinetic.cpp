@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "adhesion/crack_kinetics.hpp"
+#include "time/crack_kinetics.hpp"
 #include "time_evaluators.hpp"
 
 namespace layerjkr::detail {

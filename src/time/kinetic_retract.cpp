@@ -7,7 +7,7 @@
 
 #include <boost/math/tools/roots.hpp>
 
-#include "adhesion/crack_kinetics.hpp"
+#include "time/crack_kinetics.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr {

@@ -6,7 +6,7 @@
 #include <limits>
 #include <random>
 
-#include "adhesion/crack_kinetics.hpp"
+#include "time/crack_kinetics.hpp"
 #include "layerjkr/adhesion.hpp"
 #include "layerjkr/built_scene.hpp"
 #include "layerjkr/contact.hpp"

@@ -11,7 +11,7 @@
 // Nodes with e^x t_lo > kUpperRate contribute below 1e-19 and are left out; nodes below x_first =
 // log(kTailRate / t_hi) are lumped into one term with their summed weight and their mean rate
 // (its error is second order in e^x_first t <= 1e-4). Measured: below 4e-10 relative for beta in
-// [0.001, 0.99] over t in [t_lo, t_hi] with h = 0.4 (tests/viscoelastic/test_hereditary.cpp); the
+// [0.001, 0.99] over t in [t_lo, t_hi] with h = 0.4 (tests/time/test_hereditary.cpp); the
 // lattice has 5.8 nodes per decade of t_hi / t_lo, plus 35.
 #pragma once
 

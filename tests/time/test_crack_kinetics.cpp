@@ -10,7 +10,7 @@
 #include <cmath>
 #include <vector>
 
-#include "adhesion/crack_kinetics.hpp"
+#include "time/crack_kinetics.hpp"
 #include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/kinetics.hpp"

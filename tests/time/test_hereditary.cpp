@@ -18,7 +18,7 @@
 
 #include "layerjkr/error.hpp"
 #include "layerjkr/viscoelastic.hpp"
-#include "viscoelastic/relaxation_kernel.hpp"
+#include "time/relaxation_kernel.hpp"
 #include "support/catch_after_glog.hpp"  // after the internal headers: Catch's CHECK, not glog's
 
 using namespace layerjkr;

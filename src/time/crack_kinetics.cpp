@@ -1,6 +1,6 @@
 // The JKR edge crack with Maugis-Barquins kinetics, stepped by GSL's implicit Bulirsch-Stoer (bsimp)
 // (crack_kinetics.hpp).
-#include "adhesion/crack_kinetics.hpp"
+#include "time/crack_kinetics.hpp"
 
 #include <cmath>
 #include <limits>
