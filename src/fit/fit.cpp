@@ -10,12 +10,12 @@
 #include <memory>
 #include <limits>
 
-#include "contact_steps.hpp"
+#include "fit/data/contact_steps.hpp"
 #include "fit_run.hpp"
 #include "fit_steps.hpp"
-#include "retract_reading.hpp"
+#include "fit/data/retract_reading.hpp"
 #include "layerjkr/error.hpp"
-#include "time_fit.hpp"
+#include "fit/in_time/time_fit.hpp"
 
 namespace layerjkr {
 namespace {

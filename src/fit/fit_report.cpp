@@ -5,7 +5,7 @@
 
 #include "layerjkr/error.hpp"
 #include "layerjkr/fit.hpp"
-#include "contact_steps.hpp"
+#include "fit/data/contact_steps.hpp"
 
 namespace layerjkr {
 

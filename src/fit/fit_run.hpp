@@ -10,7 +10,7 @@
 
 #include <ceres/ceres.h>
 
-#include "curve_evaluator.hpp"
+#include "fit/evaluators/curve_evaluator.hpp"
 #include "layerjkr/fit.hpp"
 
 namespace layerjkr::detail {

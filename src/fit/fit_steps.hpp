@@ -8,7 +8,7 @@
 #include <ceres/problem.h>
 
 #include "core/short_number.hpp"
-#include "curve_evaluator.hpp"
+#include "fit/evaluators/curve_evaluator.hpp"
 #include "layerjkr/fit.hpp"
 
 namespace layerjkr::detail {

@@ -20,7 +20,7 @@
 
 #include <boost/math/constants/constants.hpp>
 
-#include "fit/adhesive_curve.hpp"
+#include "fit/evaluators/adhesive_curve.hpp"
 #include "layerjkr/built_scene.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/fit.hpp"

@@ -1,4 +1,4 @@
-// The fit's covariance from its own Jacobian (src/fit/fit_covariance.cpp) against the oracle it
+// The fit's covariance from its own Jacobian (src/fit/uncertainty/fit_covariance.cpp) against the oracle it
 // replaces, ceres::Covariance with DENSE_SVD on the same Jacobian: full rank, a held slot
 // (SubsetManifold), a rank-deficient Jacobian truncated or refused, and a badly scaled one.
 #include <catch2/catch.hpp>

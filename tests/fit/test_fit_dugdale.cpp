@@ -1,4 +1,4 @@
-// Fits of a Dugdale law solved on the medium (the "dugdale" family, src/fit/dugdale_curve.cpp):
+// Fits of a Dugdale law solved on the medium (the "dugdale" family, src/fit/evaluators/dugdale_curve.cpp):
 // Maugis-Dugdale and the Dugdale DMT on exact layers, a stack and a half-space with a sphere.
 //
 // Oracles: the curves are the library's adhesive laws (make_adhesive_law, the Dugdale solver
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "adhesion/dugdale_solver.hpp"
-#include "fit/fit_model.hpp"
+#include "fit/evaluators/fit_model.hpp"
 #include "layerjkr/adhesion.hpp"
 #include "layerjkr/built_scene.hpp"
 #include "layerjkr/contact.hpp"

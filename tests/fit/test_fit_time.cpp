@@ -8,10 +8,10 @@
 #include <cmath>
 #include <vector>
 
-#include "fit/curve_evaluator.hpp"
+#include "fit/evaluators/curve_evaluator.hpp"
 #include "fit/fit_steps.hpp"
-#include "fit/time_evaluators.hpp"
-#include "fit/time_fit.hpp"
+#include "fit/in_time/time_evaluators.hpp"
+#include "fit/in_time/time_fit.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/fit.hpp"
 #include "layerjkr/scene.hpp"

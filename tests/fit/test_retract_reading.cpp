@@ -1,4 +1,4 @@
-// The retract read from its samples alone (src/fit/retract_reading.cpp): the baseline from the
+// The retract read from its samples alone (src/fit/data/retract_reading.cpp): the baseline from the
 // free parts, the measured pull-off, the release and the tail - on hand-made retracts whose
 // answer is known - and the fit's honest convergence (judge_plausibility). The pull-off is one
 // number whatever the fit does.
@@ -8,7 +8,7 @@
 #include <random>
 
 #include "fit/fit_steps.hpp"
-#include "fit/retract_reading.hpp"
+#include "fit/data/retract_reading.hpp"
 #include "layerjkr/fit.hpp"
 #include "layerjkr/simulate.hpp"
 #include "support/catch_after_glog.hpp"

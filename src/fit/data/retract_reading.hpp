@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "curve_evaluator.hpp"
+#include "fit/evaluators/curve_evaluator.hpp"
 #include "layerjkr/fit.hpp"
 
 namespace layerjkr::detail {

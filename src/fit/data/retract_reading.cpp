@@ -1,13 +1,13 @@
 // The retract read from its samples alone (retract_reading.hpp): baseline, pull-off, contact
 // flags, release and tail.
-#include "retract_reading.hpp"
+#include "fit/data/retract_reading.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
 #include "core/short_number.hpp"
-#include "fit_steps.hpp"
+#include "fit/fit_steps.hpp"
 
 namespace layerjkr::detail {
 namespace {

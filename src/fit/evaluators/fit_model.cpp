@@ -1,6 +1,6 @@
 // The three curve families a fit can vary: closed-form foundations, Hertz, and a spline
 // table of any other model whose stiffness scales with E.
-#include "fit_model.hpp"
+#include "fit/evaluators/fit_model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <gsl/gsl_spline.h>
 
 #include "adhesion/dmt_formula.hpp"
-#include "adhesive_curve.hpp"
-#include "dugdale_curve.hpp"
+#include "fit/evaluators/adhesive_curve.hpp"
+#include "fit/evaluators/dugdale_curve.hpp"
 #include "core/gsl_support.hpp"
 #include "core/scalar.hpp"
 #include "core/short_number.hpp"

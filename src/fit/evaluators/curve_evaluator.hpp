@@ -6,8 +6,8 @@
 #include <memory>
 #include <vector>
 
-#include "fit_model.hpp"
-#include "residual_model.hpp"
+#include "fit/evaluators/fit_model.hpp"
+#include "fit/evaluators/residual_model.hpp"
 
 namespace layerjkr::detail {
 

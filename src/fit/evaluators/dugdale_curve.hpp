@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "adhesion/dugdale_solver.hpp"
-#include "fit_model.hpp"
+#include "fit/evaluators/fit_model.hpp"
 
 namespace layerjkr::detail {
 

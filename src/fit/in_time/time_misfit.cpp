@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/short_number.hpp"
-#include "time_fit.hpp"
+#include "fit/in_time/time_fit.hpp"
 
 namespace layerjkr::detail {
 namespace {

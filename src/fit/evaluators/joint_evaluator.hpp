@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "residual_model.hpp"
+#include "fit/evaluators/residual_model.hpp"
 
 namespace layerjkr::detail {
 

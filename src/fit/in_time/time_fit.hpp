@@ -4,9 +4,9 @@
 
 #include <vector>
 
-#include "curve_evaluator.hpp"
+#include "fit/evaluators/curve_evaluator.hpp"
 #include "layerjkr/fit.hpp"
-#include "residual_model.hpp"
+#include "fit/evaluators/residual_model.hpp"
 
 namespace layerjkr::detail {
 

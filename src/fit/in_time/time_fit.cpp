@@ -5,12 +5,12 @@
 #include <limits>
 #include <memory>
 
-#include "fit_run.hpp"
-#include "fit_steps.hpp"
+#include "fit/fit_run.hpp"
+#include "fit/fit_steps.hpp"
 #include "layerjkr/error.hpp"
-#include "retract_reading.hpp"
-#include "time_evaluators.hpp"
-#include "time_fit.hpp"
+#include "fit/data/retract_reading.hpp"
+#include "fit/in_time/time_evaluators.hpp"
+#include "fit/in_time/time_fit.hpp"
 
 namespace layerjkr::detail {
 namespace {

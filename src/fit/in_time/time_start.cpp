@@ -3,9 +3,9 @@
 #include <cmath>
 #include <limits>
 
-#include "fit_steps.hpp"
+#include "fit/fit_steps.hpp"
 #include "layerjkr/error.hpp"
-#include "time_fit.hpp"
+#include "fit/in_time/time_fit.hpp"
 
 namespace layerjkr::detail {
 namespace {

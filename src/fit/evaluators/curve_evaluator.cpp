@@ -1,6 +1,6 @@
 // Residuals of a fit: per-sample contact radii by safeguarded Newton, exact Jacobians by
 // implicit differentiation through ceres::Jet.
-#include "curve_evaluator.hpp"
+#include "fit/evaluators/curve_evaluator.hpp"
 
 #include <algorithm>
 #include <cmath>

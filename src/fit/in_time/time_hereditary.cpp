@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "time_evaluators.hpp"
+#include "fit/in_time/time_evaluators.hpp"
 #include "time/hereditary.hpp"
 
 namespace layerjkr::detail {

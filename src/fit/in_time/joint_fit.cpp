@@ -5,12 +5,12 @@
 #include <cmath>
 #include <memory>
 
-#include "fit_run.hpp"
-#include "fit_steps.hpp"
-#include "joint_evaluator.hpp"
+#include "fit/fit_run.hpp"
+#include "fit/fit_steps.hpp"
+#include "fit/evaluators/joint_evaluator.hpp"
 #include "layerjkr/error.hpp"
-#include "time_evaluators.hpp"
-#include "time_fit.hpp"
+#include "fit/in_time/time_evaluators.hpp"
+#include "fit/in_time/time_fit.hpp"
 
 namespace layerjkr {
 namespace {

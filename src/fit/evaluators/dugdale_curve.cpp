@@ -1,6 +1,6 @@
 // A Dugdale law solved on the medium as a fit family (dugdale_curve.hpp): one grid of radii per
 // parameter vector, interpolated in a, with forward-difference derivatives in w and sigma0.
-#include "dugdale_curve.hpp"
+#include "fit/evaluators/dugdale_curve.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -15,9 +15,9 @@
 #include <memory>
 #include <vector>
 
-#include "curve_evaluator.hpp"
+#include "fit/evaluators/curve_evaluator.hpp"
 #include "layerjkr/viscoelastic.hpp"
-#include "residual_model.hpp"
+#include "fit/evaluators/residual_model.hpp"
 #include "time/relaxation_kernel.hpp"
 
 namespace layerjkr::detail {

@@ -4,7 +4,7 @@
 #include <limits>
 #include <string>
 
-#include "curve_evaluator.hpp"
+#include "fit/evaluators/curve_evaluator.hpp"
 
 namespace layerjkr::detail {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "adhesion/dmt_formula.hpp"
 #include "adhesion/maugis_equations.hpp"
-#include "adhesive_curve.hpp"
+#include "fit/evaluators/adhesive_curve.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/maugis_dugdale.hpp"
 

@@ -4,9 +4,9 @@
 #include <limits>
 #include <numeric>
 
-#include "contact_steps.hpp"
+#include "fit/data/contact_steps.hpp"
 #include "core/line_fit.hpp"
-#include "fit_steps.hpp"
+#include "fit/fit_steps.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {

@@ -7,8 +7,8 @@
 #include <numeric>
 #include <sstream>
 
-#include "contact_steps.hpp"
-#include "fit_steps.hpp"
+#include "fit/data/contact_steps.hpp"
+#include "fit/fit_steps.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "contact_steps.hpp"
+#include "fit/data/contact_steps.hpp"
 #include "core/short_number.hpp"
 #include "layerjkr/error.hpp"
 

@@ -1,5 +1,5 @@
 // Several curves' forward models as one (joint_evaluator.hpp).
-#include "joint_evaluator.hpp"
+#include "fit/evaluators/joint_evaluator.hpp"
 
 #include <algorithm>
 

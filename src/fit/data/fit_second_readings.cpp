@@ -5,9 +5,9 @@
 #include <cmath>
 #include <string>
 
-#include "contact_steps.hpp"
+#include "fit/data/contact_steps.hpp"
 #include "core/short_number.hpp"
-#include "fit_steps.hpp"
+#include "fit/fit_steps.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {

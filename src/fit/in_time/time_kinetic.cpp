@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "time/crack_kinetics.hpp"
-#include "time_evaluators.hpp"
+#include "fit/in_time/time_evaluators.hpp"
 
 namespace layerjkr::detail {
 namespace {

@@ -7,7 +7,7 @@
 #include <ceres/jet.h>
 
 #include "core/scalar.hpp"
-#include "fit_model.hpp"
+#include "fit/evaluators/fit_model.hpp"
 #include "jkr/jkr_transform.hpp"
 #include "layerjkr/types.hpp"
 #include "models/state_formulas.hpp"
