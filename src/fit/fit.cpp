@@ -11,8 +11,8 @@
 #include <limits>
 
 #include "fit/data/contact_steps.hpp"
-#include "fit_run.hpp"
-#include "fit_steps.hpp"
+#include "fit/run/fit_run.hpp"
+#include "fit/run/fit_steps.hpp"
 #include "fit/data/retract_reading.hpp"
 #include "layerjkr/error.hpp"
 #include "fit/in_time/time_fit.hpp"

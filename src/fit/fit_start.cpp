@@ -9,7 +9,7 @@
 
 #include <Eigen/Dense>
 
-#include "fit_steps.hpp"
+#include "fit/run/fit_steps.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {

@@ -9,7 +9,7 @@
 
 #include <ceres/ceres.h>
 
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_steps.hpp"
 #include "support/catch_after_glog.hpp"
 
 using namespace layerjkr;

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "fit/fit_run.hpp"
+#include "fit/run/fit_run.hpp"
 #include "layerjkr/curve_data.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/fit.hpp"

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "fit/evaluators/curve_evaluator.hpp"
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_steps.hpp"
 #include "fit/in_time/time_evaluators.hpp"
 #include "fit/in_time/time_fit.hpp"
 #include "layerjkr/error.hpp"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_steps.hpp"
 #include "fit/data/retract_reading.hpp"
 #include "layerjkr/fit.hpp"
 #include "layerjkr/simulate.hpp"

@@ -1,6 +1,8 @@
 # Fails when an include inside src/ runs back up: every folder of src/ has a rank (below), and a
 # file may include another folder's header only if that folder's rank is lower - so the folders
-# form layers and no include runs in a circle. A new folder must be given its rank here.
+# form layers and no include runs in a circle. The rooms of src/fit/ are layers of their own
+# (fit_evaluators is src/fit/evaluators/, fit the files at src/fit/'s top). A new folder must be
+# given its rank here.
 # Includes are read as the compiler resolves them: relative to the including file, then to src/.
 #   cmake -DSOURCE_DIR=<repo> -P tests/tools/check_layers.cmake
 set(rank_core 0)
@@ -13,11 +15,17 @@ set(rank_discrete 2)
 set(rank_provenance 2)
 set(rank_adhesion 3)
 set(rank_scene 3)
-set(rank_fit 4)
-set(rank_judge 5)
-set(rank_answer 5)
-set(rank_report 5)
-set(rank_cli 6)
+set(rank_fit_evaluators 4)
+set(rank_fit_run 5)
+set(rank_fit_data 6)
+set(rank_fit_uncertainty 6)
+set(rank_fit_in_time 7)
+set(rank_fit 8)
+set(rank_fit_batch 9)
+set(rank_judge 10)
+set(rank_answer 10)
+set(rank_report 10)
+set(rank_cli 11)
 
 set(src "${SOURCE_DIR}/src")
 file(GLOB_RECURSE files RELATIVE "${src}" "${src}/*.cpp" "${src}/*.hpp")
@@ -27,6 +35,9 @@ foreach(f IN LISTS files)
   string(REGEX MATCH "^[^/]+" folder "${f}")
   if(folder STREQUAL f)
     continue()  # a file at src/'s top: none today
+  endif()
+  if(f MATCHES "^fit/([^/]+)/")
+    set(folder "fit_${CMAKE_MATCH_1}")
   endif()
   if(NOT DEFINED rank_${folder})
     string(APPEND wrong "\n  src/${folder}/ has no rank: give it one in tests/tools/check_layers.cmake")
@@ -46,6 +57,9 @@ foreach(f IN LISTS files)
       continue()  # a public header (include/layerjkr) or a third party's
     endif()
     string(REGEX MATCH "^[^/]+" to "${resolved}")
+    if(resolved MATCHES "^fit/([^/]+)/")
+      set(to "fit_${CMAKE_MATCH_1}")
+    endif()
     math(EXPR checked "${checked} + 1")
     if(NOT to STREQUAL folder)
       if(NOT DEFINED rank_${to})

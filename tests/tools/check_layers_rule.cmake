@@ -1,6 +1,6 @@
 # The layer rule can fail: in a scratch tree, core/ including fit/ (an include back up, written
-# relative to src/) and a folder without a rank each fail check_layers.cmake, and fit/ including
-# core/ (down) passes. Writes only into SCRATCH_DIR and removes it.
+# relative to src/), fit/evaluators/ including the fit's top and a folder without a rank each fail
+# check_layers.cmake, and fit/ including core/ (down) passes. Writes only into SCRATCH_DIR and removes it.
 function(check expect_fail what)
   execute_process(COMMAND "${CMAKE_COMMAND}" -DSOURCE_DIR=${SCRATCH_DIR} -P "${CHECK}"
                   RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -20,6 +20,9 @@ check(FALSE "an include down (fit/ -> core/)")
 file(WRITE "${SCRATCH_DIR}/src/core/back.cpp" "#include \"fit/run.hpp\"\n")
 check(TRUE "core/ including fit/")
 file(REMOVE "${SCRATCH_DIR}/src/core/back.cpp")
+file(WRITE "${SCRATCH_DIR}/src/fit/evaluators/model.hpp" "#include \"fit/run.hpp\"\n")
+check(TRUE "a room of fit/ (evaluators) including the fit's top")
+file(REMOVE "${SCRATCH_DIR}/src/fit/evaluators/model.hpp")
 file(WRITE "${SCRATCH_DIR}/src/newroom/x.cpp" "#include \"core/scalar.hpp\"\n")
 check(TRUE "a folder without a rank")
 file(REMOVE_RECURSE "${SCRATCH_DIR}")

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "fit/data/contact_steps.hpp"
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_steps.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr {

@@ -6,7 +6,7 @@
 
 #include "fit/data/contact_steps.hpp"
 #include "core/line_fit.hpp"
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_steps.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <numeric>
 
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_steps.hpp"
 
 namespace layerjkr::detail {
 namespace {

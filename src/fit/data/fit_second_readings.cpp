@@ -7,7 +7,7 @@
 
 #include "fit/data/contact_steps.hpp"
 #include "core/short_number.hpp"
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_steps.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {

@@ -7,7 +7,7 @@
 #include <numeric>
 
 #include "core/short_number.hpp"
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_steps.hpp"
 
 namespace layerjkr::detail {
 namespace {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <memory>
 
-#include "fit/fit_run.hpp"
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_run.hpp"
+#include "fit/run/fit_steps.hpp"
 #include "fit/evaluators/joint_evaluator.hpp"
 #include "layerjkr/error.hpp"
 #include "fit/in_time/time_evaluators.hpp"

@@ -5,8 +5,8 @@
 #include <limits>
 #include <memory>
 
-#include "fit/fit_run.hpp"
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_run.hpp"
+#include "fit/run/fit_steps.hpp"
 #include "layerjkr/error.hpp"
 #include "fit/data/retract_reading.hpp"
 #include "fit/in_time/time_evaluators.hpp"

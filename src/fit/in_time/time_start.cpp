@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_steps.hpp"
 #include "layerjkr/error.hpp"
 #include "fit/in_time/time_fit.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <Eigen/Dense>
 
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_steps.hpp"
 
 namespace layerjkr::detail {
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 #include <utility>
 
-#include "fit/fit_run.hpp"
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_run.hpp"
+#include "fit/run/fit_steps.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {

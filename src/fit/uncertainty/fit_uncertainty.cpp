@@ -14,8 +14,8 @@
 #include <ceres/ceres.h>
 #include <Eigen/Dense>
 
-#include "fit/fit_run.hpp"
-#include "fit/fit_steps.hpp"
+#include "fit/run/fit_run.hpp"
+#include "fit/run/fit_steps.hpp"
 #include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {

@@ -1,5 +1,5 @@
 // One fit's Ceres solves, restarts, exclusion and detilt (fit_run.hpp).
-#include "fit_run.hpp"
+#include "fit/run/fit_run.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -8,7 +8,7 @@
 
 #include <Eigen/Dense>
 
-#include "fit_run.hpp"
+#include "fit/run/fit_run.hpp"
 
 namespace layerjkr::detail {
 namespace {
