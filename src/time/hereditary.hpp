@@ -152,6 +152,8 @@ bool hereditary_response(const std::vector<double>& t, const std::vector<T>& d, 
   // 1e-12 of it, far below the power law's 4e-10) and scaled by each sample's own dt - a third of
   // the cost of a fit in time; the elastic limit stays exact. The first piece starts at the
   // contact time, which moves with the parameters, and is never reused.
+  // Ting's t1 search runs on values: the kernel converted once, not per receding sample.
+  const RelaxationKernel<double> Kv = want_radius ? K.values() : RelaxationKernel<double>{};
   std::vector<hereditary::Step<T>> rates(M);  // decay, gain / dt
   T local_rate(0.0);
   double cached_dt = -1.0;
@@ -258,7 +260,6 @@ bool hereditary_response(const std::vector<double>& t, const std::vector<T>& d, 
       // slope_d int_t_q^t1 psi(t_k - s) ds = Phi_q for t1 in [t_q, t_{q+1}].
       const double tq = value_of(knots.time[q]), tn = value_of(knots.time[q + 1]);
       const double sdv = value_of(knots.slope_d[q + 1]), target = value_of(phi) / sdv;
-      const RelaxationKernel<double> Kv = K.values();
       const auto g = [&](double s) { return Kv.integral(t[k] - s, t[k] - tq) - target; };
       double t1 = target > 0.0 ? tn : tq;
       if (target > 0.0 && g(tn) > 0.0) {

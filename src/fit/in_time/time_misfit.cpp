@@ -161,7 +161,7 @@ void name_misfit_in_time(const FitData& data, double drag, FitSummary* out) {
   std::size_t head = 0, tail = n;
   while (head < n && off(head)) ++head;
   while (tail > head && off(tail - 1)) --tail;
-  std::string step_note;
+  std::string step_note, open_end;  // open_end: said only beside a misfit, never alone
   if (head >= 10 && n - tail >= 10) {
     const double step = mean_of(r, tail, n) - mean_of(r, 0, head);
     const double se = noise * std::sqrt(1.0 / static_cast<double>(head) + 1.0 / static_cast<double>(n - tail));
@@ -170,16 +170,15 @@ void name_misfit_in_time(const FitData& data, double drag, FitSummary* out) {
                   " x noise) from the curve's start to its end, both off contact in the fit: drift, or a contact that "
                   "has not let go";
   } else if (n - tail < 10) {
-    step_note = "the fit is still in contact at the curve's end, so a baseline step cannot be told from it";
+    open_end = "; the fit is still in contact at the curve's end, so a baseline step cannot be told from it";
   }
   // Residuals that are noise overall can still hide a local feature (a drift of a few noise
   // sigmas, a short adhesive dip): it is named alone.
   std::string notes;
   for (const std::string* note : {&dwell_note, &retract_note, &step_note})
-    if (!note->empty() && !(note == &step_note && n - tail < 10)) notes += "; " + *note;
+    if (!note->empty()) notes += "; " + *note;
   if (out->residual_structure)
-    out->warnings.push_back("where the law misses (share of the residuals' sum of squares): " + where +
-                            (step_note.empty() || n - tail >= 10 ? notes : notes + "; " + step_note));
+    out->warnings.push_back("where the law misses (share of the residuals' sum of squares): " + where + notes + open_end);
   else if (!notes.empty())
     out->warnings.push_back("where the law misses, though its residuals are noise overall: " + notes.substr(2));
 }

@@ -220,34 +220,31 @@ void judge_law(const ParameterMap& map, const std::vector<double>& x, const Scen
   const double span = data.t.size() > 1 ? data.t.back() - data.t.front() : 0.0;
   double step = span;
   for (std::size_t i = 1; i < data.t.size(); ++i) step = std::min(step, data.t[i] - data.t[i - 1]);
+  // A free time beyond the data's scales: one warning, with what it means for this law.
+  const auto beyond_scales = [&](FitParameter q, const std::string& meaning) {
+    const double v = map.value(q, x.data());
+    if (map.is_free(q) && (v < step || v > 10.0 * span))
+      out->warnings.push_back(std::string(to_string(q)) + " = " + short_number(v) + " s lies outside the data's time " +
+                              "scales (" + short_number(step) + " s between samples, " + short_number(span) +
+                              " s in all): " + meaning);
+  };
   if (law.kind == RelaxationLaw::Kind::prony && law.g.size() == 1) {
     if (p.E_inf > p.E)
       out->warnings.push_back("the relaxed modulus E_inf = " + short_number(p.E_inf) + " Pa exceeds the instantaneous E = " +
                               short_number(p.E) + " Pa: the data stiffen in time rather than relax; the law does not "
                               "describe them");
-    if (map.is_free(FitParameter::tau) && (p.tau < step || p.tau > 10.0 * span))
-      out->warnings.push_back("tau = " + short_number(p.tau) + " s lies outside the data's time scales (" +
-                              short_number(step) + " s between samples, " + short_number(span) +
-                              " s in all): the data cannot tell its value, only that relaxation is " +
-                              (p.tau < step ? "faster" : "slower") + " than they resolve");
+    beyond_scales(FitParameter::tau, std::string("the data cannot tell its value, only that relaxation is ") +
+                                         (p.tau < step ? "faster" : "slower") + " than they resolve");
   }
   if (law.kind == RelaxationLaw::Kind::power_law && map.is_free(FitParameter::beta) && p.beta < 1e-3)
     out->notices.push_back("beta = " + short_number(p.beta) + ": no relaxation the data resolve");
   if (law.two_term_form)
-    for (FitParameter q : {FitParameter::tau, FitParameter::tau_2}) {
-      const double v = map.value(q, x.data());
-      if (map.is_free(q) && (v < step || v > 10.0 * span))
-        out->warnings.push_back(std::string(to_string(q)) + " = " + short_number(v) + " s lies outside the data's time scales (" +
-                                short_number(step) + " s between samples, " + short_number(span) +
-                                " s in all): that arm is a constant or an instant to these data; one arm (\"sls\") may "
-                                "describe them as well - compare by AIC");
-    }
+    for (FitParameter q : {FitParameter::tau, FitParameter::tau_2})
+      beyond_scales(q, "that arm is a constant or an instant to these data; one arm (\"sls\") may describe them as "
+                       "well - compare by AIC");
   if (law.kind == RelaxationLaw::Kind::fractional) {
-    if (map.is_free(FitParameter::tau) && (p.tau < step || p.tau > 10.0 * span))
-      out->warnings.push_back("tau = " + short_number(p.tau) + " s lies outside the data's time scales (" +
-                              short_number(step) + " s between samples, " + short_number(span) +
-                              " s in all): the fractional law's tau and E trade off there; a power law describes the "
-                              "same data with fewer parameters");
+    beyond_scales(FitParameter::tau, "the fractional law's tau and E trade off there; a power law describes the same "
+                                     "data with fewer parameters");
     if (map.is_free(FitParameter::beta) && p.beta > 0.9)
       out->notices.push_back("beta = " + short_number(p.beta) + " is near the fractional law's limit of 0.95, where it "
                              "becomes the standard linear solid (\"sls\"): compare the two by AIC");
