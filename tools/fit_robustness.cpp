@@ -240,8 +240,12 @@ constexpr double kGaussianBeyond3 = 0.0026998;  // P(|z| > 3) for a standard nor
 // 1, 2 and 3 standard errors of the truth (Gaussian: 31.7 %, 4.55 %, 0.27 %).
 struct Calibration {
   long parameters = 0, beyond[3] = {0, 0, 0};
+  double signed_z = 0.0, z2 = 0.0;  // sums of (estimate - truth) / SE and its square
 };
 Calibration g_calibration;
+// With --verbose, the same per row and parameter ("family | medium | E"), printed at the end.
+std::map<std::string, Calibration> g_row_calibration;
+std::string g_row;
 
 Outcome judge(const Case& c, const Truth& t, const FitSummary& s, double* worst) {
   *worst = 0.0;
@@ -268,6 +272,13 @@ Outcome judge(const Case& c, const Truth& t, const FitSummary& s, double* worst)
       const double z = std::abs(e.value - truth) / e.standard_error;
       ++g_calibration.parameters;
       for (int k = 0; k < 3; ++k) g_calibration.beyond[k] += z > k + 1.0 ? 1 : 0;
+      if (g_verbose) {
+        Calibration& r = g_row_calibration[g_row + " | " + to_string(e.parameter)];
+        ++r.parameters;
+        r.signed_z += (e.value - truth) / e.standard_error;
+        r.z2 += z * z;
+        for (int k = 0; k < 3; ++k) r.beyond[k] += z > k + 1.0 ? 1 : 0;
+      }
     }
   if (*worst <= 3.0) return Outcome::right;
   if (declared) return Outcome::declared;
@@ -278,12 +289,14 @@ Outcome judge(const Case& c, const Truth& t, const FitSummary& s, double* worst)
 
 int main(int argc, char** argv) {
   int draws = 25;
+  bool one_start = false;  // only the truth as the start: many draws, to measure the error bars
   std::string only, out;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--family" && i + 1 < argc) only = argv[++i];
     else if (arg == "--verbose") g_verbose = true;
     else if (arg == "--draws" && i + 1 < argc) draws = std::atoi(argv[++i]);
+    else if (arg == "--one-start") one_start = true;
     else out = arg;
   }
   if (draws < 1) {
@@ -305,7 +318,7 @@ int main(int argc, char** argv) {
       medium("half-space", 5e-3, R"("medium": {"type": "half_space", "E": %E%, "nu": 0.49})", 4e-4),
       medium("film (exact, h 100 um)", 5e-3, R"("medium": {"type": "layer", "E": %E%, "nu": 0.49, "h": 1e-4, "base": "bonded"}, "model": "exact")", 4.5e-4)};
   const Truth afm_truth{2e4, 1e-4}, rig_truth{1e6, 0.05};
-  const std::vector<double> starts{0.1, 0.3, 1.0, 3.0, 10.0};
+  const std::vector<double> starts = one_start ? std::vector<double>{1.0} : std::vector<double>{0.1, 0.3, 1.0, 3.0, 10.0};
   struct Plan {
     std::string family;
     const std::vector<Medium>* media;
@@ -325,6 +338,7 @@ int main(int argc, char** argv) {
       if (plan.family == "tension" && m.name.rfind("stack", 0) == 0) continue;
       const std::string key = plan.family + " | " + m.name;
       order.push_back(key);
+      g_row = key;
       Tally& row = rows[key];
       for (int d = 0; d < draws; ++d) {
         std::mt19937_64 rng(case_seed(key, d));
@@ -423,5 +437,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::fputs(("\n" + times).c_str(), stdout);
+  for (const auto& [row, c] : g_row_calibration)
+    std::fprintf(stderr, "%s: %ld estimates, mean z %+.2f, rms z %.2f, %.1f %% beyond 1 SE, %.2f %% beyond 2, %.2f %% beyond 3\n", row.c_str(),
+                 c.parameters, c.signed_z / static_cast<double>(c.parameters), std::sqrt(c.z2 / static_cast<double>(c.parameters)), 100.0 * static_cast<double>(c.beyond[0]) / static_cast<double>(c.parameters),
+                 100.0 * static_cast<double>(c.beyond[1]) / static_cast<double>(c.parameters),
+                 100.0 * static_cast<double>(c.beyond[2]) / static_cast<double>(c.parameters));
   return total.wrong_5 > 0 ? 1 : 0;
 }
