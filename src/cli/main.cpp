@@ -185,7 +185,10 @@ static int run_main(int argc, char** argv) {
   // With --from-report the report gives the data, scene and flags: they are required only without it
   // (checked after parsing, with CLI11's own message).
   const std::vector<std::string> fit_required{"data", "--scene", "--free"};
-  for (const std::string& name : fit_required) fit->get_option(name)->required(false);
+  for (const std::string& name : fit_required) {
+    CLI::Option* o = fit->get_option(name);
+    o->required(false)->description(o->get_description() + " (REQUIRED unless --from-report)");
+  }
 
   CLI::App* fit_map = app.add_subcommand(
       "fit-map", "Fit many curves in parallel; one CSV row per curve (failures included)");
@@ -219,7 +222,10 @@ static int run_main(int argc, char** argv) {
   fit_map->add_option("--from-report", map_from_report,
                       "Rerun the map a record (OUT.json) describes: its scene, options, inputs (SHA-256 checked) and "
                       "--curves, instead of INPUTS, --scene and the fit flags; give --out, and --jobs, --plot-dir");
-  for (const char* name : {"inputs", "--scene", "--free"}) fit_map->get_option(name)->required(false);
+  for (const char* name : {"inputs", "--scene", "--free"}) {
+    CLI::Option* o = fit_map->get_option(name);
+    o->required(false)->description(o->get_description() + " (REQUIRED unless --from-report)");
+  }
   fit_map->add_flag("--resume", map.resume,
                     "Keep the rows of an existing --out table (same header) and fit only the curves it lacks; refused when its "
                     "record names another scene or options, or an input whose SHA-256 changed");

@@ -29,13 +29,13 @@ void add_simulate_options(CLI::App& c, SimulateArguments& a) {
   c.add_option("--drag", o.drag,
                "The lever's hydrodynamic drag b [N s/m]: every force gains b v, v the base's speed towards the sample "
                "(needs --speed; fit --free drag finds it)");
-  c.add_option("--seed", o.seed, "Seed of the noise (default 1)");
+  a.seed = c.add_option("--seed", o.seed, "Seed of the noise (default 1; needs --noise)");
   c.add_flag("--with-radius", o.with_radius, "Also write the contact radius a [m]");
   c.add_option("--branch", a.branch, "approach, retract or all (default all)");
   c.add_option("--control", a.control,
                "What drives a retract with crack kinetics: grips (the indenter follows the ramp) or cantilever (the "
                "base of a lever of --stiffness follows it)");
-  a.stiffness = c.add_option("--stiffness", o.cantilever_stiffness, "The cantilever's stiffness [N/m]");
+  a.stiffness = c.add_option("--stiffness", o.cantilever_stiffness, "The cantilever's stiffness [N/m] (needs --control cantilever)");
   c.add_option("--out", a.out, "CSV file to write (- or absent: standard output)");
 }
 
@@ -47,6 +47,11 @@ int run_simulate(const SimulateArguments& a, const std::string& command_line) {
   o.control = parse_enum<RetractControl>(a.control, "--control");
   if (o.control == RetractControl::cantilever && a.stiffness->count() == 0)
     throw InputError("--control cantilever needs the lever's --stiffness [N/m]");
+  // An option that cannot apply is refused, not ignored: the user meant something by it.
+  if (a.stiffness->count() > 0 && o.control != RetractControl::cantilever)
+    throw InputError("--stiffness applies to --control cantilever only (the retract is driven by " + a.control + ")");
+  if (a.seed->count() > 0 && !(o.noise > 0.0))
+    throw InputError("--seed applies to --noise only, which is " + format_double(o.noise) + " N: without noise there is nothing to draw");
   try {
     o.validate();
   } catch (const DomainError& e) {

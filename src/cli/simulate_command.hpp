@@ -14,6 +14,7 @@ struct SimulateArguments {
   SimulationOptions options;
   int points = 500;
   CLI::Option* stiffness = nullptr;
+  CLI::Option* seed = nullptr;
 };
 
 /// Adds simulate's positional scene and its options to `command`.

@@ -86,6 +86,9 @@ TEST_CASE("simulate: bad input exits 2 with one line and writes nothing", "[cli]
   refused(cell + " --max-indentation 2e-6 --speed 1e-6 --control cantilever --stiffness 1",
           "cantilever-controlled retract is modelled with crack kinetics");
   refused(unique("missing.json") + " --max-indentation 2e-6 --speed 1e-6", "missing.json");
+  // Issue 43: an option that cannot apply is refused, not ignored.
+  refused(cell + " --max-indentation 2e-6 --speed 1e-6 --stiffness 1", "--stiffness applies to --control cantilever only");
+  refused(cell + " --max-indentation 2e-6 --speed 1e-6 --seed 3", "--seed applies to --noise only");
   // Issue 41: bounds before the work - a dwell of 1e7 s ended in bad_alloc, a noise of 1e308
   // printed inf forces and a speed of 1e-316 nan times, all with exit 0.
   refused(cell + " --max-indentation 2e-6 --speed 2e-6 --dwell 1e7", "--dwell = 10000000");
