@@ -2,14 +2,16 @@
 curve is _simulate's."""
 from __future__ import annotations
 
-from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple, Union
+import math
+
+from typing import Any, Dict, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
 
 from . import _core
-from ._core import InputError, NumericalError
-from ._common import BaselineKind, Branch, ContactPointMethod, Control, Loss, SceneLike, Window, _float64, _segments, _sequence, _text, _warn
+from ._core import InputError, NumericalError, Scene
+from ._common import BaselineKind, Branch, ContactPointMethod, Control, Loss, SceneLike, Window, _float64, _number, _segments, _sequence, _text, _warn
 from ._scene import _as_scene
 from ._fit_result import FitResult
 from ._fit_options import _array_inputs, _options, _provenance, _with_fit_parameters
@@ -25,7 +27,8 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
         contact_point: ContactPointMethod = "fit", indentation_range: Optional[Tuple[float, float]] = None,
         force_range: Optional[Tuple[float, float]] = None,
         baseline_window: Optional[Tuple[float, float]] = None, t: Optional[npt.ArrayLike] = None,
-        units: str = "m,N") -> FitResult:
+        units: str = "m,N", start: Optional[Mapping[str, float]] = None,
+        fixed: Optional[Mapping[str, float]] = None) -> FitResult:
     """Fit one measured curve with the model of a scene.
 
     Parameters
@@ -45,6 +48,14 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
     units : str, default "m,N"
         Units of ``delta`` and ``P``, "LENGTH,FORCE" as for :func:`fit_files` (LENGTH in m, mm,
         um, nm, pm; FORCE in N, mN, uN, nN, pN), e.g. "nm,nN"; the result is in SI units.
+    start : mapping of str to float, optional
+        Starting values of free parameters, e.g. ``{"E": 5e3, "w": 1e-4}`` (SI units): they
+        replace the scene's values, from which the data-driven start is sought. Every key must be
+        in ``free``.
+    fixed : mapping of str to float, optional
+        Values of parameters held fixed, e.g. ``{"w": 0.0}`` or ``{"R": 2e-5}``: they replace the
+        scene's. No key may be in ``free``; delta0 and P0 belong to the data (shift ``delta`` or
+        ``P`` instead).
 
     Returns
     -------
@@ -72,7 +83,7 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
     length, force = _core.unit_scales(_text("units", units))
     d, p = _float64(delta, "delta") * length, _float64(P, "P") * force
     tt = None if t is None else _float64(t, "t")
-    s_ = _as_scene(scene)
+    s_ = _with_values(_as_scene(scene), options.free, start, fixed)
     try:
         s = _core.fit(d, p, seg, tt, s_, options)
     except (InputError, NumericalError) as e:
@@ -94,6 +105,40 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
 
 
 _with_fit_parameters(fit)
+
+
+def _with_values(scene: Scene, free: Sequence[str], start: Optional[Mapping[str, float]],
+                 fixed: Optional[Mapping[str, float]]) -> Scene:
+    """The scene with fit(start=, fixed=) in place of its own values (the C++ fitted_scene)."""
+    values: List[Tuple[str, float]] = []
+    for arg, given in (("start", start), ("fixed", fixed)):
+        if given is None:
+            continue
+        if not isinstance(given, Mapping):
+            raise InputError("%s = %r is invalid; give a mapping of parameter names to values, e.g. {\"E\": 5e3}"
+                             % (arg, given))
+        for name, value in given.items():
+            if not isinstance(name, str):
+                raise InputError("%s: key %r is not a parameter name" % (arg, name))
+            if (name in free) != (arg == "start"):
+                raise InputError("%s[%r]: %s" % (arg, name, "not in free = %s: only a free parameter has a start" % list(free)
+                                                 if arg == "start" else "is free: fix it by leaving it out of free"))
+            if name in ("delta0", "P0"):
+                raise InputError("%s[%r]: delta0 and P0 belong to the data, not the scene: shift delta or P instead"
+                                 % (arg, name))
+            number = _number("%s[%r]" % (arg, name), value)
+            if not math.isfinite(number):
+                raise InputError("%s[%r] = %r is invalid; give a finite value in SI units" % (arg, name, value))
+            values.append((name, number))
+    if not values:
+        return scene
+    if not scene.json:
+        raise InputError("start= and fixed= edit the scene's JSON, and this scene was built in code without one: "
+                         "set the values in the scene itself")
+    try:
+        return _core.fitted_scene(scene.json, values)
+    except InputError as e:
+        raise InputError("fit(start=, fixed=): %s" % e) from None
 
 
 def _unit_hint(delta: npt.NDArray[np.float64], P: npt.NDArray[np.float64]) -> str:
