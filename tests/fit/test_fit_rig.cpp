@@ -79,7 +79,7 @@ CurveData rig_curve(bool with_radius, double radius_noise, unsigned seed) {
 // The rigs of issue 40, where fits depended on the noise draw: loading from the zero-load contact
 // radius (the jump-in) to a_max, unloading to a_end, `n` samples each even in delta along the
 // stable branch, 2 uN of force noise and 50 nm of displacement noise.
-CurveData noisy_rig(const Scene& truth, double a_max, double a_end, unsigned seed) {
+CurveData noisy_rig(const Scene& truth, double a_max, double a_end, unsigned seed, double delta_noise = 50e-9) {
   std::vector<double> radii;
   for (int k = 0; k <= 3000; ++k) radii.push_back(a_max * (0.01 + 0.99 * k / 3000.0));
   const CurveAnswer c = solve_curve(truth, radii);
@@ -103,7 +103,7 @@ CurveData noisy_rig(const Scene& truth, double a_max, double a_end, unsigned see
       std::size_t j = std::min(from, to);
       while (j + 1 < std::max(from, to) && delta[j + 1] < d) ++j;
       const double f = (d - delta[j]) / (delta[j + 1] - delta[j]);
-      out.delta.push_back(d + 50e-9 * g(rng));
+      out.delta.push_back(d + delta_noise * g(rng));
       out.P.push_back(P[j] + f * (P[j + 1] - P[j]) + kNoise * g(rng));
       out.segment.push_back(segment);
     }
@@ -219,4 +219,24 @@ TEST_CASE("JKR rigs under eight noise draws: every fit right from a start 2x sof
       CHECK(s.brief_report().find("no adhesion") == std::string::npos);
       CHECK(s.pull_off_force < -1e-3);
     }
+}
+
+TEST_CASE("a rig's displacement noise larger than its step still counts in the data's noise", "[fit][rig]") {
+  // The noise the residuals are judged by is the force's and the displacement's times the curve's
+  // slope. The slope came from neighbours two samples apart only where their displacements differed
+  // by 4 noise sigmas: with noise 6x the step no pair qualified, the noise was the force's alone
+  // (2.2 uN against 0.36 mN of residuals, "166 times the data's noise") and a good fit of such
+  // data read as "the model does not describe these data". Now the pair widens until the step
+  // exceeds the noise (0.37 mN).
+  const Scene half_space = parse_scene(R"({"indenter": {"shape": "paraboloid", "R": 5e-3},
+      "medium": {"type": "half_space", "E": 1e6, "nu": 0.49}, "w": 0.05})");
+  const CurveData quiet = noisy_rig(half_space, 4e-4, 1.05e-4, 3, 0.0);
+  const double step = std::abs(quiet.delta[1] - quiet.delta[0]);
+  const CurveData c = noisy_rig(half_space, 4e-4, 1.05e-4, 3, 6.0 * step);
+  const FitSummary s = fit(c, half_space, options({FitParameter::E, FitParameter::w, FitParameter::delta0},
+                                                  RetractControl::automatic));
+  INFO(s.brief_report());
+  CHECK(s.noise > 20.0 * kNoise);  // the force's 2 uN is not the whole noise
+  CHECK(s.rms_residual < 2.0 * s.noise);
+  CHECK_FALSE(s.residual_structure);
 }

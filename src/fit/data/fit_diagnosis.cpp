@@ -67,14 +67,20 @@ void diagnose_residuals(const FitData& data, double force_span, FitSummary* out)
     // near-constant indentation, so the force change over a step of noise is no slope (it inflated
     // a stress-relaxation dwell's noise 43x, hiding its misfit).
     const auto resting = [&](std::size_t i) { return i < data.segment.size() && data.segment[i] == 2; };
+    // Each sample's slope from fitted points a few samples apart, as far as the step needs to
+    // exceed the noise (a rig's displacement noise can be larger than its step).
+    constexpr std::size_t kWidest = 8;
     for (std::size_t k = 1; k + 1 < kept.size(); ++k) {
-      const std::size_t a = kept[k - 1], b = kept[k + 1];
-      if (resting(a) || resting(b)) continue;
-      const double dd = data.delta[b] - data.delta[a];
-      if (std::abs(dd) > 4.0 * delta_noise) {  // a step the noise does not dominate
-        const double slope = (out->P_fit[b] - out->P_fit[a]) / dd;
-        slope2 += slope * slope;
-        ++count;
+      for (std::size_t m = 1; m <= kWidest && m <= k && k + m < kept.size(); ++m) {
+        const std::size_t a = kept[k - m], b = kept[k + m];
+        if (resting(a) || resting(b)) break;
+        const double dd = data.delta[b] - data.delta[a];
+        if (std::abs(dd) > 4.0 * delta_noise) {  // a step the noise does not dominate
+          const double slope = (out->P_fit[b] - out->P_fit[a]) / dd;
+          slope2 += slope * slope;
+          ++count;
+          break;
+        }
       }
     }
     if (count > 0) out->noise = std::hypot(out->noise, std::sqrt(slope2 / static_cast<double>(count)) * delta_noise);
