@@ -39,6 +39,8 @@
 #include <string>
 #include <vector>
 
+#include <glog/logging.h>
+
 #include "layerjkr/layerjkr.hpp"
 
 using namespace layerjkr;
@@ -288,6 +290,7 @@ Outcome judge(const Case& c, const Truth& t, const FitSummary& s, double* worst)
 }  // namespace
 
 int main(int argc, char** argv) {
+  FLAGS_minloglevel = google::GLOG_FATAL;  // Ceres' internal diagnostics; each fit reports its own
   int draws = 25;
   bool one_start = false;  // only the truth as the start: many draws, to measure the error bars
   std::string only, out;

@@ -242,6 +242,11 @@ struct FitSummary {
 /// 5 % must lie 5 sigmas above the minimum, sigma from the second differences of the retract
 /// samples. Then P0 starts at 0, and samples after the pull-off the model cannot describe are
 /// excluded by the rule of FitOptions::exclusion_sigmas (docs/fitting.md).
+///
+/// Ceres logs its internal diagnostics (a failed line-search polynomial, an evaluation failure
+/// it recovers from) through glog on stderr; the summary reports what matters. The CLI and the
+/// Python module silence glog below FATAL; a C++ program linking layerjkr decides for itself
+/// (`FLAGS_minloglevel = google::GLOG_FATAL;`, as tools/fit_robustness.cpp does).
 FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& options);
 
 /// The scene a fit describes: `scene` with each fitted value in place of the scene's own, so the

@@ -4,6 +4,7 @@
 // spelling registry (types.hpp, parse_enum) named as the Python parameter they came from.
 // Every long call releases the GIL; arrays come in as float64 (converted if needed) and go
 // out as new arrays. python/layerjkr/_core.pyi describes this module.
+#include <glog/logging.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -233,6 +234,10 @@ SimulationOptions simulation_options(double max_indentation, double speed, doubl
 PYBIND11_MODULE(_core, m) {
   m.doc() = "layerjkr C++ core (use the layerjkr package, not this module)";
   m.attr("__version__") = layerjkr::version();  // the library's, by construction
+  // Ceres logs its internal diagnostics through glog ("Logging before InitGoogleLogging", "Failed
+  // to extract eigenvalues"), which read like a crash in a notebook; a fit reports through its
+  // own warnings, as the CLI does.
+  FLAGS_minloglevel = google::GLOG_FATAL;
   Exceptions& e = exceptions();
   e.error = new_exception(m, "Error", py::handle(PyExc_Exception), "Base class of everything layerjkr raises.");
   e.domain = new_exception(m, "DomainError", py::make_tuple(e.error, py::handle(PyExc_ValueError)).release(),
