@@ -155,8 +155,8 @@ def _unit_hint(delta: npt.NDArray[np.float64], P: npt.NDArray[np.float64]) -> st
 class JointFitResult(NamedTuple):
     """Curves of one sample fitted together (:func:`fit_joint`).
 
-    ``fit`` holds the shared parameters, then each curve's own (``"delta0[2]"``: curve 2,
-    counting from 1), with one covariance; its samples are every curve's in turn, curve ``k``'s
+    ``fit`` holds the shared parameters, then each curve's own (``"delta0[1]"``: ``curves[1]``'s,
+    counting from 0 as ``alone`` and ``curve_begin`` do), with one covariance; its samples are every curve's in turn, curve ``k``'s
     at ``slice(curve_begin[k], curve_begin[k + 1])``. ``alone`` has each curve fitted by
     itself, what one speed says alone."""
     fit: "FitResult"
@@ -218,10 +218,10 @@ def fit_joint(curves: Sequence[Any], scene: SceneLike, *, free: Union[str, Seque
     joint, begin, sources, alone = _core.fit_joint(tuples, s_, options)
     inputs = []
     for k, (d, p, seg, t) in enumerate(tuples):
-        inputs += [_core.record_bytes("curve %d delta (float64 array)" % (k + 1), d),
-                   _core.record_bytes("curve %d P (float64 array)" % (k + 1), p)]
+        inputs += [_core.record_bytes("curves[%d] delta (float64 array)" % k, d),
+                   _core.record_bytes("curves[%d] P (float64 array)" % k, p)]
         if t is not None:
-            inputs.append(_core.record_bytes("curve %d t (float64 array)" % (k + 1), t))
+            inputs.append(_core.record_bytes("curves[%d] t (float64 array)" % k, t))
     record = _provenance(s_, options, None, inputs)
     result = JointFitResult(FitResult(joint, options.branch, record), [FitResult(a, options.branch) for a in alone],
                             np.asarray(begin, dtype=np.int64), list(sources))

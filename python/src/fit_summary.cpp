@@ -18,8 +18,8 @@ namespace layerjkr::python {
 
 void bind_fit_summary(py::module_& m) {
   py::class_<ParameterEstimate>(m, "ParameterEstimate", "One fitted parameter (ParameterEstimate), SI units.")
-      .def_property_readonly("name", [](const ParameterEstimate& p) {  // a joint fit's own: "delta0[2]"
-        return std::string(to_string(p.parameter)) + (p.curve >= 0 ? "[" + std::to_string(p.curve + 1) + "]" : "");
+      .def_property_readonly("name", [](const ParameterEstimate& p) {  // a joint fit's own: "delta0[1]", from 0
+        return std::string(to_string(p.parameter)) + (p.curve >= 0 ? "[" + std::to_string(p.curve) + "]" : "");
       })
       .def_property_readonly("parameter", [](const ParameterEstimate& p) { return std::string(to_string(p.parameter)); })
       .def_property_readonly("curve", [](const ParameterEstimate& p) -> py::object {

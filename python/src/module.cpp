@@ -183,7 +183,7 @@ py::tuple fit_joint_arrays(const std::vector<std::tuple<Array, Array, std::optio
   std::vector<CurveData> cs;
   for (std::size_t k = 0; k < curves.size(); ++k) {
     const auto& [d, P, seg, t] = curves[k];
-    cs.push_back(curve_of(d, P, seg, t, "curve " + std::to_string(k + 1)));
+    cs.push_back(curve_of(d, P, seg, t, "curves[" + std::to_string(k) + "]"));  // Python's index, from 0
   }
   JointFitSummary j;
   {

@@ -34,7 +34,10 @@ def test_fit_joint_across_speeds():
     curves = [layerjkr.simulate(CELL, max_indentation=2e-6, speed=v, points=150, noise=5e-11, seed=k)
               for k, v in enumerate((0.5e-6, 2e-6, 8e-6))]
     j = layerjkr.fit_joint(curves, GUESS, free=["E", "E_inf", "tau", "delta0"])
-    assert j.fit.parameters == ("E", "E_inf", "tau", "delta0[1]", "delta0[2]", "delta0[3]")
+    # Curves count from 0, as curves[k], alone[k] and curve_begin[k] do (issue 43).
+    assert j.fit.parameters == ("E", "E_inf", "tau", "delta0[0]", "delta0[1]", "delta0[2]")
+    assert [s["path"] for s in j.fit.provenance["inputs"]][:2] == ["curves[0] delta (float64 array)",
+                                                                    "curves[0] P (float64 array)"]
     assert abs(j.fit.values["tau"] - 0.2) < 3 * j.fit.errors["tau"]
     assert list(j.curve_begin) == [0, 300, 600, 900]
     assert len(j.alone) == 3 and all(a.errors["E"] > j.fit.errors["E"] for a in j.alone)
@@ -44,8 +47,12 @@ def test_fit_joint_across_speeds():
                             free="E,E_inf,tau,delta0")
     assert j2.fit.values["tau"] == pytest.approx(j.fit.values["tau"], rel=1e-3)
     # The same measurement twice would shrink every error bar by sqrt(2) (issue 41): refused.
-    with pytest.raises(layerjkr.InputError, match=r"curves 1 \(.*\) and 3 \(.*\) hold the same samples"):
+    with pytest.raises(layerjkr.InputError, match=r"fit_joint: curves\[0\] and curves\[2\] hold the same samples"):
         layerjkr.fit_joint([curves[0], curves[1], curves[0]], GUESS, free=["E", "E_inf", "tau", "delta0"])
+    # A curve that cannot be fitted is named as the caller wrote it.
+    late = (curves[1].delta + 1e-5, curves[1].P, curves[1].segment, curves[1].t)
+    with pytest.raises(layerjkr.InputError, match=r"fit_joint: curves\[1\] cannot be fitted alone"):
+        layerjkr.fit_joint([curves[0], late], GUESS, free=["E", "E_inf", "tau"])
 
 
 def test_summary_rate_dependent_pull_off_is_the_clis(cli, tmp_path):

@@ -404,5 +404,6 @@ TEST_CASE("fit in time refuses what it cannot fit, naming why", "[fit][time]") {
   for (double& d : late.delta) d += 10e-6;
   o = f;
   o.free = {FitParameter::E, FitParameter::E_inf, FitParameter::tau};
-  CHECK_THROWS_AS(fit_joint({late, c}, cell, o), InputError);
+  late.source = "late.csv";
+  CHECK_THROWS_WITH(fit_joint({late, c}, cell, o), Catch::Contains("fit_joint: late.csv cannot be fitted alone"));
 }

@@ -28,6 +28,8 @@ struct ParameterMap {
   /// shared) and its reference; empty for one curve, whose slot[] says everything.
   std::vector<int> slot_curve;
   std::vector<double> slot_ref;
+  /// A joint fit's curves as messages name them (their sources), by curve.
+  std::vector<std::string> curve_names;
 
   int index(FitParameter p) const { return slot[static_cast<int>(p)]; }
   bool is_free(FitParameter p) const { return index(p) >= 0; }

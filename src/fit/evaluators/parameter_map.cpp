@@ -146,7 +146,10 @@ double ParameterMap::fixed_value(FitParameter q) const {
 
 std::string ParameterMap::name_at(std::size_t j) const {
   std::string name = to_string(free[j]);
-  if (j < slot_curve.size() && slot_curve[j] >= 0) return name + " of curve " + std::to_string(slot_curve[j] + 1);
+  if (j < slot_curve.size() && slot_curve[j] >= 0) {
+    const auto k = static_cast<std::size_t>(slot_curve[j]);
+    return name + " of " + (k < curve_names.size() ? curve_names[k] : "curve " + std::to_string(k + 1));
+  }
   return name;
 }
 

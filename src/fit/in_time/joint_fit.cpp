@@ -38,6 +38,12 @@ struct Part {
 
 double estimate(const FitSummary& s, FitParameter q) { return s[q].value; }
 
+// A curve of a joint fit in messages: its source (a file's path, Python's "curves[1]"), or its
+// place counted from 1 where it has none.
+std::string curve_name(std::size_t k, const std::string& source) {
+  return source.empty() ? "curve " + std::to_string(k + 1) : source;
+}
+
 // The residual diagnosis of curve k's samples, said as the curve's.
 void diagnose_part(const Part& part, const FitSummary& joint, std::size_t begin, std::size_t k, const std::string& source,
                    FitSummary* out) {
@@ -59,11 +65,11 @@ void diagnose_part(const Part& part, const FitSummary& joint, std::size_t begin,
   detail::diagnose_residuals(part.data, hi - lo, &slice);
   if (!slice.residual_structure) return;
   out->residual_structure = true;
-  out->warnings.push_back("curve " + std::to_string(k + 1) + " (" + source + "): " + slice.warnings.back());
+  out->warnings.push_back(curve_name(k, source) + ": " + slice.warnings.back());
   if (out->identifiable || out->identifiability_reason.empty()) {
     out->identifiable = false;
     out->identifiability_known = true;
-    out->identifiability_reason = "the model does not describe curve " + std::to_string(k + 1) + " (" + source + ")";
+    out->identifiability_reason = "the model does not describe " + curve_name(k, source);
   }
 }
 
@@ -85,8 +91,8 @@ JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& sce
     for (std::size_t i = 0; i < k; ++i)
       if (curves[i].delta == curves[k].delta && curves[i].P == curves[k].P && curves[i].t == curves[k].t &&
           curves[i].a == curves[k].a && curves[i].segment == curves[k].segment)
-        throw InputError("fit_joint: curves " + std::to_string(i + 1) + " (" + curves[i].source + ") and " +
-                         std::to_string(k + 1) + " (" + curves[k].source + ") hold the same samples: a joint fit of "
+        throw InputError("fit_joint: " + curve_name(i, curves[i].source) + " and " + curve_name(k, curves[k].source) +
+                         " hold the same samples: a joint fit of "
                          "one measurement given twice would count its noise twice and shrink every error bar; give "
                          "each measurement once");
   JointFitSummary j;
@@ -95,7 +101,7 @@ JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& sce
     try {
       j.alone.push_back(fit(curves[k], scene, options));
     } catch (const Error& e) {
-      throw InputError("fit_joint: curve " + std::to_string(k + 1) + " (" + curves[k].source + ") cannot be fitted alone, "
+      throw InputError("fit_joint: " + curve_name(k, curves[k].source) + " cannot be fitted alone, "
                        "which starts the joint fit: " + e.what());
     }
   }
@@ -130,6 +136,7 @@ JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& sce
   ParameterMap global;
   std::vector<double> x;
   for (FitParameter q : shared) global.free.push_back(q), global.slot_curve.push_back(-1), global.slot_ref.push_back(0.0);
+  for (std::size_t k = 0; k < curves.size(); ++k) global.curve_names.push_back(curve_name(k, curves[k].source));
   for (std::size_t k = 0; k < curves.size(); ++k)
     for (FitParameter q : own) {
       global.free.push_back(q);
