@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
 """Makes a layerjkr wheel self-contained, as auditwheel repair does, from Debian's tools only
-(ldd, patchelf, dpkg): every shared library the extension needs beyond glibc, libstdc++ and
-libgcc is copied into layerjkr.libs/ with RUNPATH $ORIGIN, the extension gets RUNPATH
-$ORIGIN/../layerjkr.libs, each bundled library's Debian copyright file is shipped beside it,
-RECORD is rewritten, and the platform tag becomes manylinux_2_<glibc minor>_<arch> (the glibc the
-wheel was built against is the oldest it needs).
+(ldd, patchelf, readelf, dpkg): every shared library the extension needs beyond glibc, libstdc++
+and libgcc is copied into layerjkr.libs/ under a name carrying its content's hash (libgsl.so.27 ->
+libgsl-1a2b3c4d.so.27, its SONAME and every NEEDED entry rewritten to match, so a copy of the same
+library that another package loaded first cannot stand in for it, nor this one for that), with
+RUNPATH $ORIGIN; the extension gets RUNPATH $ORIGIN/../layerjkr.libs; each bundled library's
+Debian copyright file is shipped beside it, and BUNDLED.txt names its package, version and where
+its sources are; RECORD is rewritten; the platform tag becomes manylinux_2_<minor>_<arch> for the
+newest GLIBC symbol version any of the wheel's objects needs (not the build machine's glibc).
 
     python3 tools/bundle_wheel.py dist/layerjkr-0.1.0-cp311-cp311-linux_x86_64.whl -o wheelhouse/
 
@@ -55,6 +58,39 @@ def copyright_of(path):
     return None, None
 
 
+def hashed_name(soname, path):
+    """libgsl.so.27 -> libgsl-<first 8 hex digits of the file's SHA-256>.so.27, as auditwheel names them."""
+    digest = hashlib.sha256(pathlib.Path(path).read_bytes()).hexdigest()[:8]
+    stem, dot_so, rest = soname.partition(".so")
+    return "%s-%s%s%s" % (stem, digest, dot_so, rest)
+
+
+def needed_entries(path):
+    return subprocess.run(["patchelf", "--print-needed", str(path)], capture_output=True, text=True,
+                          check=True).stdout.split()
+
+
+def newest_version(paths, prefix):
+    """The newest symbol version `prefix`X.Y[.Z] (GLIBC_, GLIBCXX_) that any of `paths` needs, as a
+    tuple of ints, from readelf's version-needs sections."""
+    newest = (0,)
+    for path in paths:
+        out = subprocess.run(["readelf", "-V", "--wide", str(path)], capture_output=True, text=True, check=True).stdout
+        for version in re.findall(r"Name: %s([0-9.]+)" % re.escape(prefix), out):
+            newest = max(newest, tuple(int(x) for x in version.split(".")))
+    return newest
+
+
+def package_facts(package):
+    """(version, source package) of an installed Debian package."""
+    r = subprocess.run(["dpkg-query", "-W", "-f=${Version}\t${source:Package}", package], capture_output=True,
+                       text=True)
+    if r.returncode != 0:
+        return "?", package
+    version, source = r.stdout.split("\t")
+    return version, source or package
+
+
 def record_line(root, path):
     data = path.read_bytes()
     digest = base64.urlsafe_b64encode(hashlib.sha256(data).digest()).rstrip(b"=").decode()
@@ -62,8 +98,6 @@ def record_line(root, path):
 
 
 def bundle(wheel, out_dir):
-    glibc = platform.libc_ver()[1]
-    minor = glibc.split(".")[1]
     arch = platform.machine()
     with tempfile.TemporaryDirectory() as tmp:
         root = pathlib.Path(tmp)
@@ -74,21 +108,43 @@ def bundle(wheel, out_dir):
             raise SystemExit("bundle_wheel: expected one layerjkr/_core*.so in %s" % wheel)
         libs = root / LIBS
         (libs / "licenses").mkdir(parents=True)
-        notes = []
+        notes, renamed = [], {}
         for soname, path in needed_libraries(extensions[0]):
-            shutil.copyfile(path, libs / soname)
-            os.chmod(libs / soname, 0o755)
-            subprocess.run(["patchelf", "--set-rpath", "$ORIGIN", str(libs / soname)], check=True)
+            name = hashed_name(soname, path)
+            renamed[soname] = name
+            shutil.copyfile(path, libs / name)
+            os.chmod(libs / name, 0o755)
+            # Two calls: Debian 12's patchelf (0.14) given both in one wrote the RUNPATH into the SONAME.
+            subprocess.run(["patchelf", "--set-soname", name, str(libs / name)], check=True)
+            subprocess.run(["patchelf", "--set-rpath", "$ORIGIN", str(libs / name)], check=True)
             package, doc = copyright_of(path)
             if doc is not None:
                 shutil.copyfile(doc, libs / "licenses" / (package + ".copyright"))
-            notes.append("%s\t%s\t%s" % (soname, path, package or "(not from a Debian package)"))
+            version, source = package_facts(package) if package else ("?", None)
+            where = ("https://sources.debian.org/src/%s/%s/ (apt-get source %s=%s)" % (source, version, source, version)
+                     if source else "(not from a Debian package)")
+            notes.append("%s\t%s\t%s\t%s\t%s\t%s" % (name, soname, path, package or "-", version, where))
+        # Every object names its bundled dependencies by their new names.
+        for obj in [extensions[0]] + sorted(libs.glob("*.so*")):
+            pairs = [(old, renamed[old]) for old in needed_entries(obj) if old in renamed]
+            if pairs:
+                args = ["patchelf"]
+                for old, new in pairs:
+                    args += ["--replace-needed", old, new]
+                subprocess.run(args + [str(obj)], check=True)
         (libs / "licenses" / "BUNDLED.txt").write_text(
-            "Libraries bundled in layerjkr.libs (soname, source path, Debian package); their copyright\n"
-            "files are beside this one.\n\n" + "\n".join(notes) + "\n")
+            "Libraries bundled in layerjkr.libs: the bundled name (the original soname with a hash of its\n"
+            "content), the original soname, the path it was copied from, its Debian package and version, and\n"
+            "where that version's sources are (the GPL and LGPL libraries among them - GSL, glog's and\n"
+            "SuiteSparse's parts, libgfortran - are offered in source form there, as their licences ask).\n"
+            "Their copyright files are beside this one.\n\n" + "\n".join(notes) + "\n")
         subprocess.run(["patchelf", "--set-rpath", "$ORIGIN/../" + LIBS, str(extensions[0])], check=True)
+        objects = [extensions[0]] + sorted(libs.glob("*.so*"))
+        glibc = newest_version(objects, "GLIBC_")
+        if len(glibc) < 2 or glibc[0] != 2:
+            raise SystemExit("bundle_wheel: cannot tell the newest GLIBC version the wheel needs (%s)" % (glibc,))
         dist = next(root.glob("*.dist-info"))
-        tag = "manylinux_2_%s_%s" % (minor, arch)
+        tag = "manylinux_2_%d_%s" % (glibc[1], arch)
         wheel_file = dist / "WHEEL"
         wheel_file.write_text(re.sub(r"^(Tag: .*-)linux_\w+$", r"\g<1>" + tag, wheel_file.read_text(), flags=re.M))
         record = dist / "RECORD"
@@ -104,6 +160,9 @@ def bundle(wheel, out_dir):
             for p in sorted(root.rglob("*")):
                 if p.is_file():
                     z.write(p, p.relative_to(root).as_posix())
+        glibcxx = newest_version(objects, "GLIBCXX_")
+        print("bundle_wheel: %d libraries bundled; newest GLIBC_%s, GLIBCXX_%s needed" % (
+            len(renamed), ".".join(map(str, glibc)), ".".join(map(str, glibcxx))), file=sys.stderr)
         return out
 
 

@@ -1,6 +1,7 @@
 """pip install . of the package (pyproject.toml + setup.py), on a copy of the source tree so
 that nothing is written into the real one, reusing the configured build directory
 (LAYERJKR_CMAKE_BUILD_DIR) so the test does not rebuild the library."""
+import hashlib
 import os
 import pathlib
 import re
@@ -81,7 +82,11 @@ def test_the_wheel_is_self_contained_and_installs_into_a_fresh_venv(source, tmp_
         z.extractall(unpacked)
         names = z.namelist()
     bundled = {p.name for p in (unpacked / "layerjkr.libs").glob("*.so*")}
-    assert {"libgsl.so.27", "libglog.so.1", "libcholmod.so.3", "libdeflate.so.0", "libcrypto.so.3"} <= bundled
+    # Issue 43: each bundled library carries a hash of its content in its name, as auditwheel
+    # names them, so that another package's copy of the same soname cannot stand in for it.
+    original = {re.sub(r"-[0-9a-f]{8}(?=\.so)", "", b): b for b in bundled}
+    assert all(re.search(r"-[0-9a-f]{8}\.so", b) for b in bundled), bundled
+    assert {"libgsl.so.27", "libglog.so.1", "libcholmod.so.3", "libdeflate.so.0", "libcrypto.so.3"} <= set(original)
     objects = list(unpacked.rglob("*.so*"))
     for so in objects:
         needed, runpath = readelf_dynamic(so)
@@ -89,9 +94,28 @@ def test_the_wheel_is_self_contained_and_installs_into_a_fresh_venv(source, tmp_
         assert not outside, (so.name, outside)
         expected = "$ORIGIN/../layerjkr.libs" if so.parent.name == "layerjkr" else "$ORIGIN"
         assert runpath == [expected], (so.name, runpath)
-    # The licences of what is bundled ship with it.
+        if so.parent.name == "layerjkr.libs":
+            soname = re.findall(r"\(SONAME\)\s+Library soname: \[([^\]]+)\]",
+                                subprocess.run(["readelf", "-d", str(so)], capture_output=True, text=True).stdout)
+            assert soname == [so.name], (so.name, soname)
+    # The tag: the newest GLIBC symbol version any object needs (objdump's version references,
+    # read independently of the tool's readelf), not the build machine's glibc.
+    newest = 0
+    for so in objects:
+        refs = subprocess.run(["objdump", "-p", str(so)], capture_output=True, text=True, check=True).stdout
+        newest = max([newest] + [int(m) for m in re.findall(r"\bGLIBC_2\.(\d+)", refs)])
+    assert re.search(r"-manylinux_2_%d_\w+\.whl$" % newest, wheel.name), (wheel.name, newest)
+    # The licences of what is bundled ship with it, and BUNDLED.txt names each library's package,
+    # version and where its sources are; each name's hash is the original file's.
     assert "layerjkr.libs/licenses/BUNDLED.txt" in names
     assert sum(1 for n in names if n.endswith(".copyright")) >= 10
+    rows = [line.split("\t") for line in (unpacked / "layerjkr.libs" / "licenses" / "BUNDLED.txt").read_text().splitlines()
+            if line.count("\t") == 5]
+    assert {r[0] for r in rows} == bundled
+    for name, soname, path, package, version, where in rows:
+        assert re.sub(r"-[0-9a-f]{8}(?=\.so)", "", name) == soname
+        assert hashlib.sha256(pathlib.Path(path).read_bytes()).hexdigest()[:8] in name
+        assert package != "-" and version != "?" and where.startswith("https://sources.debian.org/src/"), (name, where)
     # A fresh venv (Debian's numpy, matplotlib, pandas, xarray and pytest seen through
     # --system-site-packages; no layerjkr anywhere else) installs it, and the package's tests pass there.
     venv = tmp_path / "venv"
