@@ -4,6 +4,7 @@ coordinates in metres) and to_tiff (fit-map --tiff's writer). pandas and xarray 
 only when their method is called."""
 from __future__ import annotations
 
+import html
 import math
 import os
 from typing import Any, Dict, List, Optional, Sequence, Union
@@ -13,6 +14,7 @@ import numpy.typing as npt
 
 from . import _core
 from ._core import InputError
+from ._html import number, table
 
 _HEAD = ("file", "curve", "x", "y", "grid_x", "grid_y", "status", "error", "model", "converged", "iterations",
          "rms_residual", "identifiable", "identifiability", "contact_point", "contact_point_err", "range_samples")
@@ -70,6 +72,25 @@ class BatchResults(list):  # type: ignore[type-arg]
         files = len({it.source.split("#")[0] for it in self})
         return "BatchResults(%d curves from %d input(s): %d fitted, %d failed; fields %s; quality: %s)" % (
             len(self), files, ok, len(self) - ok, ", ".join(self._free()) or "-", said or "-")
+
+    def _repr_html_(self) -> str:
+        # Counts and quality, then each fitted field's median and spread over the fitted curves.
+        ok = [it.result for it in self if it.result is not None]
+        quality: Dict[str, int] = {}
+        for q in self.quality:
+            quality[q or "unknown"] = quality.get(q or "unknown", 0) + 1
+        rows = []
+        for name in self._free():
+            v = np.array([r.values[name] for r in ok if name in r.parameters], dtype=float)
+            v = v[np.isfinite(v)]
+            rows.append((html.escape(name), len(v), number(float(np.median(v))) if len(v) else "-",
+                         number(float(np.percentile(v, 25))) if len(v) else "-",
+                         number(float(np.percentile(v, 75))) if len(v) else "-",
+                         html.escape(_core.unit_of(name.split("[")[0]))))
+        failures = ["%s: %s" % (it.source, it.error) for it in self if it.result is None][:5]
+        return table("layerjkr batch: %d curves, %d fitted, %d failed; quality: %s" % (
+            len(self), len(ok), len(self) - len(ok), ", ".join("%s %d" % kv for kv in sorted(quality.items())) or "-"),
+            ("field", "fitted", "median", "25 %", "75 %", "unit"), rows, failures)
 
     def _free(self) -> List[str]:
         for it in self:

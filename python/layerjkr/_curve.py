@@ -8,6 +8,7 @@ import numpy.typing as npt
 
 from . import _core
 from ._common import SceneLike, _number, _warn
+from ._html import number, table
 from ._scene import AutoChoice, _as_scene, _choice
 
 
@@ -129,6 +130,16 @@ class Curve:
 
     def __repr__(self) -> str:
         return "layerjkr.Curve(model=%r, %d radii, %d warnings)" % (self._model, len(self), len(self._warnings))
+
+    def _repr_html_(self) -> str:
+        # The first and last rows, as pandas shows a long frame, and the warnings.
+        n = len(self)
+        shown = list(range(n)) if n <= 10 else list(range(5)) + [-1] + list(range(n - 5, n))
+        columns = ("a", "P", "delta", "S", "error_est")
+        rows = [("...",) * len(columns) if i < 0 else tuple(number(float(getattr(self, c)[i])) for c in columns)
+                for i in shown]
+        return table("layerjkr curve: model %s (reference %s), %d radii" % (self._model, self.reference or "-", n),
+                     ("a [m]", "P [N]", "delta [m]", "S [N/m]", "error_est"), rows, self._warnings)
 
 
 _CURVE_KEYS = _CURVE_ROWS + ("error_est", "warnings", "notices", "model", "reference", "choice")

@@ -2,6 +2,7 @@
 curve is _simulate's."""
 from __future__ import annotations
 
+import html
 import math
 
 from typing import Any, Dict, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
@@ -12,6 +13,7 @@ import numpy.typing as npt
 from . import _core
 from ._core import InputError, NumericalError, Scene
 from ._common import BaselineKind, Branch, ContactPointMethod, Control, Loss, SceneLike, Window, _float64, _number, _segments, _sequence, _text, _warn
+from ._html import number, table
 from ._scene import _as_scene
 from ._fit_result import FitResult
 from ._fit_options import _array_inputs, _options, _provenance, _with_fit_parameters
@@ -163,6 +165,14 @@ class JointFitResult(NamedTuple):
     alone: List["FitResult"]
     curve_begin: npt.NDArray[np.int64]
     sources: List[str]
+
+    def _repr_html_(self) -> str:
+        # The joint fit's table, then each shared parameter as each curve alone gives it.
+        shared = [p for p in self.fit.parameters if "[" not in p]
+        rows = [(html.escape(source),) + tuple(
+            "%s +- %s" % (number(a.values[p]), number(a.errors[p], 2)) if p in a.parameters else "-" for p in shared)
+            for source, a in zip(self.sources, self.alone)]
+        return self.fit._repr_html_() + table("each curve fitted alone", ("curve",) + tuple(shared), rows)
 
 
 def _curve_tuple(c: Any, k: int) -> Tuple[Any, Any, Optional[List[int]], Optional[Any]]:

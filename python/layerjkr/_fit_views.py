@@ -13,6 +13,7 @@ import numpy.typing as npt
 from . import _core
 from ._core import InputError, Scene
 from ._common import _float64, _text
+from ._html import number, table
 from ._simulate import simulate
 
 
@@ -114,14 +115,10 @@ def plot(result: Any, ax: Any = None) -> Any:
 
 def html_table(result: Any) -> str:
     """A notebook table: each parameter's value, error and unit, then the fit's state."""
-    rows = []
-    for name, value, error in zip(result.parameters, result.values.view(np.ndarray), result.errors.view(np.ndarray)):
-        unit = _core.unit_of(name.split("[")[0])
-        rows.append("<tr><td>%s</td><td>%.6g</td><td>%s</td><td>%s</td></tr>" % (
-            html.escape(name), value, "%.2g" % error if math.isfinite(error) else "-", html.escape(unit)))
+    rows = [(html.escape(name), number(value), number(error, 2), html.escape(_core.unit_of(name.split("[")[0])))
+            for name, value, error in zip(result.parameters, result.values.view(np.ndarray),
+                                          result.errors.view(np.ndarray))]
     state = "converged" if result.converged else "not converged"
-    notes = "".join("<li>%s</li>" % html.escape(w) for w in result.warnings)
-    return ("<table><caption>layerjkr fit: %s, %s after %d iterations, rms residual %.3g N</caption>"
-            "<tr><th>parameter</th><th>value</th><th>error</th><th>unit</th></tr>%s</table>%s" % (
-                html.escape(result.model), state, result.iterations, result.rms_residual, "".join(rows),
-                "<ul>%s</ul>" % notes if notes else ""))
+    return table("layerjkr fit: %s, %s after %d iterations, rms residual %.3g N" % (
+        result.model, state, result.iterations, result.rms_residual),
+        ("parameter", "value", "error", "unit"), rows, result.warnings)

@@ -2,6 +2,7 @@
 FixedGrips, AdhesionCheck, ModelError)."""
 from __future__ import annotations
 
+import html
 import json
 import os
 from typing import Any, Callable, NamedTuple, Optional
@@ -11,6 +12,7 @@ import numpy as np
 from . import _core
 from ._core import InputError, Scene
 from ._common import SceneLike, _json_value
+from ._html import number, table
 
 
 def scene(spec: SceneLike, profile: Optional[Callable[[Any], Any]] = None, r_max: Optional[float] = None,
@@ -79,6 +81,27 @@ def scene(spec: SceneLike, profile: Optional[Callable[[Any], Any]] = None, r_max
 
 
 # The fit functions take a parameter named scene, as the CLI's --scene; this reaches the function.
+def _scene_html(self: Scene) -> str:
+    """A notebook view of a scene: every value of its JSON, by key path (medium.E, w, ...)."""
+    rows = []
+
+    def walk(prefix: str, value: Any) -> None:
+        if isinstance(value, dict):
+            for k, v in value.items():
+                walk("%s.%s" % (prefix, k) if prefix else k, v)
+        else:
+            rows.append((html.escape(prefix), number(value) if isinstance(value, (int, float)) and
+                         not isinstance(value, bool) else html.escape(json.dumps(value))))
+
+    try:
+        walk("", json.loads(self.json) if self.json else {})
+    except ValueError:
+        pass
+    return table("layerjkr scene: model %s, %s" % (self.model, self.profile), ("key", "value"), rows)
+
+
+Scene._repr_html_ = _scene_html  # the compiled class takes a Python method for notebooks
+
 _as_scene = scene
 
 

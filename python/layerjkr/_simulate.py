@@ -10,6 +10,7 @@ import numpy.typing as npt
 from . import _core
 from ._core import InputError
 from ._common import Branch, SceneLike, _integer, _number, _text
+from ._html import number, table
 from ._scene import _as_scene
 
 
@@ -33,6 +34,19 @@ class Simulation(NamedTuple):
         span = ", t %.4g to %.4g s" % (self.t[0], self.t[-1]) if len(self.t) else ""
         radius = ", with a" if len(self.a) else ""
         return "Simulation(%d samples: %s%s%s; %s)" % (len(self.P), parts, span, radius, self.source)
+
+    def _repr_html_(self) -> str:
+        names = {0: "approach", 1: "retract", 2: "dwell"}
+        rows = []
+        for k in np.unique(self.segment):
+            m = self.segment == k
+            t = self.t[m] if len(self.t) else None
+            rows.append((names.get(int(k), "segment %d" % k), int(m.sum()), number(float(self.delta[m].min())),
+                         number(float(self.delta[m].max())), number(float(self.P[m].min())), number(float(self.P[m].max())),
+                         "-" if t is None else "%s to %s" % (number(float(t[0]), 4), number(float(t[-1]), 4))))
+        return table("layerjkr simulation: %d samples%s; %s" % (len(self.P), ", with a" if len(self.a) else "", self.source),
+                     ("segment", "samples", "delta min [m]", "delta max [m]", "P min [N]", "P max [N]", "t [s]"), rows,
+                     self.notes)
 
 
 def simulate(scene: SceneLike, *, max_indentation: float, speed: float = 0.0, retract_speed: float = 0.0,

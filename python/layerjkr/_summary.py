@@ -6,6 +6,7 @@ from typing import Any, Dict, List, NamedTuple, Optional, Tuple
 from . import _core
 from ._core import InputError
 from ._common import SceneLike, _finite_or_none, _number, _positive, _warn
+from ._html import number, table
 from ._scene import AdhesionCheck, AutoChoice, FixedGrips, ModelError, _as_scene, _choice
 
 
@@ -214,6 +215,20 @@ class Summary:
     def __repr__(self) -> str:
         return "layerjkr.Summary(model=%r, pull_off_force=%r, zero_load_radius=%r)" % (
             self.model, self.pull_off_force, self.zero_load_radius)
+
+    def _repr_html_(self) -> str:
+        d = self.as_dict()
+        fg = d["fixed_grips_critical"] or {}
+        err = d["model_error_estimate"]
+        rows = [("pull-off force", number(d["pull_off_force"]), "N"), ("pull-off radius", number(d["pull_off_radius"]), "m"),
+                ("zero-load radius", number(d["zero_load_radius"]), "m"),
+                ("fixed grips: force", number(fg.get("force")), "N"), ("fixed grips: radius", number(fg.get("radius")), "m"),
+                ("model error: pull-off force", number(err["pull_off_force"], 3), "against %s" % (err["reference"] or "-")),
+                ("model error: zero-load radius", number(err["zero_load_radius"], 3), "against %s" % (err["reference"] or "-"))]
+        rows += [(k, number(d[k]), unit) for k, unit in (("K", "N/m^3"), ("G", "N/m"), ("T", "N/m"), ("E_star", "Pa"))
+                 if k in d]
+        return table("layerjkr summary: model %s, %s, w = %s J/m^2" % (self.model, self.profile, number(self.w)),
+                     ("quantity", "value", "unit"), rows, self.warnings)
 
 
 def summary(scene: SceneLike, *, warning_threshold: float = 0.05, retract_speed: Optional[float] = None,
