@@ -62,7 +62,8 @@ def _say_failures(items: Sequence[Any], stacklevel: int) -> None:
 
 
 def _batch(items: Sequence[Any], branch: str,
-           provenance: Optional[Callable[[int, Any], Dict[str, Any]]] = None) -> BatchResults:
+           provenance: Optional[Callable[[int, Any], Dict[str, Any]]] = None,
+           refit: Optional[Callable[[int], Any]] = None) -> BatchResults:
     _say_failures(items, stacklevel=3)
     out = []
     for k, it in enumerate(items):
@@ -71,7 +72,18 @@ def _batch(items: Sequence[Any], branch: str,
                                grid_x=it.grid_x if it.grid_x >= 0 else None, grid_y=it.grid_y if it.grid_y >= 0 else None,
                                result=FitResult(it.summary, branch, record) if it.ok else None,
                                error=None if it.ok else it.error))
-    return BatchResults(out, [it.quality for it in items])
+    return BatchResults(out, [it.quality for it in items], refit)
+
+
+def _item_path(it: Any) -> bytes:
+    """The file an item was read from: its source without the "#curve" a map's pixel carries."""
+    suffix = "#%d" % it.curve
+    source = it.source[:-len(suffix)] if it.curve >= 0 and it.source.endswith(suffix) else it.source
+    return os.fsencode(source)
+
+
+# Every sample a re-read curve keeps (a batch keeps none; a report thins them).
+_ALL_SAMPLES = 2 ** 62
 
 
 @contextlib.contextmanager
@@ -145,7 +157,15 @@ def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: Scen
     if directory:
         _write_report(items, options, directory, "%d curves (fit_batch)" % len(items))
     base = _provenance(s, options, None, [])
-    return _batch(items, options.branch, lambda k, it: _with_inputs(base, _array_inputs(*pairs[k], None)))
+
+    def record(k: int, it: Any) -> Dict[str, Any]:
+        return _with_inputs(base, _array_inputs(*pairs[k], None))
+
+    def refit(k: int) -> FitResult:  # the caller's arrays, fitted again alone
+        return FitResult(_core.fit(pairs[k][0], pairs[k][1], None, None, s, options), options.branch,
+                         record(k, items[k]))
+
+    return _batch(items, options.branch, record, refit)
 
 
 _with_fit_parameters(fit_batch)
@@ -257,8 +277,25 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
     if directory:
         _write_report(items, options, directory, "%d input file(s) (fit_files)" % len(names))
     base = _provenance(s, options, csv, [])
-    return _batch(items, options.branch,
-                  lambda k, it: _with_inputs(base, [hashed.get(os.fsencode(it.source)) or _core.record_file(os.fsencode(it.source))]))
+
+    def record(k: int, it: Any) -> Dict[str, Any]:
+        path = _item_path(it)
+        return _with_inputs(base, [hashed.get(path) or _core.record_file(path)])
+
+    def refit(k: int) -> FitResult:  # the curve read again from its file, checked unchanged, fitted alone
+        it, path = items[k], _item_path(items[k])
+        recorded = record(k, it)["inputs"][0]
+        now = _core.record_file(path)
+        if now[2] != recorded["sha256"]:
+            raise InputError("%s changed since the batch read it (SHA-256 %s, recorded %s): fit it again as a batch"
+                             % (os.fsdecode(path), now[2], recorded["sha256"]))
+        selection = (it.curve, it.curve + 1) if it.curve >= 0 else None
+        again = _core.fit_files([path], s, options, csv, 1, selection, _ALL_SAMPLES)
+        if len(again) != 1 or not again[0].ok:
+            raise InputError("%s: read again, it %s" % (it.source, again[0].error if again else "holds no curve"))
+        return FitResult(again[0].summary, options.branch, record(k, it))
+
+    return _batch(items, options.branch, record, refit)
 
 
 def _report_dir(report: Optional[Union[str, "os.PathLike[str]"]]) -> Optional[str]:

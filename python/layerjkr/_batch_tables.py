@@ -57,10 +57,35 @@ class BatchResults(list):  # type: ignore[type-arg]
     field (:meth:`image`), a labelled dataset of every field (:meth:`to_xarray`) and a TIFF
     (:meth:`to_tiff`). Failed curves are rows with ``status`` "error" and NaN pixels."""
 
-    def __init__(self, items: Sequence[Any] = (), quality: Sequence[str] = ()) -> None:
+    def __init__(self, items: Sequence[Any] = (), quality: Sequence[str] = (), refit: Any = None) -> None:
         super().__init__(items)
         self.quality: List[str] = list(quality) if quality else ["" for _ in self]
         """Per curve: fit-map's quality column (ok, warning, not identifiable, not converged, failed)."""
+        self._refit = refit
+
+    def fit_curve(self, k: int) -> Any:
+        """Curve ``k`` fitted again alone, with its samples: the arrays ``fit_batch`` was given,
+        or the curve read again from its file by ``fit_files`` (refused if the file's SHA-256
+        changed). The same scene and options give the same values as ``self[k].result``; the
+        FitResult also holds delta, P, P_fit and the residuals, for :meth:`plot`.
+
+        Raises
+        ------
+        InputError
+            Curve ``k`` failed in the batch (its error quoted), its file changed or is gone, or
+            these results were not made by ``fit_batch``/``fit_files`` (an interrupted batch).
+        """
+        item = self[k]
+        if item.result is None:
+            raise InputError("results[%d] (%s) was not fitted: %s" % (k, item.source, item.error))
+        if self._refit is None:
+            raise InputError("results[%d]: these results do not know their inputs (an interrupted batch's); fit the "
+                             "curve alone" % k)
+        return self._refit(k % len(self))
+
+    def plot(self, k: int, ax: Any = None) -> Any:
+        """Data, fit and residuals of curve ``k`` (:meth:`fit_curve`, then ``FitResult.plot``)."""
+        return self.fit_curve(k).plot(ax)
 
     def __repr__(self) -> str:
         # A summary of the batch, not every item in full (items print one by one: results[i]).

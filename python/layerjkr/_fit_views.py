@@ -88,7 +88,8 @@ def plot(result: Any, ax: Any = None) -> Any:
     except ImportError:  # pragma: no cover - matplotlib is optional
         raise ImportError("FitResult.plot needs matplotlib (Debian: python3-matplotlib)") from None
     if not result.delta.size:
-        raise InputError("FitResult.plot: a batch's results keep no samples; fit the curve alone to plot it")
+        raise InputError("FitResult.plot: a batch's results keep no samples; results.plot(k) or results.fit_curve(k) "
+                         "fits curve k again with them")
     if ax is None:
         _, (top, bottom) = plt.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [3, 1]})
     else:
