@@ -63,6 +63,13 @@ class BatchResults(list):  # type: ignore[type-arg]
         """Per curve: fit-map's quality column (ok, warning, not identifiable, not converged, failed)."""
         self._refit = refit
 
+    def __getstate__(self) -> Dict[str, Any]:
+        # Pickled (Dask ships batches between processes) without the way back to its inputs: the
+        # caller's arrays and a scene stay where they were.
+        state = dict(self.__dict__)
+        state["_refit"] = None
+        return state
+
     def fit_curve(self, k: int) -> Any:
         """Curve ``k`` fitted again alone, with its samples: the arrays ``fit_batch`` was given,
         or the curve read again from its file by ``fit_files`` (refused if the file's SHA-256
@@ -79,8 +86,8 @@ class BatchResults(list):  # type: ignore[type-arg]
         if item.result is None:
             raise InputError("results[%d] (%s) was not fitted: %s" % (k, item.source, item.error))
         if self._refit is None:
-            raise InputError("results[%d]: these results do not know their inputs (an interrupted batch's); fit the "
-                             "curve alone" % k)
+            raise InputError("results[%d]: these results do not know their inputs (an interrupted or unpickled "
+                             "batch's); fit the curve alone" % k)
         return self._refit(k % len(self))
 
     def plot(self, k: int, ax: Any = None) -> Any:

@@ -32,6 +32,12 @@ def test_a_batch_of_arrays_fits_a_curve_again_to_the_same_values():
     assert again.delta.size == again.P_fit.size >= 500 and b[0].result.delta.size == 0  # the batch kept none
     with pytest.raises(layerjkr.InputError, match=r"results\[1\] \(curve 1\) was not fitted"):
         b.fit_curve(1)
+    # Pickled (Dask ships batches), a batch keeps its results but not the way back to its inputs.
+    import pickle
+    copy = pickle.loads(pickle.dumps(b))
+    assert np.array_equal(copy[0].result.values, b[0].result.values)
+    with pytest.raises(layerjkr.InputError, match="unpickled"):
+        copy.fit_curve(0)
     pytest.importorskip("matplotlib")
     import matplotlib
     matplotlib.use("Agg")
