@@ -79,6 +79,7 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
     ModelWarning
         Each of the fit's warnings (a convergence failure is reported, not raised).
     """
+    call = dict(locals())  # the arguments as given: FitResult.profile refits with some changed
     options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
                        starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
     seg = None if segment is None else _segments(segment)
@@ -102,6 +103,7 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
         return _provenance(s_, options, None, inputs)
 
     result = FitResult(s, options.branch, record)
+    result._again = lambda **changes: fit(**{**call, **changes, "fixed": {**(call["fixed"] or {}), **changes.get("fixed", {})}})
     _warn(result.warnings, 2)
     return result
 

@@ -7,10 +7,11 @@ from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Tu
 import numpy as np
 import numpy.typing as npt
 
-from . import _core, _fit_views
+from . import _core, _fit_views, _profile
 from ._core import Scene
 from ._common import _finite_or_none
 from ._fit_statistics import STATISTICS_FIELDS, FitStatistics, statistics_dict
+from ._profile import ProfileInterval
 
 
 class NamedArray(np.ndarray):
@@ -107,7 +108,7 @@ class FitResult(FitStatistics):
     (version, scene, options, the inputs' SHA-256); ``chisqr``, ``redchi``, ``aic``, ``bic``,
     ``ndata`` and ``nvarys`` as lmfit names them. Picklable (plain Python and numpy values)."""
 
-    __slots__ = ("_s", "_f", "_params", "_corr", "_arrays", "_brief_text", "_branch", "_provenance")
+    __slots__ = ("_s", "_f", "_params", "_corr", "_arrays", "_brief_text", "_branch", "_provenance", "_again")
 
     def __init__(self, s: Any, branch: str,
                  provenance: Union[None, Dict[str, Any], Callable[[], Dict[str, Any]]] = None) -> None:
@@ -123,6 +124,7 @@ class FitResult(FitStatistics):
         self._corr = s.correlation
         self._branch = branch
         self._provenance = provenance if provenance is not None else {}
+        self._again: Optional[Callable[..., Any]] = None  # layerjkr.fit's own call, for profile()
 
     @property
     def _fields(self) -> Dict[str, Any]:
@@ -148,10 +150,11 @@ class FitResult(FitStatistics):
     def __getstate__(self) -> Any:
         self.provenance  # a record made on demand is made before it travels
         self._fields, self._array("delta"), self._brief  # ...and so is every field read lazily
-        return {k: getattr(self, k) for k in self.__slots__ if k != "_s"}
+        return {k: getattr(self, k) for k in self.__slots__ if k not in ("_s", "_again")}
 
     def __setstate__(self, state: Any) -> None:
         object.__setattr__(self, "_s", None)
+        object.__setattr__(self, "_again", None)
         for k, v in state.items():
             object.__setattr__(self, k, v)
 
@@ -386,6 +389,16 @@ class FitResult(FitStatistics):
         first use; ``ax`` draws into given axes (residuals in an inset below). Returns the
         (curve, residual) axes."""
         return _fit_views.plot(self, ax)
+
+    def profile(self, name: str, sigmas: float = 1.0) -> "ProfileInterval":
+        """The profile (likelihood) interval of free parameter ``name``: where chi-square, with
+        ``name`` held and the other free parameters refitted, rises by ``sigmas``^2 reduced
+        chi-squares (lmfit's conf_interval, iminuit's minos). It follows a curved objective
+        where the symmetric error bar cannot; an end at the parameter's domain (w = 0) is
+        flagged. Ends to 1e-3 of the standard error, about 20-40 refits. Only for results of
+        :func:`fit` (not batches, joint fits or unpickled results); delta0 and P0 belong to the
+        data and are refused (InputError)."""
+        return _profile.profile(self, name, sigmas)
 
     def _repr_html_(self) -> str:
         return _fit_views.html_table(self)

@@ -13,7 +13,7 @@ RANK = {
     "_common": 1, "_fit_statistics": 1, "_html": 1,
     "_scene": 2, "_instrument": 2, "_fit_options": 2, "_batch_tables": 2,
     "_curve": 3, "_summary": 3, "_simulate": 3,
-    "_fit_views": 4,
+    "_fit_views": 4, "_profile": 4,
     "_fit_result": 5,
     "_fit": 6,
     "_batch": 7,
