@@ -20,6 +20,10 @@ namespace {
 // The curve `fit` reads: a CSV file, or one curve of an instrument file (only that one is read).
 CurveData read_fit_data(const std::string& path, const Prepared& p) {
   if (!is_instrument_file(path) && !is_asylum_map_export(path)) return read_curve_csv(path, p.csv);
+  // What only a CSV needs is refused for an instrument file, which carries its own units and signs.
+  if (p.csv.length_unit != 1.0 || p.csv.force_unit != 1.0 || p.csv.z_sign != 1.0 || p.csv.deflection_sign != 1.0)
+    throw InputError(path + ": an instrument file gives its own units and signs: --units, --z-sign and "
+                            "--deflection-sign apply to CSV files only");
   const InstrumentReader reader(path);
   if (p.csv.curve < 0 && reader.size() > 1)
     throw InputError(path + ": holds " + std::to_string(reader.size()) +

@@ -139,6 +139,11 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   options.validate();
   curve.validate();
   if (!scene.profile) throw InputError("fit: the scene has no indenter profile");
+  // An option that cannot apply is refused, not ignored: the user meant something by it.
+  if ((options.force_noise || options.radius_noise) && (curve.a.empty() || curve.radius_only()))
+    throw InputError(curve.source + ": force_noise and radius_noise (--force-noise, --radius-noise) weigh the force "
+                                    "and radius columns of delta,P,a data against each other; these data have " +
+                     std::string(curve.a.empty() ? "no contact radii" : "no displacement (P, a)"));
   if (scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic || scene.adhesion.kinetics) {
     FitSummary out = detail::fit_in_time(curve, scene, options);
     detail::judge_plausibility(&out);

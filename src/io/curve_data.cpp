@@ -309,6 +309,13 @@ CurveData parse_curve_csv(const std::string& text, const std::string& source,
   std::vector<std::string_view> cells;
   if (!next_row(&cells)) fail("is empty (expected a header row such as delta,P)");
   const Layout layout = read_layout(std::vector<std::string>(cells.begin(), cells.end()), options, fail);
+  // Signs that cannot apply are refused, not ignored: the user meant something by them.
+  if (options.z_sign != 1.0 && !layout.raw)
+    fail("has no z column: a z sign (--z-sign, Python z_sign= " + format_double(options.z_sign) +
+         ") applies to z,deflection and z,force data only");
+  if (options.deflection_sign != 1.0 && !(layout.raw && layout.has(Column::deflection)))
+    fail("has no z,deflection columns: a deflection sign (--deflection-sign, Python deflection_sign= " +
+         format_double(options.deflection_sign) + ") applies to z,deflection data only");
   CurveData d;
   d.source = source;
   d.spring_constant = options.spring_constant;

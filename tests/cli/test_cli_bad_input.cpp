@@ -96,6 +96,12 @@ TEST_CASE("fit rejects bad curves and arguments with one message and exit 2", "[
       {"negative spring constant", "z,deflection\n1,2\n", "--free E --spring-constant -1", "spring_constant"},
       {"bad z sign", "z,deflection\n1,2\n", "--free E --spring-constant 0.1 --z-sign 2", "z_sign"},
       {"zero iterations", "delta,P\n1,2\n", "--free E --max-iterations 0", "max_iterations"},
+      // Issue 43: options that cannot apply are refused, not ignored.
+      {"z sign without z", "delta,P\n1,2\n", "--free E --z-sign -1", "has no z column: a z sign"},
+      {"deflection sign on z,force", "z,force\n1,2\n", "--free E --spring-constant 0.1 --deflection-sign -1",
+       "has no z,deflection columns: a deflection sign"},
+      {"noise of radii without radii", "delta,P\n1e-7,1e-9\n2e-7,2e-9\n3e-7,4e-9\n4e-7,6e-9\n5e-7,9e-9\n",
+       "--free E --radius-noise 1e-9", "these data have no contact radii"},
       {"unknown contact point", "delta,P\n1,2\n", "--free E --contact-point poc", "--contact-point = \"poc\" is unknown (known: fit, threshold, rov, gof)"},
       {"indentation range reversed", "delta,P\n1,2\n", "--free E --indentation-range 1e-6:0",
        "--indentation-range = \"1e-6:0\" is invalid; use MIN:MAX with MIN < MAX"},
@@ -113,6 +119,17 @@ TEST_CASE("fit rejects bad curves and arguments with one message and exit 2", "[
     const std::string out = unique("never_written.json");
     check_rejected(c.name, "fit " + path + " --scene " + kScene + " " + c.args + " --out " + out, c.expected, out);
     std::remove(path.c_str());
+  }
+}
+
+TEST_CASE("CSV-only options on an instrument file are refused, not ignored", "[cli][bad-input]") {
+  // Issue 43: --units and the signs were accepted and ignored for a JPK file.
+  const std::string jpk = std::string(LAYERJKR_SOURCE_DIR) + "/data/instrument/fmt-jpk-fd_spot3-0192.jpk-force";
+  const std::string hertz = std::string(LAYERJKR_SOURCE_DIR) + "/data/scenes/hertz_R40nm.json";
+  for (const char* option : {"--units nm,nN", "--z-sign -1", "--deflection-sign -1"}) {
+    const std::string out = unique("never_written.json");
+    check_rejected(option, "fit " + jpk + " --scene " + hertz + " --free E,delta0,P0 " + option + " --out " + out,
+                   "--units, --z-sign and --deflection-sign apply to CSV files only", out);
   }
 }
 
