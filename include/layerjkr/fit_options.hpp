@@ -3,6 +3,7 @@
 // one validated (FitOptions::validate) with the option's name, its value and the valid range.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -10,6 +11,14 @@
 #include "layerjkr/types.hpp"
 
 namespace layerjkr {
+
+/// A free parameter's allowed range, in its reported unit (E in Pa, w in J/m^2, tau in s;
+/// FitOptions::bounds). Either end may be infinite; lower < upper.
+struct ParameterBound {
+  FitParameter parameter = FitParameter::E;
+  double lower = -std::numeric_limits<double>::infinity();
+  double upper = std::numeric_limits<double>::infinity();
+};
 
 struct FitOptions {
   /// Parameters to identify (at least one, no duplicates). Others come from the scene
@@ -74,6 +83,11 @@ struct FitOptions {
   /// contact-point methods); nullopt: the quarter of the samples with the smallest delta. With
   /// a range it serves before the selection (the method, or the first fit of `fit`).
   std::optional<Interval> baseline_window;
+  /// Ranges the free parameters must stay in (at most one per parameter, each free): every
+  /// solve keeps them, starts included. A parameter that ends at an end of its range is reported
+  /// there with no error bar (`at_bound`, the data would put it beyond) and the others' error
+  /// bars come from the fit with it held there; a warning says so. Not in joint fits.
+  std::vector<ParameterBound> bounds;
   /// Robust loss on force residuals; loss_scale [N] > 0 is where it departs from
   /// least squares (required for huber and cauchy).
   LossType loss = LossType::none;

@@ -98,7 +98,8 @@ def fit_options(*, free: Sequence[str], branch: str, control: str, spring_consta
                 window: str, window_fraction: float, loss: str, loss_scale: Optional[float], starts: int,
                 max_iterations: int, contact_point: str, indentation_range: Optional[Tuple[float, float]],
                 force_range: Optional[Tuple[float, float]],
-                baseline_window: Optional[Tuple[float, float]]) -> FitOptions: ...
+                baseline_window: Optional[Tuple[float, float]],
+                bounds: Sequence[Tuple[str, float, float]] = ...) -> FitOptions: ...
 
 class CsvOptions: ...
 

@@ -30,7 +30,8 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
         force_range: Optional[Tuple[float, float]] = None,
         baseline_window: Optional[Tuple[float, float]] = None, t: Optional[npt.ArrayLike] = None,
         units: str = "m,N", start: Optional[Mapping[str, float]] = None,
-        fixed: Optional[Mapping[str, float]] = None) -> FitResult:
+        fixed: Optional[Mapping[str, float]] = None,
+        bounds: Optional[Mapping[str, Tuple[Optional[float], Optional[float]]]] = None) -> FitResult:
     """Fit one measured curve with the model of a scene.
 
     Parameters
@@ -54,6 +55,11 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
         Starting values of free parameters, e.g. ``{"E": 5e3, "w": 1e-4}`` (SI units): they
         replace the scene's values, from which the data-driven start is sought. Every key must be
         in ``free``.
+    bounds : mapping of str to (float or None, float or None), optional
+        Ranges of free parameters in SI units, e.g. ``{"E": (1e3, 1e5), "w": (0, None)}`` (None:
+        no bound on that side). Every solve keeps them; a parameter that ends at an end has no
+        error bar (``at_bound``) and a ModelWarning says the range, not the data, decides it.
+        Elastic fits only.
     fixed : mapping of str to float, optional
         Values of parameters held fixed, e.g. ``{"w": 0.0}`` or ``{"R": 2e-5}``: they replace the
         scene's. No key may be in ``free``; delta0 and P0 belong to the data (shift ``delta`` or
@@ -81,7 +87,7 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
     """
     call = dict(locals())  # the arguments as given: FitResult.profile refits with some changed
     options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
-                       starts, max_iterations, contact_point, indentation_range, force_range, baseline_window)
+                       starts, max_iterations, contact_point, indentation_range, force_range, baseline_window, bounds)
     seg = None if segment is None else _segments(segment)
     length, force = _core.unit_scales(_text("units", units))
     d, p = _float64(delta, "delta") * length, _float64(P, "P") * force
@@ -103,7 +109,13 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
         return _provenance(s_, options, None, inputs)
 
     result = FitResult(s, options.branch, record)
-    result._again = lambda **changes: fit(**{**call, **changes, "fixed": {**(call["fixed"] or {}), **changes.get("fixed", {})}})
+    def again(**changes: Any) -> FitResult:  # the same call with some arguments changed (profile)
+        merged = {**call, **changes, "fixed": {**(call["fixed"] or {}), **changes.get("fixed", {})}}
+        if call["bounds"] and "free" in changes:  # a held parameter's range goes with it
+            merged["bounds"] = {k: v for k, v in call["bounds"].items() if k in changes["free"]}
+        return fit(**merged)
+
+    result._again = again
     _warn(result.warnings, 2)
     return result
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import difflib
 import json
+import math
 import re
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
@@ -43,7 +44,7 @@ def _options(free: Union[str, Sequence[str]], branch: str, control: str, spring_
              baseline: str, window: str, window_fraction: float, loss: str, loss_scale: Optional[float], starts: int,
              max_iterations: int, contact_point: str = "fit",
              indentation_range: Optional[Tuple[float, float]] = None, force_range: Optional[Tuple[float, float]] = None,
-             baseline_window: Optional[Tuple[float, float]] = None) -> Any:
+             baseline_window: Optional[Tuple[float, float]] = None, bounds: Any = None) -> Any:
     return _core.fit_options(free=_free(free), branch=_text("branch", branch), control=_text("control", control),
                              spring_constant=None if spring_constant is None else _positive("spring_constant", spring_constant, "N/m"),
                              baseline=_text("baseline", baseline), window=_text("window", window),
@@ -53,7 +54,24 @@ def _options(free: Union[str, Sequence[str]], branch: str, control: str, spring_
                              contact_point=_text("contact_point", contact_point),
                              indentation_range=_range("indentation_range", indentation_range),
                              force_range=_range("force_range", force_range),
-                             baseline_window=_range("baseline_window", baseline_window))
+                             baseline_window=_range("baseline_window", baseline_window), bounds=_bounds(bounds))
+
+
+def _bounds(bounds: Any) -> List[Tuple[str, float, float]]:
+    """fit(bounds={"E": (1e3, 1e5), "w": (0, None)}) as (name, lower, upper); None is no bound."""
+    if bounds is None:
+        return []
+    if not isinstance(bounds, dict):
+        raise InputError("bounds = %r is invalid; give a mapping of parameter names to (lower, upper), e.g. "
+                         "{\"E\": (1e3, 1e5), \"w\": (0, None)}" % (bounds,))
+    out = []
+    for name, pair in bounds.items():
+        if not isinstance(name, str) or not isinstance(pair, (tuple, list)) or len(pair) != 2:
+            raise InputError("bounds[%r] = %r is invalid; give (lower, upper), None for no bound" % (name, pair))
+        lower = -math.inf if pair[0] is None else _number("bounds[%r] lower" % name, pair[0])
+        upper = math.inf if pair[1] is None else _number("bounds[%r] upper" % name, pair[1])
+        out.append((name, lower, upper))
+    return out
 
 
 def _range(name: str, value: Optional[Tuple[float, float]]) -> Optional[Tuple[float, float]]:

@@ -112,8 +112,11 @@ FitOptions fit_options(const std::vector<std::string>& free, const std::string& 
                        std::optional<double> spring_constant, const std::string& baseline, const std::string& window,
                        double window_fraction, const std::string& loss, std::optional<double> loss_scale, int starts,
                        int max_iterations, const std::string& contact_point, std::optional<Interval> indentation_range,
-                       std::optional<Interval> force_range, std::optional<Interval> baseline_window) {
+                       std::optional<Interval> force_range, std::optional<Interval> baseline_window,
+                       const std::vector<std::tuple<std::string, double, double>>& bounds) {
   FitOptions o;
+  for (const auto& [name, lower, upper] : bounds)
+    o.bounds.push_back({parse_enum<FitParameter>(name, "bounds"), lower, upper});
   o.contact_point = parse_enum<ContactPointMethod>(contact_point, "contact_point");
   o.indentation_range = indentation_range;
   o.force_range = force_range;
@@ -351,7 +354,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("fit_options", &fit_options, py::kw_only(), py::arg("free"), py::arg("branch"), py::arg("control"),
         py::arg("spring_constant"), py::arg("baseline"), py::arg("window"), py::arg("window_fraction"), py::arg("loss"),
         py::arg("loss_scale"), py::arg("starts"), py::arg("max_iterations"), py::arg("contact_point"),
-        py::arg("indentation_range"), py::arg("force_range"), py::arg("baseline_window"));
+        py::arg("indentation_range"), py::arg("force_range"), py::arg("baseline_window"),
+        py::arg("bounds") = std::vector<std::tuple<std::string, double, double>>{});
   py::class_<CsvOptions>(m, "CsvOptions", "The library's CsvOptions; make them with csv_options().");
   m.def("csv_options", &csv_options, py::kw_only(), py::arg("units"), py::arg("spring_constant"),
         py::arg("sensitivity") = py::none(), py::arg("z_sign"),
@@ -374,7 +378,7 @@ PYBIND11_MODULE(_core, m) {
           const std::size_t bracket = name.find('[');
           ParameterEstimate estimate;
           estimate.parameter = parse_enum<FitParameter>(name.substr(0, bracket), "parameter");
-          if (bracket != std::string::npos) estimate.curve = std::stoi(name.substr(bracket + 1)) - 1;
+          if (bracket != std::string::npos) estimate.curve = std::stoi(name.substr(bracket + 1));  // from 0
           estimate.value = value;
           estimates.push_back(estimate);
         }

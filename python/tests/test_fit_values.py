@@ -63,3 +63,30 @@ def test_refused_by_name(curve, kw, says):
 def test_offsets_belong_to_the_data(curve):
     with pytest.raises(layerjkr.InputError, match="delta0 and P0 belong to the data"):
         fit(curve, scene_with(2e4, 1e-4), free="E,w", fixed={"delta0": 0.0})
+
+
+def test_bounds_hold_a_parameter_in_its_range(curve):
+    free = fit(curve, scene_with(2e4, 1e-4), free="E,w,delta0,P0")
+    loose = fit(curve, scene_with(2e4, 1e-4), free="E,w,delta0,P0", bounds={"E": (1e3, None), "w": (0, 1)})
+    assert loose.values["E"] == pytest.approx(free.values["E"], rel=1e-6)
+    with pytest.warns(layerjkr.ModelWarning, match="at the end of its range"):
+        delta, P, segment = curve
+        tight = layerjkr.fit(delta, P, scene_with(2e4, 1e-4), segment=segment, branch="all", free="E,w,delta0,P0",
+                             bounds={"E": (None, 1.5e4)})
+    assert tight.values["E"] == pytest.approx(1.5e4, rel=1e-9) and np.isnan(tight.errors["E"])
+    assert tight.as_dict()["parameters"]["E"]["at_bound"] is True
+    # The profile of a bounded parameter refits the others inside their own ranges.
+    p = loose.profile("w")
+    assert p.lower < loose.values["w"] < p.upper
+
+
+@pytest.mark.parametrize("bounds, says", [
+    ({"R": (1e-6, 1e-5)}, "bounds of R: the parameter is not free"),
+    ({"E": (2e4, 1e4)}, "bounds of E"),
+    ({"E": 5}, r"bounds\['E'\] = 5 is invalid"),
+    ([("E", 1, 2)], "bounds = .* is invalid"),
+    ({"Q": (1, 2)}, "is unknown"),
+])
+def test_bounds_refused_by_name(curve, bounds, says):
+    with pytest.raises((layerjkr.InputError, layerjkr.DomainError), match=says):
+        fit(curve, scene_with(2e4, 1e-4), free="E,w,delta0,P0", bounds=bounds)

@@ -10,7 +10,7 @@ PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "layerjkr"
 # Each module's rank: it may import only modules of a lower rank (_core is the C++ extension).
 RANK = {
     "_core": 0,
-    "_common": 1, "_fit_statistics": 1, "_html": 1,
+    "_common": 1, "_fit_statistics": 1, "_html": 1, "_named_array": 1,
     "_scene": 2, "_instrument": 2, "_fit_options": 2, "_batch_tables": 2,
     "_curve": 3, "_summary": 3, "_simulate": 3,
     "_fit_views": 4, "_profile": 4,

@@ -2,12 +2,14 @@
 // mini-languages (E,w lists, huber:SCALE, fraction:F) end here.
 #include "fit_options.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <optional>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -83,6 +85,37 @@ std::optional<Interval> parse_range(const std::string& text, const char* flag, d
   return Interval{a, b};
 }
 
+// "E=1e3:1e5,w=0:" -> FitOptions::bounds (SI units; an empty end is no bound on that side).
+std::vector<ParameterBound> parse_bounds(const std::string& text) {
+  std::vector<ParameterBound> out;
+  if (text.empty()) return out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    const std::size_t eq = item.find('='), colon = item.find(':', eq == std::string::npos ? 0 : eq);
+    const auto fail = [&]() {
+      throw InputError("--bounds: \"" + item + "\" is invalid; use NAME=MIN:MAX (SI units, an empty end unbounded), "
+                       "e.g. E=1e3:1e5,w=0:");
+    };
+    if (eq == std::string::npos || colon == std::string::npos) fail();
+    ParameterBound b;
+    b.parameter = parse_enum<FitParameter>(item.substr(0, eq), "--bounds");
+    const auto end = [&](const std::string& t, double infinite) {
+      if (t.empty()) return infinite;
+      char* stop = nullptr;
+      const double v = std::strtod(t.c_str(), &stop);
+      if (*stop != '\0' || !std::isfinite(v)) fail();
+      return v;
+    };
+    b.lower = end(item.substr(eq + 1, colon - eq - 1), -std::numeric_limits<double>::infinity());
+    b.upper = end(item.substr(colon + 1), std::numeric_limits<double>::infinity());
+    out.push_back(b);
+    start = comma + 1;
+  }
+  return out;
+}
+
 }  // namespace
 
 Prepared prepare_options(const FitArguments& a) {
@@ -110,6 +143,7 @@ Prepared prepare_options(const FitArguments& a) {
       parse_range(a.indentation_range, "--indentation-range", -inf, inf, "MIN < MAX, finite, in m");
   p.options.force_range = parse_range(a.force_range, "--force-range", 0.0, 1.0, "0 <= MIN < MAX <= 1 (fractions)");
   p.options.baseline_window = parse_range(a.baseline_window, "--baseline-window", -inf, inf, "MIN < MAX, finite, in m");
+  p.options.bounds = parse_bounds(a.bounds);
   // Given in the CSV's units, like the columns they describe.
   if (a.force_noise != 0.0) p.options.force_noise = a.force_noise * p.csv.force_unit;
   if (a.radius_noise != 0.0) p.options.radius_noise = a.radius_noise * p.csv.length_unit;
@@ -145,6 +179,9 @@ void add_fit_options(CLI::App& c, FitArguments& a) {
   c.add_option("--deflection-sign", a.deflection_sign, "z,deflection data: +1 if deflection > 0 when the sample pushes the tip away, else -1");
   c.add_option("--starts", a.extra_starts, "Extra starts around the data-driven guess (default 0)");
   c.add_option("--max-iterations", a.max_iterations, "Ceres iteration limit (default 200)");
+  c.add_option("--bounds", a.bounds,
+               "Ranges of free parameters, NAME=MIN:MAX[,...] in SI units (an empty end is unbounded), e.g. "
+               "E=1e3:1e5,w=0:; one that ends at a bound has no error bar and a warning says so");
   c.add_option("--curve", a.curve, "Which curve of a file holding several: fit, of an instrument map or export; fit-map, of a CSV export only (an instrument map takes --curves A:B)");
   c.add_option("--baseline", a.baseline, "constant | tilt (a linear baseline from the samples off contact)");
   c.add_flag("--keep-offset", a.keep_offset,

@@ -28,6 +28,7 @@ struct FitArguments {
   std::string contact_point = "fit";  ///< --contact-point: fit | threshold | rov | gof
   /// --indentation-range [m], --force-range (fractions), --baseline-window [m]: MIN:MAX ("" unset)
   std::string indentation_range, force_range, baseline_window;
+  std::string bounds;  ///< --bounds NAME=MIN:MAX[,...] (SI units; an empty end is unbounded)
 };
 
 /// The arguments as library options.

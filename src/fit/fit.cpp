@@ -145,6 +145,9 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
                                     "and radius columns of delta,P,a data against each other; these data have " +
                      std::string(curve.a.empty() ? "no contact radii" : "no displacement (P, a)"));
   if (scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic || scene.adhesion.kinetics) {
+    if (!options.bounds.empty())
+      throw InputError(curve.source + ": bounds are supported in elastic fits, not yet in fits in time (the law's "
+                                      "parameters keep their own domains: beta in [0.01, 0.95], tau > 0)");
     FitSummary out = detail::fit_in_time(curve, scene, options);
     detail::judge_plausibility(&out);
     out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
@@ -279,12 +282,18 @@ FitSummary detail::fit_core(const CurveData& curve, const Scene& scene, const Fi
     run.resolve_in_place();
     detail::trim_held_to_model(reading, options, given_weights, data, ev, x, [&] { return run.resolve_in_place(); });
   }
+  // A parameter at an end of its range is the range's, not the data's: held there, the others
+  // are assessed without it (FitOptions::bounds).
+  const std::vector<detail::BoundHit> at_bounds = detail::at_user_bounds(map, options, x);
+  if (!at_bounds.empty())
+    run.hold(at_bounds.front().bound.parameter, x[static_cast<std::size_t>(map.index(at_bounds.front().bound.parameter))]);
   run.record(&out);
   std::vector<bool> excluded = reading.tail;
   if (options.exclusion_sigmas == 0.0) excluded.assign(excluded.size(), false);
   out.excluded = excluded;
   out.excluded_count = static_cast<std::size_t>(std::count(excluded.begin(), excluded.end(), true));
   detail::assess_uncertainty(run, ev, map, x, options, data, &out);
+  detail::report_user_bounds(at_bounds, &out);
   detail::explain_no_move(run, data, map, &out);
   out.baseline_offset = data.offset;
   if (data.offset != 0.0)

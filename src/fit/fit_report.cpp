@@ -5,6 +5,7 @@
 
 #include "layerjkr/error.hpp"
 #include "layerjkr/fit.hpp"
+#include "core/short_number.hpp"
 #include "fit/data/contact_steps.hpp"
 
 namespace layerjkr {
@@ -37,6 +38,18 @@ void FitOptions::validate() const {
     throw DomainError(fn, "force_noise [N]", *force_noise, "finite and > 0 (unset: estimated)");
   if (radius_noise && !(*radius_noise > 0.0 && std::isfinite(*radius_noise)))
     throw DomainError(fn, "radius_noise [m]", *radius_noise, "finite and > 0 (unset: estimated)");
+  std::set<FitParameter> bounded;
+  for (const ParameterBound& b : bounds) {
+    const std::string name = "bounds of " + std::string(to_string(b.parameter));
+    if (!seen.count(b.parameter))
+      throw InputError("FitOptions: bounds of " + std::string(to_string(b.parameter)) + ": the parameter is not free "
+                       "(a bound holds a fitted parameter in a range; give a fixed one its value in the scene)");
+    if (!bounded.insert(b.parameter).second)
+      throw InputError("FitOptions: bounds of " + std::string(to_string(b.parameter)) + " given twice");
+    if (std::isnan(b.lower) || std::isnan(b.upper) || !(b.lower < b.upper))
+      throw DomainError(fn, name + " (lower end)", b.lower, "below the upper end " + detail::short_number(b.upper) +
+                                                          ", neither NaN (an infinite end is no bound)");
+  }
   if (!(exclusion_sigmas >= 0.0) || !std::isfinite(exclusion_sigmas))
     throw DomainError(fn, "exclusion_sigmas", exclusion_sigmas, "finite and >= 0 (0: keep every sample)");
 }

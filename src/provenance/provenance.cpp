@@ -57,6 +57,7 @@ void fit_fields(Options& o, Visit&& v) {
   v("indentation_range", o.indentation_range);
   v("force_range", o.force_range);
   v("baseline_window", o.baseline_window);
+  v("bounds", o.bounds);
 }
 
 template <class Options, class Visit>
@@ -75,7 +76,7 @@ void csv_fields(Options& o, Visit&& v) {
 // Tripwires (64-bit libstdc++ / libc++ layouts). When one fires: add the new field's line to
 // the table above, set it to a non-default value in tests/provenance/test_provenance.cpp
 // ("every option survives the round trip"), then update the size here.
-static_assert(sizeof(void*) != 8 || sizeof(FitOptions) == 264,
+static_assert(sizeof(void*) != 8 || sizeof(FitOptions) == 288,
               "FitOptions changed: add its new field to fit_fields() in src/provenance/provenance.cpp and to the "
               "non-default options of tests/provenance/test_provenance.cpp, then update this size");
 static_assert(sizeof(void*) != 8 || sizeof(CsvOptions) == 72,
@@ -93,6 +94,9 @@ json to_value(bool x) { return x; }
 json to_value(int x) { return x; }
 json to_value(std::size_t x) { return x; }
 json to_value(const Interval& x) { return json::array({to_value(x.first), to_value(x.second)}); }
+json to_value(const ParameterBound& b) {
+  return json{{"parameter", to_string(b.parameter)}, {"lower", to_value(b.lower)}, {"upper", to_value(b.upper)}};
+}
 template <class E, std::enable_if_t<std::is_enum_v<E>, int> = 0>
 json to_value(E e) {
   return to_string(e);
@@ -144,6 +148,14 @@ void from_value(const json& v, Interval& x, const std::string& where) {
   if (!v.is_array() || v.size() != 2) bad(where, v, "[min, max]");
   from_value(v[0], x.first, where + "[0]");
   from_value(v[1], x.second, where + "[1]");
+}
+void from_value(const json& v, ParameterBound& b, const std::string& where) {
+  if (!v.is_object() || v.size() != 3 || !v.contains("parameter") || !v.contains("lower") || !v.contains("upper"))
+    bad(where, v, "{\"parameter\", \"lower\", \"upper\"}");
+  if (!v.at("parameter").is_string()) bad(where + ".parameter", v.at("parameter"), "a parameter name");
+  b.parameter = parse_enum<FitParameter>(v.at("parameter").get<std::string>(), where + ".parameter");
+  from_value(v.at("lower"), b.lower, where + ".lower");
+  from_value(v.at("upper"), b.upper, where + ".upper");
 }
 template <class E, std::enable_if_t<std::is_enum_v<E>, int> = 0>
 void from_value(const json& v, E& e, const std::string& where) {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -143,8 +144,9 @@ TEST_CASE("every option survives the JSON round trip bit for bit", "[provenance]
   o.indentation_range = Interval{-1e-7, 0.1 + 0.2};
   o.force_range = Interval{0.0, 1.0 / 3.0};
   o.baseline_window = Interval{-3e-6, -2.5e-6};
+  o.bounds = {{FitParameter::E, 1.0 / 3.0, std::numeric_limits<double>::infinity()}, {FitParameter::w, -0.0, 0.1 + 0.2}};
   const std::string text = to_json(o);
-  CHECK(nlohmann::json::parse(text).size() == 26);  // one key per field
+  CHECK(nlohmann::json::parse(text).size() == 27);  // one key per field
   const FitOptions b = fit_options_from_json(text);
   CHECK(b.free == o.free);
   CHECK(b.branch == o.branch);
@@ -178,6 +180,12 @@ TEST_CASE("every option survives the JSON round trip bit for bit", "[provenance]
     REQUIRE(got);
     CHECK(bits(got->first) == bits(want->first));
     CHECK(bits(got->second) == bits(want->second));
+  }
+  REQUIRE(b.bounds.size() == 2);
+  for (std::size_t k = 0; k < 2; ++k) {
+    CHECK(b.bounds[k].parameter == o.bounds[k].parameter);
+    CHECK(bits(b.bounds[k].lower) == bits(o.bounds[k].lower));
+    CHECK(bits(b.bounds[k].upper) == bits(o.bounds[k].upper));
   }
   CHECK(to_json(b) == text);
 

@@ -51,6 +51,10 @@ struct ParameterMap {
   double derivative(FitParameter q, const double* x) const;
   /// Reported physical value of p at x (w, not s).
   double value(FitParameter q, const double* x) const;
+  /// The internal coordinate of free q at which its reported value is v, the other coordinates
+  /// as in x (each map is increasing in its coordinate): -infinity where v lies below every value
+  /// the map reaches, +infinity above (a bound there binds nothing); FitOptions::bounds.
+  double coordinate(FitParameter q, double v, const double* x) const;
 };
 
 /// The samples of one fit.

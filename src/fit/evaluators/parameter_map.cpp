@@ -1,10 +1,15 @@
 // ParameterMap (curve_evaluator.hpp): the fit's dimensionless vector x to physical parameters -
 // moduli and R on a log scale, sqrt(w), delta0 and P0 in units of the curve's spans.
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
+#include <vector>
+
+#include <boost/math/tools/toms748_solve.hpp>
 
 #include "fit/evaluators/curve_evaluator.hpp"
+#include "layerjkr/error.hpp"
 
 namespace layerjkr::detail {
 namespace {
@@ -96,6 +101,27 @@ double ParameterMap::value(FitParameter q, const double* x) const {
     case FitParameter::tau_2: return p.tau_2;
   }
   return kNaN;
+}
+
+double ParameterMap::coordinate(FitParameter q, double v, const double* x) const {
+  // Wide enough for every map and finite in all: e^300 on the log scales, 300 spans on the linear.
+  constexpr double kSpan = 300.0;
+  const auto j = static_cast<std::size_t>(index(q));
+  std::vector<double> y(x, x + free.size());
+  const auto at = [&](double t) {
+    y[j] = t;
+    return value(q, y.data());
+  };
+  const double lo = q == FitParameter::w ? 0.0 : -kSpan, hi = kSpan;
+  const double f_lo = at(lo), f_hi = at(hi);
+  if (!std::isfinite(f_lo) || !std::isfinite(f_hi) || !(f_lo < f_hi)) throw NumericalError("ParameterMap::coordinate: the map of " + std::string(to_string(q)) +
+                                           " is not increasing in its coordinate");
+  if (v <= f_lo) return q == FitParameter::w && v >= 0.0 ? 0.0 : -std::numeric_limits<double>::infinity();
+  if (v >= f_hi) return std::numeric_limits<double>::infinity();
+  std::uintmax_t iterations = 200;
+  const auto r = boost::math::tools::toms748_solve([&](double t) { return at(t) - v; }, lo, hi, f_lo - v, f_hi - v,
+                                                   boost::math::tools::eps_tolerance<double>(52), iterations);
+  return 0.5 * (r.first + r.second);
 }
 
 double ParameterMap::derivative(FitParameter q, const double* x) const {

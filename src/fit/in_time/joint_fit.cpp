@@ -78,6 +78,8 @@ void diagnose_part(const Part& part, const FitSummary& joint, std::size_t begin,
 JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& scene, const FitOptions& options) {
   const auto t_begin = std::chrono::steady_clock::now();
   options.validate();
+  if (!options.bounds.empty())
+    throw InputError("fit_joint: bounds are not supported in joint fits (fit each curve alone with them)");
   if (curves.size() < 2)
     throw InputError("fit_joint: give at least 2 curves (given " + std::to_string(curves.size()) + ")");
   if (!scene.profile) throw InputError("fit_joint: the scene has no indenter profile");

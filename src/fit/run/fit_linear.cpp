@@ -21,7 +21,10 @@ constexpr double kLinearTolerance = 1e-9;
 }  // namespace
 
 bool FitRun::linear_candidate() const {
-  if (options_.loss != LossType::none || held_ >= 0 || data_.radius_driven || !map_.slot_curve.empty()) return false;
+  // The exact solution knows no ranges: with bounds Ceres solves.
+  if (options_.loss != LossType::none || held_ >= 0 || data_.radius_driven || !map_.slot_curve.empty() ||
+      !options_.bounds.empty())
+    return false;
   if (!dynamic_cast<const CurveEvaluator*>(&ev_) || map_.fixed.values.s != 0.0) return false;
   int stiffness = 0;
   for (FitParameter q : map_.free) {

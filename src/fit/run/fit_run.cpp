@@ -119,6 +119,17 @@ std::unique_ptr<ceres::Problem> FitRun::solve_from(std::vector<double>& xs, cere
     problem->SetManifold(xs.data(), new ceres::SubsetManifold(n, {held}));
   else if (map_.is_free(FitParameter::w))
     problem->SetParameterLowerBound(xs.data(), map_.index(FitParameter::w), 0.0);
+  // The user's ranges (FitOptions::bounds) in the internal coordinates; a start outside one
+  // begins at its edge.
+  for (const ParameterBound& b : options_.bounds) {
+    if (!map_.is_free(b.parameter) || map_.index(b.parameter) == held) continue;
+    const int j = map_.index(b.parameter);
+    const double lo = map_.coordinate(b.parameter, b.lower, xs.data()), hi = map_.coordinate(b.parameter, b.upper, xs.data());
+    const auto k = static_cast<std::size_t>(j);
+    xs[k] = std::min(std::max(xs[k], lo), hi);
+    if (std::isfinite(lo)) problem->SetParameterLowerBound(xs.data(), j, lo);
+    if (std::isfinite(hi)) problem->SetParameterUpperBound(xs.data(), j, hi);
+  }
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   so.logging_type = options_.trace ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;

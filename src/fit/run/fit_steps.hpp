@@ -168,4 +168,14 @@ void check_sigma0_limits(FitRun& run, ResidualModel& ev, const ParameterMap& map
 /// FitSummary::no_move_reason when the first solve did not move from the start.
 void explain_no_move(const FitRun& run, const FitData& data, const ParameterMap& map, FitSummary* out);
 
+/// A free parameter that ended at an end of its range (FitOptions::bounds), and that end.
+struct BoundHit {
+  ParameterBound bound;
+  double end = 0.0;
+};
+/// The free parameters at an end of their ranges at x (fit_bounds.cpp).
+std::vector<BoundHit> at_user_bounds(const ParameterMap& map, const FitOptions& options, const std::vector<double>& x);
+/// Marks each at its bound (no error bar, not identifiable, why) and warns.
+void report_user_bounds(const std::vector<BoundHit>& hits, FitSummary* out);
+
 }  // namespace layerjkr::detail
