@@ -158,8 +158,10 @@ def fit_batch(curves: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]], scene: Scen
         _write_report(items, options, directory, "%d curves (fit_batch)" % len(items))
     base = _provenance(s, options, None, [])
 
+    records: Dict[int, Dict[str, Any]] = {}  # made once, as the batch is returned
+
     def record(k: int, it: Any) -> Dict[str, Any]:
-        return _with_inputs(base, _array_inputs(*pairs[k], None))
+        return records.setdefault(k, _with_inputs(base, _array_inputs(*pairs[k], None)))
 
     def refit(k: int) -> FitResult:  # the caller's arrays, fitted again alone
         return FitResult(_core.fit(pairs[k][0], pairs[k][1], None, None, s, options), options.branch,
@@ -278,9 +280,13 @@ def fit_files(paths: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.Path
         _write_report(items, options, directory, "%d input file(s) (fit_files)" % len(names))
     base = _provenance(s, options, csv, [])
 
+    records: Dict[int, Dict[str, Any]] = {}  # made once, as the batch is returned; a refit reuses them
+
     def record(k: int, it: Any) -> Dict[str, Any]:
-        path = _item_path(it)
-        return _with_inputs(base, [hashed.get(path) or _core.record_file(path)])
+        if k not in records:
+            path = _item_path(it)
+            records[k] = _with_inputs(base, [hashed.get(path) or _core.record_file(path)])
+        return records[k]
 
     def refit(k: int) -> FitResult:  # the curve read again from its file, checked unchanged, fitted alone
         it, path = items[k], _item_path(items[k])

@@ -142,10 +142,10 @@ def _with_values(scene: Scene, free: Sequence[str], start: Optional[Mapping[str,
             if name in ("delta0", "P0"):
                 raise InputError("%s[%r]: delta0 and P0 belong to the data, not the scene: shift delta or P instead"
                                  % (arg, name))
-            number = _number("%s[%r]" % (arg, name), value)
-            if not math.isfinite(number):
+            v = _number("%s[%r]" % (arg, name), value)
+            if not math.isfinite(v):
                 raise InputError("%s[%r] = %r is invalid; give a finite value in SI units" % (arg, name, value))
-            values.append((name, number))
+            values.append((name, v))
     if not values:
         return scene
     if not scene.json:

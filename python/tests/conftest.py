@@ -2,6 +2,7 @@
 and the shared data (absent on a clean machine: those tests skip visibly)."""
 import os
 import pathlib
+import warnings
 
 import pytest
 
@@ -13,6 +14,15 @@ SHARED = SOURCE.parent / "shared"
 @pytest.fixture
 def source():
     return SOURCE
+
+
+@pytest.fixture
+def quiet():
+    """Silences warnings for a test (`pytestmark = pytest.mark.usefixtures("quiet")`): where a fit's
+    ModelWarnings are part of what it reports, not of what the test checks."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        yield
 
 
 @pytest.fixture

@@ -3,7 +3,6 @@ samples - the arrays given, or the curve re-read from its file, checked unchange
 values, and BatchResults.plot(k) draws it; a map pixel's record names its file."""
 import os
 import shutil
-import warnings
 
 import numpy as np
 import pytest
@@ -17,11 +16,8 @@ FILM_CSV = os.path.join(SOURCE, "data", "curves", "hydrogel_film_two_term.csv")
 FILM = os.path.join(SOURCE, "data", "scenes", "hydrogel_film_two_term.json")
 
 
-@pytest.fixture(autouse=True)
-def quiet():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        yield
+# The fits' ModelWarnings are part of what they report, not of what these tests check.
+pytestmark = pytest.mark.usefixtures("quiet")
 
 
 def test_a_batch_of_arrays_fits_a_curve_again_to_the_same_values():

@@ -1,6 +1,5 @@
 """Notebook views (#43): Scene, Curve, Summary, Simulation, FitResult, joint fits and batches each
 have a `_repr_html_` that summarises them - values with units, counts, warnings - escaped."""
-import warnings
 
 import numpy as np
 import pytest
@@ -14,11 +13,8 @@ CELL = {"indenter": {"shape": "paraboloid", "R": 5e-6},
                    "viscoelastic": {"law": "sls", "E_inf": 800.0, "tau": 0.2}}, "w": 0.0}
 
 
-@pytest.fixture(autouse=True)
-def quiet():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        yield
+# The fits' ModelWarnings are part of what they report, not of what these tests check.
+pytestmark = pytest.mark.usefixtures("quiet")
 
 
 def test_scene_shows_its_values():

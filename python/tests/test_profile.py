@@ -3,7 +3,6 @@ finds where chi-square has risen by sigmas^2 reduced chi-squares - lmfit's conf_
 iminuit's minos. Oracle: a fit linear in its parameters, where the profile interval is the
 symmetric error bar exactly."""
 import pickle
-import warnings
 
 import numpy as np
 import pytest
@@ -14,11 +13,8 @@ HERTZ = {"indenter": {"shape": "paraboloid", "R": 1e-5}, "medium": {"type": "hal
          "w": 0.0}
 
 
-@pytest.fixture(autouse=True)
-def quiet():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        yield
+# The fits' ModelWarnings are part of what they report, not of what these tests check.
+pytestmark = pytest.mark.usefixtures("quiet")
 
 
 def curve(spec, noise, seed=3):

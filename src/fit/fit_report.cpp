@@ -42,10 +42,9 @@ void FitOptions::validate() const {
   for (const ParameterBound& b : bounds) {
     const std::string name = "bounds of " + std::string(to_string(b.parameter));
     if (!seen.count(b.parameter))
-      throw InputError("FitOptions: bounds of " + std::string(to_string(b.parameter)) + ": the parameter is not free "
-                       "(a bound holds a fitted parameter in a range; give a fixed one its value in the scene)");
-    if (!bounded.insert(b.parameter).second)
-      throw InputError("FitOptions: bounds of " + std::string(to_string(b.parameter)) + " given twice");
+      throw InputError("FitOptions: " + name + ": the parameter is not free (a bound holds a fitted parameter in a "
+                       "range; give a fixed one its value in the scene)");
+    if (!bounded.insert(b.parameter).second) throw InputError("FitOptions: " + name + " given twice");
     if (std::isnan(b.lower) || std::isnan(b.upper) || !(b.lower < b.upper))
       throw DomainError(fn, name + " (lower end)", b.lower, "below the upper end " + detail::short_number(b.upper) +
                                                           ", neither NaN (an infinite end is no bound)");

@@ -114,8 +114,9 @@ double ParameterMap::coordinate(FitParameter q, double v, const double* x) const
   };
   const double lo = q == FitParameter::w ? 0.0 : -kSpan, hi = kSpan;
   const double f_lo = at(lo), f_hi = at(hi);
-  if (!std::isfinite(f_lo) || !std::isfinite(f_hi) || !(f_lo < f_hi)) throw NumericalError("ParameterMap::coordinate: the map of " + std::string(to_string(q)) +
-                                           " is not increasing in its coordinate");
+  if (!std::isfinite(f_lo) || !std::isfinite(f_hi) || !(f_lo < f_hi))
+    throw NumericalError("ParameterMap::coordinate: the map of " + std::string(to_string(q)) +
+                         " is not increasing in its coordinate");
   if (v <= f_lo) return q == FitParameter::w && v >= 0.0 ? 0.0 : -std::numeric_limits<double>::infinity();
   if (v >= f_hi) return std::numeric_limits<double>::infinity();
   std::uintmax_t iterations = 200;
