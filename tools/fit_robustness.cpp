@@ -20,7 +20,9 @@
 //               stiffness k lets go (dP/d delta = -k), k given as an instrument file carries it.
 //   rig         a JKR rig: loading from zero load, unloading past the pull-off to just above the
 //               fixed-grips limit, every sample in contact, no baseline; free E, w, delta0;
-//               force noise 0.2 % of the pull-off, displacement noise 1 % of the span.
+//               force noise 0.2 % of the pull-off, displacement noise 1 % of the span; fitted with
+//               errors in both variables, both noises estimated (FitOptions::errors_in_displacement;
+//               FIT_ROBUSTNESS_LEAST_SQUARES=1 fits least squares in the force instead).
 //   rig_Pa      the same rig as load against contact radius (no displacement); free E, w.
 //   tension     unloading only, from 0.74 of the pull-off through it, then a necking tail
 //               relaxing to zero without a jump; free E, w, delta0.
@@ -365,6 +367,9 @@ int main(int argc, char** argv) {
           FitOptions o;
           o.free = c.free;
           o.branch = plan.family == "tension" ? Branch::retract : Branch::all;
+          // A rig's displacement sensor has noise of its own: errors in both variables, both noises
+          // estimated from the data (FIT_ROBUSTNESS_LEAST_SQUARES=1: least squares in the force).
+          o.errors_in_displacement = plan.family == "rig" && !std::getenv("FIT_ROBUSTNESS_LEAST_SQUARES");
           const auto t0 = std::chrono::steady_clock::now();
           ++row.fits;
           try {

@@ -164,7 +164,9 @@ struct FitSummary {
   /// map report, never a warning): a numerical error far below what matters, a documented
   /// approximation, a reader's choice between two copies of a header key.
   std::vector<std::string> notices;
-  /// The data used and the fitted model at the same samples (for plots and residuals).
+  /// The data used and the fitted model at the same samples (for plots and residuals). Under
+  /// FitOptions::errors_in_displacement a contact sample's P_fit is its force moved by its distance
+  /// to the curve, so that P - P_fit is the residual the fit minimised.
   std::vector<double> delta, P, P_fit;
   /// A fit in time: each sample's time [s] (aligned with delta, P); empty otherwise.
   std::vector<double> t;
@@ -204,11 +206,12 @@ struct FitSummary {
   /// Below -4 with an rms residual above 1.5 x noise the residuals have structure: the model
   /// does not describe the data, which a warning says and `identifiable` then never claims.
   double runs_z = std::numeric_limits<double>::quiet_NaN();
-  /// With measured contact radii: the noise each column's residuals were divided by - force [N]
-  /// and radius [m] - and whether each was given (FitOptions::force_noise, radius_noise) or
-  /// estimated; NaN without radii.
+  /// With measured contact radii or errors in the displacement: the noise each column's residuals
+  /// were divided by - force [N], radius [m], displacement [m] - and whether each was given
+  /// (FitOptions::force_noise, radius_noise, displacement_noise) or estimated; NaN where unused.
   double force_noise = std::numeric_limits<double>::quiet_NaN(), radius_noise = std::numeric_limits<double>::quiet_NaN();
-  bool force_noise_given = false, radius_noise_given = false;
+  double displacement_noise = std::numeric_limits<double>::quiet_NaN();
+  bool force_noise_given = false, radius_noise_given = false, displacement_noise_given = false;
   /// The residuals are not noise (runs_z, or an rms residual above 3 x noise): the model does not
   /// describe the data; `identifiable` is then false whatever the parameters' error bars say.
   bool residual_structure = false;

@@ -49,6 +49,18 @@ struct FitOptions {
   /// differences in acquisition order). Each column's residuals are divided by its own noise, so
   /// the two weigh what they measure, whatever their units or spans.
   std::optional<double> force_noise, radius_noise;
+  /// Errors in both variables for (delta, P) data whose displacement is measured with noise of its
+  /// own, independent of the force's - a JKR rig's displacement sensor, not an AFM's delta = z - P/k,
+  /// whose noise is the force's. Each contact sample's residual is then its distance to the curve
+  /// (orthogonal distance regression, as ODRPACK and scipy.odr), in the metric where force and
+  /// displacement are measured in their own noises: the model's point at the radius a_i that is
+  /// nearest the sample, found per sample. Least squares in the force alone reads displacement noise
+  /// on a curved branch as force noise that grows with the slope, and biases E (docs/fitting.md).
+  /// Only the ratio of the two noises changes the estimate; the error bars scale by the residuals.
+  bool errors_in_displacement = false;
+  /// The displacement's noise [m] under errors_in_displacement, finite and > 0; unset: estimated,
+  /// like force_noise, from the third differences of the column in acquisition order.
+  std::optional<double> displacement_noise;
   /// Baseline::tilt also fits a linear tilt of the baseline, P0 + slope * delta, with the slope
   /// taken by least squares from the samples the fitted model puts off contact (never from
   /// excluded ones); the data are detilted and refitted once (FitSummary::baseline_slope).

@@ -99,7 +99,8 @@ def fit_options(*, free: Sequence[str], branch: str, control: str, spring_consta
                 max_iterations: int, contact_point: str, indentation_range: Optional[Tuple[float, float]],
                 force_range: Optional[Tuple[float, float]],
                 baseline_window: Optional[Tuple[float, float]],
-                bounds: Sequence[Tuple[str, float, float]] = ...) -> FitOptions: ...
+                bounds: Sequence[Tuple[str, float, float]] = ..., errors_in_displacement: bool = ...,
+                displacement_noise: Optional[float] = ..., force_noise: Optional[float] = ...) -> FitOptions: ...
 
 class CsvOptions: ...
 
@@ -187,6 +188,8 @@ class FitSummary:
     force_noise: float
     radius_noise: float
     force_noise_given: bool
+    displacement_noise: float
+    displacement_noise_given: bool
     radius_noise_given: bool
     @property
     def delta(self) -> npt.NDArray[np.float64]: ...

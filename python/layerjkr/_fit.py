@@ -31,7 +31,8 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
         baseline_window: Optional[Tuple[float, float]] = None, t: Optional[npt.ArrayLike] = None,
         units: str = "m,N", start: Optional[Mapping[str, float]] = None,
         fixed: Optional[Mapping[str, float]] = None,
-        bounds: Optional[Mapping[str, Tuple[Optional[float], Optional[float]]]] = None) -> FitResult:
+        bounds: Optional[Mapping[str, Tuple[Optional[float], Optional[float]]]] = None,
+        displacement_noise: Union[None, float, str] = None, force_noise: Optional[float] = None) -> FitResult:
     """Fit one measured curve with the model of a scene.
 
     Parameters
@@ -60,6 +61,13 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
         no bound on that side). Every solve keeps them; a parameter that ends at an end has no
         error bar (``at_bound``) and a ModelWarning says the range, not the data, decides it.
         Elastic fits only.
+    displacement_noise : float or "auto", optional
+        Errors in both variables, for (delta, P) data whose displacement has noise of its own (a
+        JKR rig's sensor, not an AFM's delta = z - P/k): each sample's residual is its distance to
+        the curve, force and displacement each in its own noise (orthogonal distance regression, as
+        scipy.odr). The noise [m], or "auto" to estimate it from the data; None: delta is exact.
+    force_noise : float, optional
+        With ``displacement_noise``: the force's noise [N]; None estimates it from the data.
     fixed : mapping of str to float, optional
         Values of parameters held fixed, e.g. ``{"w": 0.0}`` or ``{"R": 2e-5}``: they replace the
         scene's. No key may be in ``free``; delta0 and P0 belong to the data (shift ``delta`` or
@@ -87,7 +95,8 @@ def fit(delta: npt.ArrayLike, P: npt.ArrayLike, scene: SceneLike, *,
     """
     call = dict(locals())  # the arguments as given: FitResult.profile refits with some changed
     options = _options(free, branch, control, spring_constant, baseline, window, window_fraction, loss, loss_scale,
-                       starts, max_iterations, contact_point, indentation_range, force_range, baseline_window, bounds)
+                       starts, max_iterations, contact_point, indentation_range, force_range, baseline_window, bounds,
+                       displacement_noise, force_noise)
     seg = None if segment is None else _segments(segment)
     length, force = _core.unit_scales(_text("units", units))
     d, p = _float64(delta, "delta") * length, _float64(P, "P") * force

@@ -44,7 +44,13 @@ def _options(free: Union[str, Sequence[str]], branch: str, control: str, spring_
              baseline: str, window: str, window_fraction: float, loss: str, loss_scale: Optional[float], starts: int,
              max_iterations: int, contact_point: str = "fit",
              indentation_range: Optional[Tuple[float, float]] = None, force_range: Optional[Tuple[float, float]] = None,
-             baseline_window: Optional[Tuple[float, float]] = None, bounds: Any = None) -> Any:
+             baseline_window: Optional[Tuple[float, float]] = None, bounds: Any = None,
+             displacement_noise: Union[None, float, str] = None, force_noise: Optional[float] = None) -> Any:
+    if isinstance(displacement_noise, str) and displacement_noise != "auto":
+        raise InputError("displacement_noise = %r is invalid; give the noise [m], \"auto\" to estimate it, or None"
+                         % (displacement_noise,))
+    given = None if displacement_noise is None or displacement_noise == "auto" else \
+        _positive("displacement_noise", displacement_noise, "m")
     return _core.fit_options(free=_free(free), branch=_text("branch", branch), control=_text("control", control),
                              spring_constant=None if spring_constant is None else _positive("spring_constant", spring_constant, "N/m"),
                              baseline=_text("baseline", baseline), window=_text("window", window),
@@ -54,7 +60,9 @@ def _options(free: Union[str, Sequence[str]], branch: str, control: str, spring_
                              contact_point=_text("contact_point", contact_point),
                              indentation_range=_range("indentation_range", indentation_range),
                              force_range=_range("force_range", force_range),
-                             baseline_window=_range("baseline_window", baseline_window), bounds=_bounds(bounds))
+                             baseline_window=_range("baseline_window", baseline_window), bounds=_bounds(bounds),
+                             errors_in_displacement=displacement_noise is not None, displacement_noise=given,
+                             force_noise=None if force_noise is None else _positive("force_noise", force_noise, "N"))
 
 
 def _bounds(bounds: Any) -> List[Tuple[str, float, float]]:

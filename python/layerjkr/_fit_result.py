@@ -30,7 +30,8 @@ _SUMMARY_FIELDS = ("converged", "termination", "iterations", "model", "family", 
                    "points_in_contact", "identifiable", "identifiability_known", "identifiability_reason",
                    "identifiability", "unidentifiable", "no_move_reason", "warnings", "notices", "initial_cost",
                    "final_cost", "solve_seconds", "contact_point", "noise", "runs_z", "residual_structure",
-                   "force_noise", "radius_noise", "force_noise_given", "radius_noise_given") + STATISTICS_FIELDS
+                   "force_noise", "radius_noise", "force_noise_given", "radius_noise_given", "displacement_noise",
+                   "displacement_noise_given") + STATISTICS_FIELDS
 
 
 class FitResult(FitStatistics):
@@ -296,9 +297,7 @@ class FitResult(FitStatistics):
             "identifiability_reason": f["identifiability_reason"],
             "unidentifiable": list(f["unidentifiable"]), "no_move_reason": f["no_move_reason"],
             "warnings": list(f["warnings"]), "notices": list(f["notices"]),
-            "noise": None if not math.isfinite(f["radius_noise"]) else {
-                "P": f["force_noise"], "P_given": f["force_noise_given"], "a": f["radius_noise"],
-                "a_given": f["radius_noise_given"]},
+            "noise": _noise(f),
             "contact_point": {k: _finite_or_none(v) if isinstance(v, float) else v
                               for k, v in f["contact_point"].items()},
         }
@@ -340,3 +339,14 @@ class FitResult(FitStatistics):
     def __repr__(self) -> str:
         return "layerjkr.FitResult(%s)" % ", ".join(
             "%s=%.6g+-%.2g" % (k, p.value, p.standard_error) for k, p in self._params.items())
+
+
+def _noise(f: Any) -> Optional[Dict[str, Any]]:
+    """The columns' noises the residuals were weighed by, as the CLI's report gives them."""
+    if math.isfinite(f["radius_noise"]):
+        return {"P": f["force_noise"], "P_given": f["force_noise_given"], "a": f["radius_noise"],
+                "a_given": f["radius_noise_given"]}
+    if math.isfinite(f["displacement_noise"]):
+        return {"P": f["force_noise"], "P_given": f["force_noise_given"], "delta": f["displacement_noise"],
+                "delta_given": f["displacement_noise_given"]}
+    return None

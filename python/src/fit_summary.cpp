@@ -75,6 +75,8 @@ void bind_fit_summary(py::module_& m) {
       .def_readonly("radius_noise", &FitSummary::radius_noise)
       .def_readonly("force_noise_given", &FitSummary::force_noise_given)
       .def_readonly("radius_noise_given", &FitSummary::radius_noise_given)
+      .def_readonly("displacement_noise", &FitSummary::displacement_noise)
+      .def_readonly("displacement_noise_given", &FitSummary::displacement_noise_given)
       .def_property_readonly("delta", [](const FitSummary& s) { return to_array(s.delta); })
       .def_property_readonly("P", [](const FitSummary& s) { return to_array(s.P); })
       .def_property_readonly("P_fit", [](const FitSummary& s) { return to_array(s.P_fit); })

@@ -113,8 +113,13 @@ FitOptions fit_options(const std::vector<std::string>& free, const std::string& 
                        double window_fraction, const std::string& loss, std::optional<double> loss_scale, int starts,
                        int max_iterations, const std::string& contact_point, std::optional<Interval> indentation_range,
                        std::optional<Interval> force_range, std::optional<Interval> baseline_window,
-                       const std::vector<std::tuple<std::string, double, double>>& bounds) {
+                       const std::vector<std::tuple<std::string, double, double>>& bounds,
+                       bool errors_in_displacement, std::optional<double> displacement_noise,
+                       std::optional<double> force_noise) {
   FitOptions o;
+  o.errors_in_displacement = errors_in_displacement;
+  o.displacement_noise = displacement_noise;
+  o.force_noise = force_noise;
   for (const auto& [name, lower, upper] : bounds)
     o.bounds.push_back({parse_enum<FitParameter>(name, "bounds"), lower, upper});
   o.contact_point = parse_enum<ContactPointMethod>(contact_point, "contact_point");
@@ -355,7 +360,9 @@ PYBIND11_MODULE(_core, m) {
         py::arg("spring_constant"), py::arg("baseline"), py::arg("window"), py::arg("window_fraction"), py::arg("loss"),
         py::arg("loss_scale"), py::arg("starts"), py::arg("max_iterations"), py::arg("contact_point"),
         py::arg("indentation_range"), py::arg("force_range"), py::arg("baseline_window"),
-        py::arg("bounds") = std::vector<std::tuple<std::string, double, double>>{});
+        py::arg("bounds") = std::vector<std::tuple<std::string, double, double>>{},
+        py::arg("errors_in_displacement") = false, py::arg("displacement_noise") = py::none(),
+        py::arg("force_noise") = py::none());
   py::class_<CsvOptions>(m, "CsvOptions", "The library's CsvOptions; make them with csv_options().");
   m.def("csv_options", &csv_options, py::kw_only(), py::arg("units"), py::arg("spring_constant"),
         py::arg("sensitivity") = py::none(), py::arg("z_sign"),

@@ -68,6 +68,19 @@ void parse_window(const std::string& text, FitOptions& o) {
   }
 }
 
+// --displacement-noise SD | auto: errors in the displacement, its noise given [length unit] or estimated.
+void parse_displacement_noise(const std::string& text, double length_unit, FitOptions& o) {
+  if (text.empty()) return;
+  o.errors_in_displacement = true;
+  if (text == "auto") return;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (*end != '\0' || !(v > 0.0) || !std::isfinite(v))
+    throw InputError("--displacement-noise = \"" + text + "\" is invalid; give the noise, a finite number > 0 in the "
+                     "length unit, or auto to estimate it from the data");
+  o.displacement_noise = v * length_unit;
+}
+
 // "MIN:MAX" with MIN < MAX, both finite and within [lo, hi]; "" leaves the range unset.
 std::optional<Interval> parse_range(const std::string& text, const char* flag, double lo, double hi,
                                     const char* valid) {
@@ -147,6 +160,7 @@ Prepared prepare_options(const FitArguments& a) {
   // Given in the CSV's units, like the columns they describe.
   if (a.force_noise != 0.0) p.options.force_noise = a.force_noise * p.csv.force_unit;
   if (a.radius_noise != 0.0) p.options.radius_noise = a.radius_noise * p.csv.length_unit;
+  parse_displacement_noise(a.displacement_noise, p.csv.length_unit, p.options);
   try {
     p.options.validate();
     p.csv.validate();
@@ -201,7 +215,12 @@ void add_fit_options(CLI::App& c, FitArguments& a) {
   c.add_option("--force-range", a.force_range,
                "MIN:MAX: approach samples by force, as fractions of the largest force above the baseline (0 <= MIN < MAX <= 1)");
   c.add_option("--force-noise", a.force_noise,
-               "With measured contact radii (delta,P,a): the force's noise [force unit]; default estimated from the data");
+               "With measured contact radii (delta,P,a) or --displacement-noise: the force's noise [force unit]; "
+               "default estimated from the data");
+  c.add_option("--displacement-noise", a.displacement_noise,
+               "SD | auto: (delta,P) data whose displacement has noise of its own (a JKR rig's sensor): each sample's "
+               "residual is its distance to the curve, force and displacement in their own noises (orthogonal "
+               "distance regression); SD [length unit], or auto to estimate it from the data");
   c.add_option("--radius-noise", a.radius_noise,
                "With measured contact radii: the radius's noise [length unit]; default estimated from the data");
   c.add_option("--baseline-window", a.baseline_window,

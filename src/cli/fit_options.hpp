@@ -19,6 +19,7 @@ struct FitArguments {
   std::string scene, free, loss = "none", branch = "approach", units = "m,N";
   double spring_constant = 0.0, sensitivity = 0.0, z_sign = 1.0, deflection_sign = 1.0;
   double force_noise = 0.0, radius_noise = 0.0;  ///< --force-noise, --radius-noise (0: estimated)
+  std::string displacement_noise;  ///< --displacement-noise SD | auto ("" unset: delta exact)
   bool keep_offset = false;                      ///< --keep-offset
   int extra_starts = 0, max_iterations = 200;
   int curve = -1;  ///< --curve: which curve of a file holding several (-1: it must hold one)

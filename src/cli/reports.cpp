@@ -72,9 +72,11 @@ json report_json(const FitSummary& s, Branch branch) {
   j["no_move_reason"] = s.no_move_reason;
   j["warnings"] = s.warnings;
   j["notices"] = s.notices;
-  j["noise"] = std::isfinite(s.radius_noise)
-                   ? json{{"P", s.force_noise}, {"P_given", s.force_noise_given}, {"a", s.radius_noise},
-                          {"a_given", s.radius_noise_given}}
+  j["noise"] = std::isfinite(s.radius_noise) ? json{{"P", s.force_noise}, {"P_given", s.force_noise_given},
+                                                    {"a", s.radius_noise}, {"a_given", s.radius_noise_given}}
+               : std::isfinite(s.displacement_noise)
+                   ? json{{"P", s.force_noise}, {"P_given", s.force_noise_given}, {"delta", s.displacement_noise},
+                          {"delta_given", s.displacement_noise_given}}
                    : json(nullptr);
   const ContactPointReport& c = s.contact_point;
   j["contact_point"] = {{"method", to_string(c.method)},

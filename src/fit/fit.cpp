@@ -140,11 +140,25 @@ FitSummary fit(const CurveData& curve, const Scene& scene, const FitOptions& opt
   curve.validate();
   if (!scene.profile) throw InputError("fit: the scene has no indenter profile");
   // An option that cannot apply is refused, not ignored: the user meant something by it.
-  if ((options.force_noise || options.radius_noise) && (curve.a.empty() || curve.radius_only()))
-    throw InputError(curve.source + ": force_noise and radius_noise (--force-noise, --radius-noise) weigh the force "
-                                    "and radius columns of delta,P,a data against each other; these data have " +
+  if (options.errors_in_displacement && !curve.a.empty())
+    throw InputError(curve.source + ": errors_in_displacement (--displacement-noise) fits (delta, P) data by their "
+                                    "distance to the curve; these data carry " +
+                     std::string(curve.radius_only() ? "no displacement (P, a)" : "contact radii (delta, P, a), whose "
+                                                       "own residuals already place each sample on the curve"));
+  if (options.radius_noise && (curve.a.empty() || curve.radius_only()))
+    throw InputError(curve.source + ": radius_noise (--radius-noise) weighs the radius column of delta,P,a data "
+                                    "against the force's; these data have " +
                      std::string(curve.a.empty() ? "no contact radii" : "no displacement (P, a)"));
-  if (scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic || scene.adhesion.kinetics) {
+  if (options.force_noise && !options.errors_in_displacement && (curve.a.empty() || curve.radius_only()))
+    throw InputError(curve.source + ": force_noise (--force-noise) weighs the force column against the radius's "
+                                    "(delta,P,a data) or the displacement's (errors_in_displacement); these data have " +
+                     std::string(curve.a.empty() ? "no contact radii and delta is taken as exact"
+                                                 : "no displacement (P, a)"));
+  const bool in_time = scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic || scene.adhesion.kinetics;
+  if (options.errors_in_displacement && in_time)
+    throw InputError(curve.source + ": errors_in_displacement (--displacement-noise) is supported in elastic fits, not "
+                                    "in fits in time (their samples follow the clock, not the curve)");
+  if (in_time) {
     if (!options.bounds.empty())
       throw InputError(curve.source + ": bounds are supported in elastic fits, not yet in fits in time (the law's "
                                       "parameters keep their own domains: beta in [0.01, 0.95], tau > 0)");

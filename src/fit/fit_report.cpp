@@ -38,6 +38,11 @@ void FitOptions::validate() const {
     throw DomainError(fn, "force_noise [N]", *force_noise, "finite and > 0 (unset: estimated)");
   if (radius_noise && !(*radius_noise > 0.0 && std::isfinite(*radius_noise)))
     throw DomainError(fn, "radius_noise [m]", *radius_noise, "finite and > 0 (unset: estimated)");
+  if (displacement_noise && !(*displacement_noise > 0.0 && std::isfinite(*displacement_noise)))
+    throw DomainError(fn, "displacement_noise [m]", *displacement_noise, "finite and > 0 (unset: estimated)");
+  if (displacement_noise && !errors_in_displacement)
+    throw InputError("FitOptions: displacement_noise = " + detail::short_number(*displacement_noise) +
+                     " m weighs the displacement's residuals, which only errors_in_displacement fits: set it too");
   std::set<FitParameter> bounded;
   for (const ParameterBound& b : bounds) {
     const std::string name = "bounds of " + std::string(to_string(b.parameter));
@@ -96,6 +101,10 @@ std::string FitSummary::brief_report() const {
   if (std::isfinite(radius_noise))
     o << "  noise: P " << force_noise << " N (" << (force_noise_given ? "given" : "estimated") << "), a " << radius_noise
       << " m (" << (radius_noise_given ? "given" : "estimated") << "): each column's residuals weighed by its own noise\n";
+  if (std::isfinite(displacement_noise))
+    o << "  noise: P " << force_noise << " N (" << (force_noise_given ? "given" : "estimated") << "), delta "
+      << displacement_noise << " m (" << (displacement_noise_given ? "given" : "estimated")
+      << "): errors in both, each sample's residual its distance to the curve\n";
   if (!no_move_reason.empty()) o << "  did not move from the start: " << no_move_reason << "\n";
   for (std::size_t j = 0; j < parameters.size(); ++j) {
     const ParameterEstimate& e = parameters[j];

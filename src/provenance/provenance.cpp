@@ -38,6 +38,8 @@ void fit_fields(Options& o, Visit&& v) {
   v("exclusion_sigmas", o.exclusion_sigmas);
   v("force_noise", o.force_noise);
   v("radius_noise", o.radius_noise);
+  v("errors_in_displacement", o.errors_in_displacement);
+  v("displacement_noise", o.displacement_noise);
   v("baseline", o.baseline);
   v("remove_offset", o.remove_offset);
   v("retract_window", o.retract_window);
@@ -76,7 +78,7 @@ void csv_fields(Options& o, Visit&& v) {
 // Tripwires (64-bit libstdc++ / libc++ layouts). When one fires: add the new field's line to
 // the table above, set it to a non-default value in tests/provenance/test_provenance.cpp
 // ("every option survives the round trip"), then update the size here.
-static_assert(sizeof(void*) != 8 || sizeof(FitOptions) == 288,
+static_assert(sizeof(void*) != 8 || sizeof(FitOptions) == 312,
               "FitOptions changed: add its new field to fit_fields() in src/provenance/provenance.cpp and to the "
               "non-default options of tests/provenance/test_provenance.cpp, then update this size");
 static_assert(sizeof(void*) != 8 || sizeof(CsvOptions) == 72,

@@ -125,6 +125,8 @@ TEST_CASE("every option survives the JSON round trip bit for bit", "[provenance]
   o.exclusion_sigmas = 1.0 / 3.0;
   o.force_noise = 1.0 / 7.0;
   o.radius_noise = 2.0 / 7.0;
+  o.errors_in_displacement = true;
+  o.displacement_noise = 3.0 / 7.0;
   o.baseline = Baseline::tilt;
   o.remove_offset = false;
   o.retract_window = RetractWindow::force_fraction;
@@ -146,7 +148,7 @@ TEST_CASE("every option survives the JSON round trip bit for bit", "[provenance]
   o.baseline_window = Interval{-3e-6, -2.5e-6};
   o.bounds = {{FitParameter::E, 1.0 / 3.0, std::numeric_limits<double>::infinity()}, {FitParameter::w, -0.0, 0.1 + 0.2}};
   const std::string text = to_json(o);
-  CHECK(nlohmann::json::parse(text).size() == 27);  // one key per field
+  CHECK(nlohmann::json::parse(text).size() == 29);  // one key per field
   const FitOptions b = fit_options_from_json(text);
   CHECK(b.free == o.free);
   CHECK(b.branch == o.branch);
@@ -158,6 +160,9 @@ TEST_CASE("every option survives the JSON round trip bit for bit", "[provenance]
   REQUIRE(b.radius_noise);
   CHECK(bits(*b.force_noise) == bits(*o.force_noise));
   CHECK(bits(*b.radius_noise) == bits(*o.radius_noise));
+  CHECK(b.errors_in_displacement);
+  REQUIRE(b.displacement_noise);
+  CHECK(bits(*b.displacement_noise) == bits(*o.displacement_noise));
   CHECK(b.baseline == o.baseline);
   CHECK(b.remove_offset == o.remove_offset);
   CHECK(b.retract_window == o.retract_window);

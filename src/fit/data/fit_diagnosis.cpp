@@ -157,6 +157,18 @@ void diagnose_indentation(const FitData& data, FitSummary* out) {
 }
 
 void weigh_columns(const FitOptions& options, double force_span, FitData& data, FitSummary* out) {
+  if (options.errors_in_displacement) {
+    std::vector<std::size_t> all(data.P.size());
+    std::iota(all.begin(), all.end(), std::size_t{0});
+    const auto [lo, hi] = std::minmax_element(data.delta.begin(), data.delta.end());
+    out->force_noise = options.force_noise.value_or(std::max(third_difference_noise(data.P, all), kNoiseFloor * force_span));
+    out->displacement_noise =
+        options.displacement_noise.value_or(std::max(third_difference_noise(data.delta, all), kNoiseFloor * (*hi - *lo)));
+    out->force_noise_given = options.force_noise.has_value();
+    out->displacement_noise_given = options.displacement_noise.has_value();
+    data.displacement_weight = out->force_noise / out->displacement_noise;
+    return;
+  }
   if (data.radius_driven || data.a.empty()) return;
   std::vector<std::size_t> all(data.P.size()), with_a;
   std::iota(all.begin(), all.end(), std::size_t{0});

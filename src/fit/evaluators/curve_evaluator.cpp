@@ -117,6 +117,53 @@ double CurveEvaluator::solve_radius(const CurveParameters<double>& p, double tar
   return kNaN;
 }
 
+double CurveEvaluator::nearest_radius(const CurveParameters<double>& p, double target_delta, double target_P,
+                                      double kappa, double lo, double guess, double* P_out) const {
+  const double a_max = model_.max_radius();
+  const auto misfit = [&](double a, double* d, double* P, double* dd, double* dP) {
+    curve(p, a, d, P, dd, dP);
+    const double ud = kappa * (*d - target_delta), uP = *P - target_P;
+    return ud * ud + uP * uP;
+  };
+  double a = std::max(guess, lo), d, P, dd, dP;
+  double phi = misfit(a, &d, &P, &dd, &dP);
+  for (int it = 0; it < 100 && std::isfinite(phi); ++it) {
+    // Gauss-Newton in a: the curve's tangent (dP, kappa dd) against the offset to the sample.
+    const double g = dP * (P - target_P) + kappa * kappa * dd * (d - target_delta);
+    const double h = dP * dP + kappa * kappa * dd * dd;
+    if (!(h > 0.0)) return kNaN;
+    double step = -g / h;
+    for (int half = 0; half < 60; ++half, step *= 0.5) {
+      const double next = std::clamp(a + step, lo, a_max < kInf ? std::nextafter(a_max, 0.0) : kInf);
+      double d1, P1, dd1, dP1;
+      const double phi1 = misfit(next, &d1, &P1, &dd1, &dP1);
+      if (phi1 <= phi) {
+        const bool done = std::abs(next - a) <= 1e-13 * a;
+        a = next, d = d1, P = P1, dd = dd1, dP = dP1, phi = phi1;
+        if (done) {
+          *P_out = P;
+          return a;
+        }
+        break;
+      }
+    }
+    if (!(std::abs(step) > 1e-13 * a)) break;  // no step lowers the misfit: a is the nearest point
+  }
+  if (!std::isfinite(phi)) return kNaN;
+  *P_out = P;
+  return a;
+}
+
+bool CurveEvaluator::nearer_the_branch(const CurveParameters<double>& p, double t, double P, double kappa,
+                                       double a_start) const {
+  double P_near, d, dd, dP;
+  const double a = nearest_radius(p, t, P, kappa, a_start, a_start, &P_near);
+  if (!std::isfinite(a)) return false;
+  curve(p, a, &d, &P_near, &dd, &dP);
+  const double along = kappa * (d - t);
+  return (P_near - P) * (P_near - P) + along * along < P * P;  // P: the sample above the baseline
+}
+
 bool CurveEvaluator::branch_start(const CurveParameters<double>& p, StartKind kind,
                                   BranchStart* out) const {
   const double floor = std::max(model_.min_radius(), 1e-9 * a_typ_);
@@ -201,6 +248,33 @@ bool CurveEvaluator::evaluate(const double* x, bool jacobian) {
 }
 
 template <class J>
+bool CurveEvaluator::distance_residual(const CurveParameters<double>& p, const CurveParameters<J>& pj, std::size_t i,
+                                       double a, double t, double P0, const J& P0j, const J& d0j, double kappa,
+                                       bool jacobian, double* P) {
+  constexpr int kRadiusSlot = J::DIMENSION - 1;
+  const double sw = data_.sqrt_weight[i], F = map_.F;
+  const std::size_t r0 = row_[i];
+  double d, dd, dP;
+  J dj, Pj;
+  if (jacobian) {
+    model_.evaluate(J(a, kRadiusSlot), pj, &dj, &Pj);
+    d = dj.a, *P = Pj.a, dd = dj.v[kRadiusSlot], dP = Pj.v[kRadiusSlot];
+  } else {
+    curve(p, a, &d, P, &dd, &dP);
+  }
+  const double length = std::hypot(kappa * dd, dP);
+  if (!(length > 0.0) || !std::isfinite(length) || !std::isfinite(*P)) return false;
+  // The unit normal in the metric (P, kappa delta), oriented as the force: it is the force's
+  // residual alone when the displacement is exact (kappa -> infinity).
+  const double nP = kappa * dd / length, nd = -dP / length;
+  r_[r0] = sw * (nP * (P0 + *P - data_.P[i]) + nd * kappa * (d - t)) / F;
+  if (jacobian)
+    for (std::size_t j = 0; j < n_free_; ++j)
+      J_[r0 * n_free_ + j] = sw * (nP * (Pj.v[j] + P0j.v[j]) + nd * kappa * (dj.v[j] + d0j.v[j])) / F;
+  return true;
+}
+
+template <class J>
 bool CurveEvaluator::sweep(const double* x, bool jacobian) {
   constexpr int kRadiusSlot = J::DIMENSION - 1;
   CurveParameters<double> p;
@@ -266,9 +340,16 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
       const std::size_t r0 = row_[i];
       const bool has_a = rows(i) == 2;
       const signed char flag = data_.contact.empty() ? -1 : data_.contact[i];
-      // A sample held in contact below the curve's end sits at the end (a smooth penalty).
-      const bool clamped = flag == 1 && t < start.delta;
-      if (flag == 0 || (flag < 0 && t < start.delta)) {  // not in contact: the baseline only
+      // Errors in the displacement: a contact sample's residual is its distance to the curve.
+      const double kappa = has_a ? 0.0 : data_.displacement_weight;
+      // A sample held in contact below the curve's end sits at the end (a smooth penalty); with
+      // errors in the displacement its nearest point is searched from there instead.
+      const bool clamped = flag == 1 && t < start.delta && !(kappa > 0.0);
+      // Below the branch's start the model decides; with errors in the displacement by which of the
+      // baseline and the branch lies nearer (a measured delta just short of it is noise).
+      const bool off = flag == 0 || (flag < 0 && t < start.delta &&
+                                     !(kappa > 0.0 && nearer_the_branch(p, t, data_.P[i] - P0, kappa, start.a)));
+      if (off) {  // not in contact: the baseline only
         detached_[i] = retract ? 1 : 0;
         P_fit_[i] = P0;
         r_[r0] = sw * (P0 - data_.P[i]) / F;
@@ -284,13 +365,27 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
         clamped_[i] = 1;
         a = start.a;
         curve(p, a, &d, &P, nullptr, nullptr);
+      } else if (reuse_radii_) {
+        a = a_cache_[i];
+      } else if (kappa > 0.0) {
+        // Seeded at the radius of the sample's delta; `lo` keeps following those radii, which grow
+        // with delta where the nearest points need not.
+        double seed = start.a;
+        if (t >= start.delta) seed = lo = solve_radius(p, t, lo, std::max(a_cache_[i], lo));
+        if (!std::isfinite(seed)) return false;
+        a = nearest_radius(p, t, data_.P[i] - P0, kappa, start.a, seed, &P);
       } else {
-        a = reuse_radii_ ? a_cache_[i] : solve_radius(p, t, lo, std::max(a_cache_[i], lo), &P);
+        a = lo = solve_radius(p, t, lo, std::max(a_cache_[i], lo), &P);
       }
       if (!std::isfinite(a)) return false;
-      lo = a;
       a_cache_[i] = a;
       ++contact_count_;
+      if (kappa > 0.0) {
+        if (!distance_residual(p, pj, i, a, t, P0, P0j, d0j, kappa, jacobian, &P)) return false;
+        // What the fit minimises, as a force: the sample's force moved by its distance to the curve.
+        P_fit_[i] = sw > 0.0 ? data_.P[i] + r_[r0] * F / sw : P0 + P;
+        continue;
+      }
       if (jacobian) {
         J dj, Pj;
         model_.evaluate(J(a, kRadiusSlot), pj, &dj, &Pj);

@@ -66,6 +66,10 @@ struct FitData {
   /// keeps the cost continuous where the model's pull-off moves across samples.
   std::vector<signed char> contact;
   double a_scale = 1.0;                          ///< divides contact-radius residuals [m]
+  /// Errors in the displacement (FitOptions::errors_in_displacement): the force noise over the
+  /// displacement noise [N/m], which turns a displacement residual into force units; each contact
+  /// sample's residual is then its distance to the curve in that metric. 0: delta is exact.
+  double displacement_weight = 0.0;
   /// Fits in time: the base's speed towards the sample at each sample [m/s] - per segment, the
   /// slope of the base position delta + P/k (delta without k) over time, read from the data before
   /// the fit - which a free drag multiplies (empty otherwise).
@@ -134,6 +138,14 @@ class CurveEvaluator final : public ResidualStore {
   /// If P is given it receives the force there (to ~1e-15 relative).
   double solve_radius(const CurveParameters<double>& p, double target, double lo, double guess,
                       double* P = nullptr) const;
+  /// Errors in the displacement: the radius a >= lo whose point (delta(a), P(a)) is nearest the
+  /// sample (target_delta, target_P) in the metric (P, kappa delta) [N], by safeguarded Gauss-Newton
+  /// from `guess` (the radius at the sample's delta); sets *P there. NaN on failure.
+  double nearest_radius(const CurveParameters<double>& p, double target_delta, double target_P, double kappa,
+                        double lo, double guess, double* P) const;
+  /// Errors in the displacement: whether a sample at t (delta - delta0) before the branch's start,
+  /// P above the baseline [N], lies nearer the branch (from radius a_start on) than the baseline.
+  bool nearer_the_branch(const CurveParameters<double>& p, double t, double P, double kappa, double a_start) const;
   /// delta(a), P(a) and their a-derivatives (double).
   void curve(const CurveParameters<double>& p, double a, double* delta, double* P, double* ddelta,
              double* dP) const;
@@ -145,6 +157,13 @@ class CurveEvaluator final : public ResidualStore {
  private:
   template <class J>
   bool sweep(const double* x, bool jacobian);
+  /// Errors in the displacement: sample i's residual (and Jacobian row r0) as its signed distance
+  /// to the curve at its nearest radius a (t = delta_i - delta0), along the curve's normal; *P the
+  /// model's force there. The normal is orthogonal to the curve at a, so the row is the partial
+  /// derivative at fixed a (a moves along the tangent), as for a latent a_i eliminated by Schur.
+  template <class J>
+  bool distance_residual(const CurveParameters<double>& p, const CurveParameters<J>& pj, std::size_t i, double a,
+                         double t, double P0, const J& P0j, const J& d0j, double kappa, bool jacobian, double* P);
   /// Exchanges the cached evaluation with the one kept aside (buffers swap, nothing is copied).
   void swap_saved();
 

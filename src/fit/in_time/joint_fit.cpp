@@ -80,6 +80,9 @@ JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& sce
   options.validate();
   if (!options.bounds.empty())
     throw InputError("fit_joint: bounds are not supported in joint fits (fit each curve alone with them)");
+  if (options.errors_in_displacement)
+    throw InputError("fit_joint: errors_in_displacement (--displacement-noise) is supported in elastic fits of one "
+                     "curve, not in joint fits in time");
   if (curves.size() < 2)
     throw InputError("fit_joint: give at least 2 curves (given " + std::to_string(curves.size()) + ")");
   if (!scene.profile) throw InputError("fit_joint: the scene has no indenter profile");

@@ -23,7 +23,7 @@ constexpr double kLinearTolerance = 1e-9;
 bool FitRun::linear_candidate() const {
   // The exact solution knows no ranges: with bounds Ceres solves.
   if (options_.loss != LossType::none || held_ >= 0 || data_.radius_driven || !map_.slot_curve.empty() ||
-      !options_.bounds.empty())
+      !options_.bounds.empty() || data_.displacement_weight > 0.0)
     return false;
   if (!dynamic_cast<const CurveEvaluator*>(&ev_) || map_.fixed.values.s != 0.0) return false;
   int stiffness = 0;
