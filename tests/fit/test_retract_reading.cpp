@@ -142,6 +142,29 @@ TEST_CASE("the release is read from the samples: a snap, a held branch, a contac
     CHECK(held.tail_count == 0);
     CHECK(held.held_past_minimum >= 10);
   }
+  SECTION("a held gradual return still below the baseline inside its noise band: excluded until it settles") {
+    // The return enters the 3-sigma band at k ~ 23 but lies below the baseline by more than the
+    // mean of 5 samples resolves (1e-11 / sqrt(5)) until k ~ 31: neither clearly in contact nor at rest.
+    std::vector<double> after;
+    for (int k = 1; k <= 45; ++k) after.push_back(-1e-8 * std::exp(-k / 4.0));
+    const std::vector<double> z = zeros(30);
+    after.insert(after.end(), z.begin(), z.end());
+    const FitData d = curve(falling(after), 0.0);
+    FitOptions o;
+    o.free = {FitParameter::E};
+    const detail::RetractReading held = detail::read_retract(d, o, 5e-8, true);
+    REQUIRE(held.release == Release::held_gradual);
+    CHECK(held.tail_count >= 3);
+    CHECK(held.tail_count <= 15);
+    CHECK_THAT(held.rule, Catch::Contains("until the return settles"));
+    const std::size_t b = retract_begin(d), first_tail = b + 40 + held.held_past_minimum;
+    for (std::size_t i = b; i < first_tail; ++i) CHECK(held.contact[i] == 1);
+    for (std::size_t i = first_tail; i < first_tail + held.tail_count; ++i) CHECK(held.tail[i]);
+    for (std::size_t i = first_tail + held.tail_count; i < d.P.size(); ++i) {
+      CHECK(held.contact[i] == 0);
+      CHECK_FALSE(held.tail[i]);
+    }
+  }
   SECTION("the data end at the minimum: every retract sample in contact") {
     const detail::RetractReading r = read(curve(falling({}), 0.0));
     CHECK(r.release == Release::at_end);

@@ -21,6 +21,8 @@ constexpr std::size_t kRestFraction = 10;
 // Asylum map: a trend of 1.7 nN over the retract's last tenth, 4 times the third-difference
 // noise, 0.07 % of its 2.3 uN span), while a part still in contact changes by a good part of it.
 constexpr double kRestDrift = 0.01;
+// Samples whose mean says a gradual return has settled at the baseline (read_retract).
+constexpr std::size_t kSettleWindow = 5;
 
 // A candidate free part, measured once: its level (median), spread (MAD sigma) and linear trend
 // over its span of delta, all [N]; `valid` false for fewer than kMinRestSamples samples.
@@ -120,6 +122,22 @@ const char* to_string(Release r) {
   return "";
 }
 
+namespace {
+
+// The first position k >= from (in ret) where the return has settled: the mean of the kSettleWindow
+// samples from k lies within one of its standard errors of the baseline; ret.size() if none does.
+std::size_t settled_from(const std::vector<double>& P, const std::vector<std::size_t>& ret, std::size_t from,
+                         double baseline, double noise) {
+  for (std::size_t k = from; k + kSettleWindow <= ret.size(); ++k) {
+    double sum = 0.0;
+    for (std::size_t j = k; j < k + kSettleWindow; ++j) sum += P[ret[j]];
+    if (std::abs(sum / kSettleWindow - baseline) <= noise / std::sqrt(static_cast<double>(kSettleWindow))) return k;
+  }
+  return ret.size();
+}
+
+}  // namespace
+
 RetractReading read_retract(const FitData& data, const FitOptions& options, double force_span, bool hold_gradual_rise) {
   RetractReading r;
   r.pull_off = measure_pull_off(data, force_span);
@@ -186,6 +204,11 @@ RetractReading read_retract(const FitData& data, const FitOptions& options, doub
     r.release = Release::held_gradual;
     last_contact = back - 1;
     r.held_past_minimum = last_contact - lowest;
+    // A branch returning gradually enters the noise band before it ends: the samples from there until
+    // the return has settled are in contact near zero force or at rest, and the data cannot tell.
+    // Counted at rest they pull the baseline towards the branch; they are excluded instead.
+    tail_begin = back;
+    tail_end = settled_from(data.P, ret, back, m.baseline, m.noise);
     r.rule = "the force returns from its minimum (" + dip_text + ") to the baseline without a jump; read as the "
              "contact's own branch, held for " + samples(r.held_past_minimum) + " past the minimum";
   } else {
@@ -199,7 +222,12 @@ RetractReading read_retract(const FitData& data, const FitOptions& options, doub
   for (std::size_t k = 0; k < n; ++k) r.contact[ret[k]] = k <= last_contact ? 1 : 0;
   for (std::size_t k = tail_begin; k < tail_end && k < n; ++k) r.tail[ret[k]] = true;
   r.tail_count = static_cast<std::size_t>(std::count(r.tail.begin(), r.tail.end(), true));
-  if (r.tail_count > 0)
+  if (r.tail_count > 0 && r.release == Release::held_gradual)
+    r.rule += "; the " + samples(r.tail_count) + " from there until the return settles (the mean of the next " +
+              std::to_string(kSettleWindow) + " within one standard error of the baseline) " +
+              (options.exclusion_sigmas > 0.0 ? "excluded" : "kept (exclusion_sigmas = 0)") +
+              ": in contact near zero force or at rest, the data cannot tell";
+  else if (r.tail_count > 0)
     r.rule += options.exclusion_sigmas > 0.0
                   ? "; " + samples(r.tail_count) + " after the release not yet back within " + short_number(sigmas) +
                         " noise sigmas of the baseline excluded (necking, peeling, a viscoelastic tail)"
