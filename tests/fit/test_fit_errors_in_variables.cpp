@@ -220,6 +220,26 @@ TEST_CASE("errors in the displacement: a sample short of the branch's start is i
   CHECK(short_of_start > 0);  // the case arises
 }
 
+TEST_CASE("errors in the displacement: a model that misses the data is said to, against the force noise",
+          "[fit][eiv]") {
+  // w held at 0 on an adhesive rig: the distances are tens of force noises. Judged against the
+  // force noise widened by the slope x displacement noise (as without errors in the displacement),
+  // the misfit hid 200x below its own scale.
+  const Rig r = rig(5, 0.01, 1.2, 0.002, 1.15);
+  FitOptions o = odr_options(r);
+  o.free = {FitParameter::E, FitParameter::delta0};
+  o.force_noise.reset();
+  o.displacement_noise.reset();
+  Scene no_adhesion = half_space(1e6);
+  no_adhesion.w = 0.0;
+  const FitSummary s = fit(r.curve, no_adhesion, o);
+  INFO(s.brief_report());
+  CHECK(s.rms_residual > 10.0 * s.force_noise);
+  CHECK(s.noise == Approx(s.force_noise));
+  CHECK(s.residual_structure);
+  CHECK_FALSE(s.identifiable);
+}
+
 TEST_CASE("errors in the displacement: refused where it cannot apply", "[fit][eiv]") {
   Rig r = rig(1);
   FitOptions o = odr_options(r);
@@ -232,6 +252,21 @@ TEST_CASE("errors in the displacement: refused where it cannot apply", "[fit][ei
   CurveData with_radius = r.curve;
   with_radius.a.assign(with_radius.P.size(), 1e-4);
   CHECK_THROWS_WITH(fit(with_radius, half_space(1e6), o), Catch::Contains("rig 1") && Catch::Contains("contact radii"));
+  // A constant displacement, whose noise would estimate as 0 (any other column's is floored at 1e-6
+  // of its span), is refused before.
+  CurveData flat = r.curve;
+  flat.delta.assign(flat.P.size(), 1e-5);
+  o = odr_options(r);
+  o.displacement_noise.reset();
+  CHECK_THROWS_WITH(fit(flat, half_space(1e6), o), Catch::Contains("rig 1") && Catch::Contains("delta is constant"));
+  // Fits in time follow the clock, not the curve; joint fits share a law in time.
+  Scene relaxing = half_space(1e6);
+  relaxing.medium.relaxation = RelaxationLaw::standard_linear_solid(0.4, 0.2);
+  CurveData timed = r.curve;
+  for (std::size_t i = 0; i < timed.P.size(); ++i) timed.t.push_back(1e-3 * static_cast<double>(i));
+  o = odr_options(r);
+  CHECK_THROWS_WITH(fit(timed, relaxing, o), Catch::Contains("not in fits in time"));
+  CHECK_THROWS_WITH(fit_joint({timed, timed}, relaxing, o), Catch::Contains("not in joint fits"));
   FitOptions plain;
   plain.free = {FitParameter::E};
   plain.force_noise = 1e-6;

@@ -56,10 +56,12 @@ void diagnose_residuals(const FitData& data, double force_span, FitSummary* out)
   for (std::size_t i = 0; i < data.P.size(); ++i)
     if (data.sqrt_weight[i] > 0.0) kept.push_back(i);
   out->noise = third_difference_noise(data.P, kept);
+  // Errors in the displacement: each residual is already a distance in units of the force noise.
+  const double delta_noise = data.displacement_weight > 0.0 ? 0.0 : third_difference_noise(data.delta, kept);
+  if (data.displacement_weight > 0.0) out->noise = out->force_noise;
   // Noise in the displacement moves each sample along the curve: its force residual is the
   // curve's slope times it (a rig's 50 nm against a film's contact stiffness of 2e4 N/m is 1 mN
   // beside 2 uN of force noise). The displacement's own third differences measure it.
-  const double delta_noise = third_difference_noise(data.delta, kept);
   if (delta_noise > 0.0 && kept.size() >= 3) {
     double slope2 = 0.0;
     std::size_t count = 0;

@@ -209,6 +209,9 @@ RetractReading read_retract(const FitData& data, const FitOptions& options, doub
     // Counted at rest they pull the baseline towards the branch; they are excluded instead.
     tail_begin = back;
     tail_end = settled_from(data.P, ret, back, m.baseline, m.noise);
+    // A return that never settles (a baseline that drifts within what the rest reading accepts), or
+    // settles later than the held branch is long, is not this case: nothing more is excluded.
+    if (tail_end == n || tail_end - back > std::max(kSettleWindow, r.held_past_minimum)) tail_end = back;
     r.rule = "the force returns from its minimum (" + dip_text + ") to the baseline without a jump; read as the "
              "contact's own branch, held for " + samples(r.held_past_minimum) + " past the minimum";
   } else {
@@ -243,6 +246,7 @@ void trim_held_to_model(RetractReading& reading, const FitOptions& options, cons
                         const std::function<bool()>& resolve) {
   if (reading.release != Release::held_gradual) return;
   const std::size_t minimum = reading.pull_off.minimum;
+  std::size_t trimmed = 0;
   for (int pass = 0; pass < 4; ++pass) {
     if (!ev.evaluate(x.data(), false)) return;
     std::size_t first = data.P.size();
@@ -254,6 +258,7 @@ void trim_held_to_model(RetractReading& reading, const FitOptions& options, cons
         reading.contact[i] = 0;
         reading.tail[i] = true;
         --reading.held_past_minimum;
+        ++trimmed;
       }
     data.sqrt_weight = weights;
     apply_reading(reading, options, data);
@@ -261,9 +266,9 @@ void trim_held_to_model(RetractReading& reading, const FitOptions& options, cons
     if (!resolve()) break;
   }
   reading.tail_count = static_cast<std::size_t>(std::count(reading.tail.begin(), reading.tail.end(), true));
-  if (reading.tail_count > 0)
+  if (trimmed > 0)
     reading.rule += "; the model's branch ends after " + samples(reading.held_past_minimum) + " of them, the " +
-                    samples(reading.tail_count) + " beyond excluded as a tail";
+                    samples(trimmed) + " beyond excluded as a tail";
 }
 
 void apply_reading(const RetractReading& reading, const FitOptions& options, FitData& data) {

@@ -374,6 +374,10 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
         if (t >= start.delta) seed = lo = solve_radius(p, t, lo, std::max(a_cache_[i], lo));
         if (!std::isfinite(seed)) return false;
         a = nearest_radius(p, t, data_.P[i] - P0, kappa, start.a, seed, &P);
+        // Held in contact short of the branch's end and nearest to the end itself: beyond the branch,
+        // marked so that the held reading trims it (retract_reading.cpp); its residual stays the
+        // distance to the end (a force-only penalty there let a free P0 trade with delta0).
+        if (flag == 1 && t < start.delta && !(a > start.a)) clamped_[i] = 1;
       } else {
         a = lo = solve_radius(p, t, lo, std::max(a_cache_[i], lo), &P);
       }
