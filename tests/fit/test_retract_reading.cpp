@@ -165,6 +165,22 @@ TEST_CASE("the release is read from the samples: a snap, a held branch, a contac
       CHECK_FALSE(held.tail[i]);
     }
   }
+  SECTION("a held gradual return that settles later than the held branch is long: nothing more excluded") {
+    // Into the band within ~9 samples, then 40 samples creeping from -2.5 sigma towards the
+    // baseline: longer in the band than the branch was held, so not a branch ending near zero force.
+    std::vector<double> after;
+    for (int k = 1; k <= 9; ++k) after.push_back(-1e-8 * std::exp(-k / 1.5));
+    for (int k = 1; k <= 40; ++k) after.push_back(-2.5e-11 * std::exp(-k / 30.0));
+    const std::vector<double> z = zeros(30);
+    after.insert(after.end(), z.begin(), z.end());
+    const FitData d = curve(falling(after), 0.0);
+    FitOptions o;
+    o.free = {FitParameter::E};
+    const detail::RetractReading held = detail::read_retract(d, o, 5e-8, true);
+    REQUIRE(held.release == Release::held_gradual);
+    CHECK(held.held_past_minimum <= 10);
+    CHECK(held.tail_count == 0);
+  }
   SECTION("the data end at the minimum: every retract sample in contact") {
     const detail::RetractReading r = read(curve(falling({}), 0.0));
     CHECK(r.release == Release::at_end);
