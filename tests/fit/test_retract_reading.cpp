@@ -49,10 +49,10 @@ std::vector<double> falling(const std::vector<double>& after) {
 
 std::vector<double> zeros(int n) { return std::vector<double>(static_cast<std::size_t>(n), 0.0); }
 
-detail::RetractReading read(const FitData& d) {
+detail::RetractReading read(const FitData& d, bool hold_gradual_rise = false) {
   FitOptions o;
   o.free = {FitParameter::E};
-  return detail::read_retract(d, o, 5e-8);
+  return detail::read_retract(d, o, 5e-8, hold_gradual_rise);
 }
 
 std::size_t retract_begin(const FitData& d) {
@@ -135,9 +135,7 @@ TEST_CASE("the release is read from the samples: a snap, a held branch, a contac
     CHECK(tail.release == Release::gradual);
     CHECK(tail.tail_count >= 10);
     CHECK_THAT(tail.rule, Catch::Contains("without a jump"));
-    FitOptions o;
-    o.free = {FitParameter::E};
-    const detail::RetractReading held = detail::read_retract(d, o, 5e-8, true);
+    const detail::RetractReading held = read(d, true);
     CHECK(held.release == Release::held_gradual);
     CHECK(held.tail_count == 0);
     CHECK(held.held_past_minimum >= 10);
@@ -150,9 +148,7 @@ TEST_CASE("the release is read from the samples: a snap, a held branch, a contac
     const std::vector<double> z = zeros(30);
     after.insert(after.end(), z.begin(), z.end());
     const FitData d = curve(falling(after), 0.0);
-    FitOptions o;
-    o.free = {FitParameter::E};
-    const detail::RetractReading held = detail::read_retract(d, o, 5e-8, true);
+    const detail::RetractReading held = read(d, true);
     REQUIRE(held.release == Release::held_gradual);
     CHECK(held.tail_count >= 3);
     CHECK(held.tail_count <= 15);
@@ -174,9 +170,7 @@ TEST_CASE("the release is read from the samples: a snap, a held branch, a contac
     const std::vector<double> z = zeros(30);
     after.insert(after.end(), z.begin(), z.end());
     const FitData d = curve(falling(after), 0.0);
-    FitOptions o;
-    o.free = {FitParameter::E};
-    const detail::RetractReading held = detail::read_retract(d, o, 5e-8, true);
+    const detail::RetractReading held = read(d, true);
     REQUIRE(held.release == Release::held_gradual);
     CHECK(held.held_past_minimum <= 10);
     CHECK(held.tail_count == 0);

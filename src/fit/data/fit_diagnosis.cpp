@@ -55,10 +55,10 @@ void diagnose_residuals(const FitData& data, double force_span, FitSummary* out)
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < data.P.size(); ++i)
     if (data.sqrt_weight[i] > 0.0) kept.push_back(i);
-  out->noise = third_difference_noise(data.P, kept);
   // Errors in the displacement: each residual is already a distance in units of the force noise.
-  const double delta_noise = data.displacement_weight > 0.0 ? 0.0 : third_difference_noise(data.delta, kept);
-  if (data.displacement_weight > 0.0) out->noise = out->force_noise;
+  const bool distances = data.displacement_weight > 0.0;
+  out->noise = distances ? out->force_noise : third_difference_noise(data.P, kept);
+  const double delta_noise = distances ? 0.0 : third_difference_noise(data.delta, kept);
   // Noise in the displacement moves each sample along the curve: its force residual is the
   // curve's slope times it (a rig's 50 nm against a film's contact stiffness of 2e4 N/m is 1 mN
   // beside 2 uN of force noise). The displacement's own third differences measure it.
@@ -159,21 +159,23 @@ void diagnose_indentation(const FitData& data, FitSummary* out) {
 }
 
 void weigh_columns(const FitOptions& options, double force_span, FitData& data, FitSummary* out) {
+  // Radii and errors in the displacement exclude each other (fit.cpp refuses both together).
+  if (!options.errors_in_displacement && (data.radius_driven || data.a.empty())) return;
+  std::vector<std::size_t> all(data.P.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  // Floors: a noiseless (synthetic) column is taken as resolved to a millionth of its span, so
+  // that neither swamps the other (rounding-level noise would make the solve ill-conditioned).
+  out->force_noise = options.force_noise.value_or(std::max(third_difference_noise(data.P, all), kNoiseFloor * force_span));
+  out->force_noise_given = options.force_noise.has_value();
   if (options.errors_in_displacement) {
-    std::vector<std::size_t> all(data.P.size());
-    std::iota(all.begin(), all.end(), std::size_t{0});
     const auto [lo, hi] = std::minmax_element(data.delta.begin(), data.delta.end());
-    out->force_noise = options.force_noise.value_or(std::max(third_difference_noise(data.P, all), kNoiseFloor * force_span));
     out->displacement_noise =
         options.displacement_noise.value_or(std::max(third_difference_noise(data.delta, all), kNoiseFloor * (*hi - *lo)));
-    out->force_noise_given = options.force_noise.has_value();
     out->displacement_noise_given = options.displacement_noise.has_value();
     data.displacement_weight = out->force_noise / out->displacement_noise;
     return;
   }
-  if (data.radius_driven || data.a.empty()) return;
-  std::vector<std::size_t> all(data.P.size()), with_a;
-  std::iota(all.begin(), all.end(), std::size_t{0});
+  std::vector<std::size_t> with_a;
   std::vector<double> a;
   for (std::size_t i = 0; i < data.a.size(); ++i)
     if (!std::isnan(data.a[i])) a.push_back(data.a[i]);
@@ -181,11 +183,7 @@ void weigh_columns(const FitOptions& options, double force_span, FitData& data, 
   std::iota(with_a.begin(), with_a.end(), std::size_t{0});
   double a_max = 0.0;
   for (double v : a) a_max = std::max(a_max, v);
-  // Floors: a noiseless (synthetic) column is taken as resolved to a millionth of its span, so
-  // that neither swamps the other (rounding-level noise would make the solve ill-conditioned).
-  out->force_noise = options.force_noise.value_or(std::max(third_difference_noise(data.P, all), kNoiseFloor * force_span));
   out->radius_noise = options.radius_noise.value_or(std::max(third_difference_noise(a, with_a), kNoiseFloor * a_max));
-  out->force_noise_given = options.force_noise.has_value();
   out->radius_noise_given = options.radius_noise.has_value();
   // Force residuals are divided by the force span: radius ones by sigma_a x span / sigma_P.
   data.a_scale = out->radius_noise * force_span / out->force_noise;

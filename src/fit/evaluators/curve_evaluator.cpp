@@ -118,7 +118,7 @@ double CurveEvaluator::solve_radius(const CurveParameters<double>& p, double tar
 }
 
 double CurveEvaluator::nearest_radius(const CurveParameters<double>& p, double target_delta, double target_P,
-                                      double kappa, double lo, double guess, double* P_out) const {
+                                      double kappa, double lo, double guess, double* P_out, double* misfit_out) const {
   const double a_max = model_.max_radius();
   const auto misfit = [&](double a, double* d, double* P, double* dd, double* dP) {
     curve(p, a, d, P, dd, dP);
@@ -127,6 +127,11 @@ double CurveEvaluator::nearest_radius(const CurveParameters<double>& p, double t
   };
   double a = std::max(guess, lo), d, P, dd, dP;
   double phi = misfit(a, &d, &P, &dd, &dP);
+  const auto found = [&]() {
+    *P_out = P;
+    if (misfit_out) *misfit_out = phi;
+    return a;
+  };
   for (int it = 0; it < 100 && std::isfinite(phi); ++it) {
     // Gauss-Newton in a: the curve's tangent (dP, kappa dd) against the offset to the sample.
     const double g = dP * (P - target_P) + kappa * kappa * dd * (d - target_delta);
@@ -140,28 +145,13 @@ double CurveEvaluator::nearest_radius(const CurveParameters<double>& p, double t
       if (phi1 <= phi) {
         const bool done = std::abs(next - a) <= 1e-13 * a;
         a = next, d = d1, P = P1, dd = dd1, dP = dP1, phi = phi1;
-        if (done) {
-          *P_out = P;
-          return a;
-        }
+        if (done) return found();
         break;
       }
     }
     if (!(std::abs(step) > 1e-13 * a)) break;  // no step lowers the misfit: a is the nearest point
   }
-  if (!std::isfinite(phi)) return kNaN;
-  *P_out = P;
-  return a;
-}
-
-bool CurveEvaluator::nearer_the_branch(const CurveParameters<double>& p, double t, double P, double kappa,
-                                       double a_start) const {
-  double P_near, d, dd, dP;
-  const double a = nearest_radius(p, t, P, kappa, a_start, a_start, &P_near);
-  if (!std::isfinite(a)) return false;
-  curve(p, a, &d, &P_near, &dd, &dP);
-  const double along = kappa * (d - t);
-  return (P_near - P) * (P_near - P) + along * along < P * P;  // P: the sample above the baseline
+  return std::isfinite(phi) ? found() : kNaN;
 }
 
 bool CurveEvaluator::branch_start(const CurveParameters<double>& p, StartKind kind,
@@ -346,9 +336,16 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
       // errors in the displacement its nearest point is searched from there instead.
       const bool clamped = flag == 1 && t < start.delta && !(kappa > 0.0);
       // Below the branch's start the model decides; with errors in the displacement by which of the
-      // baseline and the branch lies nearer (a measured delta just short of it is noise).
-      const bool off = flag == 0 || (flag < 0 && t < start.delta &&
-                                     !(kappa > 0.0 && nearer_the_branch(p, t, data_.P[i] - P0, kappa, start.a)));
+      // baseline and the branch lies nearer (a measured delta just short of it is noise). The branch's
+      // nearest point found for that serves the sample's residual if it is in contact.
+      bool off = flag == 0 || (flag < 0 && t < start.delta);
+      double a_near = kNaN, P_near = 0.0;
+      if (off && flag < 0 && kappa > 0.0) {
+        const double above = data_.P[i] - P0;  // the sample's distance to the baseline [N]
+        double misfit = kInf;
+        a_near = nearest_radius(p, t, above, kappa, start.a, start.a, &P_near, &misfit);
+        off = !(std::isfinite(a_near) && misfit < above * above);
+      }
       if (off) {  // not in contact: the baseline only
         detached_[i] = retract ? 1 : 0;
         P_fit_[i] = P0;
@@ -370,10 +367,14 @@ bool CurveEvaluator::sweep(const double* x, bool jacobian) {
       } else if (kappa > 0.0) {
         // Seeded at the radius of the sample's delta; `lo` keeps following those radii, which grow
         // with delta where the nearest points need not.
-        double seed = start.a;
-        if (t >= start.delta) seed = lo = solve_radius(p, t, lo, std::max(a_cache_[i], lo));
-        if (!std::isfinite(seed)) return false;
-        a = nearest_radius(p, t, data_.P[i] - P0, kappa, start.a, seed, &P);
+        if (std::isfinite(a_near)) {
+          a = a_near, P = P_near;
+        } else {
+          double seed = start.a;
+          if (t >= start.delta) seed = lo = solve_radius(p, t, lo, std::max(a_cache_[i], lo));
+          if (!std::isfinite(seed)) return false;
+          a = nearest_radius(p, t, data_.P[i] - P0, kappa, start.a, seed, &P);
+        }
         // Held in contact short of the branch's end and nearest to the end itself: beyond the branch,
         // marked so that the held reading trims it (retract_reading.cpp); its residual stays the
         // distance to the end (a force-only penalty there let a free P0 trade with delta0).

@@ -140,12 +140,10 @@ class CurveEvaluator final : public ResidualStore {
                       double* P = nullptr) const;
   /// Errors in the displacement: the radius a >= lo whose point (delta(a), P(a)) is nearest the
   /// sample (target_delta, target_P) in the metric (P, kappa delta) [N], by safeguarded Gauss-Newton
-  /// from `guess` (the radius at the sample's delta); sets *P there. NaN on failure.
+  /// from `guess` (the radius at the sample's delta); sets *P there and, if given, *misfit to the
+  /// squared distance [N^2]. NaN on failure.
   double nearest_radius(const CurveParameters<double>& p, double target_delta, double target_P, double kappa,
-                        double lo, double guess, double* P) const;
-  /// Errors in the displacement: whether a sample at t (delta - delta0) before the branch's start,
-  /// P above the baseline [N], lies nearer the branch (from radius a_start on) than the baseline.
-  bool nearer_the_branch(const CurveParameters<double>& p, double t, double P, double kappa, double a_start) const;
+                        double lo, double guess, double* P, double* misfit = nullptr) const;
   /// delta(a), P(a) and their a-derivatives (double).
   void curve(const CurveParameters<double>& p, double a, double* delta, double* P, double* ddelta,
              double* dP) const;
