@@ -28,3 +28,4 @@
 #include "layerjkr/text.hpp"
 #include "layerjkr/types.hpp"
 #include "layerjkr/viscoelastic.hpp"
+#include "layerjkr/viscoelastic_adhesion.hpp"

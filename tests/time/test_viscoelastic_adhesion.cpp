@@ -1,0 +1,216 @@
+// Adhesion on a relaxing half-space (viscoelastic_adhesion.hpp, theory.md s.8a) against independent
+// oracles: Maugis' closed form at every step where the law does not relax, and where the history is
+// much faster or much slower than the law (the elastic contact at the instantaneous or the relaxed
+// modulus); Ting's non-adhesive response (hereditary_response, written differently) as w -> 0;
+// convergence under refinement of the grid and of the step; the toughening a relaxing law gives a
+// retract, between its bounds; bad input.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "layerjkr/error.hpp"
+#include "layerjkr/maugis_dugdale.hpp"
+#include "layerjkr/profile.hpp"
+#include "layerjkr/viscoelastic.hpp"
+#include "layerjkr/viscoelastic_adhesion.hpp"
+
+using namespace layerjkr;
+
+namespace {
+
+// A 10 um bead on a 10 kPa gel with w = 10 uJ/m^2; sigma0 from Maugis' lambda.
+constexpr double kR = 1e-5, kE = 1e4, kW = 1e-5, kPi = 3.14159265358979323846;
+constexpr double kScaleP = kPi * kW * kR;  // JKR's pull-off is 1.5 of this
+double sigma_for(double lambda, double E = kE) {
+  return lambda / (2.0 * std::cbrt(kR / (kPi * kW * std::pow(4.0 * E / 3.0, 2))));
+}
+
+// From snap-in at delta = 0 to d_max in time T, then back at the same speed to d_end.
+struct Triangle {
+  std::vector<double> t, d;
+  Triangle(double T, double d_max, double d_end, int per_leg) {
+    const double v = d_max / T, T2 = T + (d_max - d_end) / v;
+    const int n2 = static_cast<int>(per_leg * (T2 - T) / T);
+    for (int i = 0; i <= per_leg; ++i) t.push_back(T * i / per_leg), d.push_back(v * t.back());
+    for (int i = 1; i <= n2; ++i) t.push_back(T + (T2 - T) * i / n2), d.push_back(d_max - v * (t.back() - T));
+  }
+};
+
+// The largest difference, over the samples in contact, between the stepper's (delta, P) and
+// Maugis' elastic solution at modulus E and the stepper's own contact radius: in delta over d_max,
+// in P over pi w R.
+struct Misfit {
+  double delta = 0.0, P = 0.0;
+};
+Misfit against_maugis(const RelaxingDugdaleResponse& r, const Triangle& h, double E, double sigma0, std::size_t from) {
+  Misfit m;
+  const double d_max = *std::max_element(h.d.begin(), h.d.end());
+  for (std::size_t i = from; i < r.separated_at; ++i) {
+    const auto md = maugis_dugdale_half_space(kR, E, kW, sigma0, r.a[i]);
+    m.delta = std::max(m.delta, std::abs(md.delta - h.d[i]) / d_max);
+    m.P = std::max(m.P, std::abs(md.P - r.P[i]) / kScaleP);
+  }
+  return m;
+}
+
+double lowest(const std::vector<double>& P) { return *std::min_element(P.begin(), P.end()); }
+
+}  // namespace
+
+TEST_CASE("A law that does not relax gives Maugis' solution at every step, to the fixed-grips jump",
+          "[viscoelastic_adhesion]") {
+  const auto p = make_paraboloid(kR);
+  for (double lambda : {2.0, 5.0, 20.0}) {
+    const double s0 = sigma_for(lambda);
+    const Triangle h(1.0, 1e-6, -2e-7, 400);
+    const auto r = relaxing_dugdale_response(*p, kE, RelaxationLaw{}, kW, s0, h.t, h.d);
+    const Misfit m = against_maugis(r, h, kE, s0, 0);
+    std::printf("elastic lambda %g: delta %.2e of d_max, P %.2e pi w R\n", lambda, m.delta, m.P);
+    CHECK(m.delta < 1e-5);
+    CHECK(m.P < 1e-4);
+    // The branch ends at Maugis' fixed-grips point: the contact is lost within one sample of it.
+    const auto fg = maugis_dugdale_fixed_grips(kR, kE, kW, s0);
+    REQUIRE(fg);
+    REQUIRE(r.separated_at < h.t.size());
+    const double step = h.d[1] - h.d[0];
+    CHECK(h.d[r.separated_at - 1] >= fg->delta - 1e-3 * step);
+    CHECK(h.d[r.separated_at] <= fg->delta + 1e-3 * step);
+    // The lowest force before the jump is the load-control pull-off, to the sampling's resolution.
+    CHECK(lowest(r.P) / kScaleP == Approx(maugis_dugdale_pull_off(kR, kE, kW, s0).P / kScaleP).epsilon(2e-3));
+  }
+}
+
+TEST_CASE("Much faster than the law gives the instantaneous modulus, much slower the relaxed one",
+          "[viscoelastic_adhesion]") {
+  const auto p = make_paraboloid(kR);
+  const double s0 = sigma_for(5.0), relaxed = 0.3;
+  const Triangle h(1.0, 1e-6, -4e-7, 400);
+  const auto fast = relaxing_dugdale_response(*p, kE, RelaxationLaw::standard_linear_solid(relaxed, 1e7), kW, s0, h.t, h.d);
+  const Misfit mf = against_maugis(fast, h, kE, s0, 0);
+  // tau 1e7 s against a 2 s history: the modulus moves by 2e-7 of itself.
+  std::printf("fast: delta %.2e, P %.2e\n", mf.delta, mf.P);
+  CHECK(mf.delta < 1e-5);
+  CHECK(mf.P < 1e-4);
+  // Much slower: after the snap-in (at the instantaneous modulus) the contact relaxes within a few
+  // tau and then follows the relaxed modulus - up to the viscous stress at the crack's tip, first
+  // order in tau over the time the crack takes to cross its zone (measured: 1.1e-3 of d_max and
+  // 0.08 pi w R at tau = 1e-5 s, 1e-4 times that at 1e-9 s).
+  Misfit slow[2];
+  for (int k = 0; k < 2; ++k) {
+    const double tau = k == 0 ? 1e-9 : 1e-8;
+    const auto r = relaxing_dugdale_response(*p, kE, RelaxationLaw::standard_linear_solid(relaxed, tau), kW, s0, h.t, h.d);
+    slow[k] = against_maugis(r, h, relaxed * kE, s0, 1);
+    std::printf("slow, tau %g s: delta %.2e, P %.2e\n", tau, slow[k].delta, slow[k].P);
+  }
+  CHECK(slow[0].delta < 3e-7);
+  CHECK(slow[0].P < 2e-5);
+  CHECK(slow[1].P / slow[0].P == Approx(10.0).epsilon(0.3));
+}
+
+TEST_CASE("The step and the grid converge at second order, and the automatic step error estimate holds",
+          "[viscoelastic_adhesion]") {
+  const auto p = make_paraboloid(kR);
+  const double s0 = sigma_for(5.0);
+  const Triangle h(1.0, 1e-6, -4e-7, 200);
+  const auto law = RelaxationLaw::standard_linear_solid(0.3, 0.01);
+  auto run = [&](int grid, int sub) {
+    RelaxingDugdaleOptions o;
+    o.grid_points = grid, o.substeps = sub;
+    return relaxing_dugdale_response(*p, kE, law, kW, s0, h.t, h.d, o);
+  };
+  auto max_diff = [](const RelaxingDugdaleResponse& x, const RelaxingDugdaleResponse& y) {
+    double e = 0.0;
+    for (std::size_t i = 0; i < std::min(x.separated_at, y.separated_at); ++i) e = std::max(e, std::abs(x.P[i] - y.P[i]));
+    return e;
+  };
+  const auto g_ref = run(16001, 4);
+  const double e_g1 = max_diff(run(2001, 4), g_ref), e_g2 = max_diff(run(4001, 4), g_ref);
+  std::printf("grid: %.3e %.3e pi w R, ratio %.2f\n", e_g1 / kScaleP, e_g2 / kScaleP, e_g1 / e_g2);
+  CHECK(e_g1 / e_g2 > 3.0);
+  const auto t_ref = run(4001, 32);
+  const double e_t1 = max_diff(run(4001, 2), t_ref), e_t2 = max_diff(run(4001, 4), t_ref);
+  std::printf("step: %.3e %.3e pi w R, ratio %.2f\n", e_t1 / kScaleP, e_t2 / kScaleP, e_t1 / e_t2);
+  CHECK(e_t1 / e_t2 > 3.0);
+  const auto automatic = relaxing_dugdale_response(*p, kE, law, kW, s0, h.t, h.d);
+  const double actual = max_diff(automatic, t_ref);
+  std::printf("automatic: %d substeps, estimate %.3e, actual %.3e pi w R\n", automatic.substeps,
+              automatic.force_error / kScaleP, actual / kScaleP);
+  CHECK(automatic.converged);
+  CHECK(automatic.separated_at == t_ref.separated_at);
+  CHECK(actual < 2.0 * automatic.force_error);
+  CHECK(automatic.force_error <= 1e-3 * std::abs(*std::max_element(automatic.P.begin(), automatic.P.end())));
+}
+
+TEST_CASE("A relaxing law toughens the retract and lowers the approach", "[viscoelastic_adhesion]") {
+  const auto p = make_paraboloid(kR);
+  const double s0 = sigma_for(5.0), relaxed = 0.3;
+  const Triangle h(1.0, 1e-6, -4e-7, 200);
+  const auto r = relaxing_dugdale_response(*p, kE, RelaxationLaw::standard_linear_solid(relaxed, 0.1), kW, s0, h.t, h.d);
+  const double fast_pull = maugis_dugdale_pull_off(kR, kE, kW, s0).P, slow_pull = maugis_dugdale_pull_off(kR, relaxed * kE, kW, s0).P;
+  std::printf("pull-off %.3f pi w R; elastic at E %.3f, at E_inf %.3f\n", lowest(r.P) / kScaleP, fast_pull / kScaleP,
+              slow_pull / kScaleP);
+  // The crack opens against a tip that has not relaxed: the pull-off is deeper than either elastic one.
+  CHECK(lowest(r.P) < 2.0 * std::min(fast_pull, slow_pull));
+  // Loading: below the instantaneous elastic force, above the relaxed one (at the same indentation).
+  for (std::size_t i = 20; i <= 200; i += 20) {
+    const double d = h.d[i];
+    auto elastic_force = [&](double E) {  // Maugis' force at indentation d: bisection on its radius
+      double lo = 1e-8, hi = 1e-5;
+      for (int k = 0; k < 200; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (maugis_dugdale_half_space(kR, E, kW, s0, mid).delta < d ? lo : hi) = mid;
+      }
+      return maugis_dugdale_half_space(kR, E, kW, s0, lo).P;
+    };
+    CHECK(r.P[i] < elastic_force(kE));
+    CHECK(r.P[i] > elastic_force(relaxed * kE));
+  }
+}
+
+TEST_CASE("As w -> 0 the response is Ting's non-adhesive one, computed differently", "[viscoelastic_adhesion]") {
+  const auto p = make_paraboloid(kR);
+  const double w = 1e-10, s0 = 1e3;  // h0 = 1e-13 m
+  const auto law = RelaxationLaw::standard_linear_solid(0.3, 0.2);
+  const Triangle h(1.0, 1e-6, 0.0, 400);
+  std::vector<double> t = h.t, d = h.d;
+  const auto r = relaxing_dugdale_response(*p, kE, law, w, s0, t, d);
+  std::vector<double> tt{-0.01}, dd{-1e-8};
+  tt.insert(tt.end(), t.begin(), t.end()), dd.insert(dd.end(), d.begin(), d.end());
+  const auto ting = hereditary_response(tt, dd, [&](double x) { return 4.0 / 3.0 * kE * std::sqrt(kR) * std::pow(x, 1.5); }, law);
+  const double P_max = *std::max_element(ting.P.begin(), ting.P.end());
+  double e = 0.0;
+  for (std::size_t i = 0; i < t.size() && i < r.separated_at; ++i)
+    if (ting.P[i + 1] > 0.02 * P_max) e = std::max(e, std::abs(r.P[i] - ting.P[i + 1]) / P_max);
+  std::printf("against Ting: %.2e of the largest force\n", e);
+  CHECK(e < 2e-4);
+}
+
+TEST_CASE("Bad input is refused by name", "[viscoelastic_adhesion]") {
+  const auto p = make_paraboloid(kR);
+  const double s0 = sigma_for(5.0);
+  const Triangle h(1.0, 1e-6, -4e-7, 50);
+  const auto sls = RelaxationLaw::standard_linear_solid(0.3, 0.1);
+  CHECK_THROWS_AS(relaxing_dugdale_response(*p, kE, RelaxationLaw::power_law(0.2, 1.0), kW, s0, h.t, h.d), DomainError);
+  CHECK_THROWS_AS(relaxing_dugdale_response(*p, -kE, sls, kW, s0, h.t, h.d), DomainError);
+  CHECK_THROWS_AS(relaxing_dugdale_response(*p, kE, sls, 0.0, s0, h.t, h.d), DomainError);
+  CHECK_THROWS_AS(relaxing_dugdale_response(*p, kE, sls, kW, std::nan(""), h.t, h.d), DomainError);
+  std::vector<double> t = h.t;
+  t[3] = t[2];
+  CHECK_THROWS_AS(relaxing_dugdale_response(*p, kE, sls, kW, s0, t, h.d), InputError);
+  std::vector<double> far = h.d;
+  for (double& x : far) x -= 1e-6;  // starts a micrometre above the surface: nothing snaps in
+  CHECK_THROWS_AS(relaxing_dugdale_response(*p, kE, sls, kW, s0, h.t, far), InputError);
+  Triangle twice(1.0, 1e-6, -4e-7, 50);
+  for (int i = 0; i < 20; ++i) twice.t.push_back(twice.t.back() + 0.02), twice.d.push_back(twice.d.back() + 1e-7);
+  CHECK_THROWS_WITH(relaxing_dugdale_response(*p, kE, sls, kW, s0, twice.t, twice.d),
+                    Catch::Contains("forming it again is not modelled"));
+  RelaxingDugdaleOptions o;
+  o.grid_points = 10;
+  CHECK_THROWS_AS(relaxing_dugdale_response(*p, kE, sls, kW, s0, h.t, h.d, o), DomainError);
+  o = {};
+  o.tolerance = 0.0;
+  CHECK_THROWS_AS(relaxing_dugdale_response(*p, kE, sls, kW, s0, h.t, h.d, o), DomainError);
+}
