@@ -3,6 +3,7 @@
 #include "layerjkr/simulate.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -12,6 +13,7 @@
 #include "layerjkr/contact.hpp"
 #include "layerjkr/error.hpp"
 #include "layerjkr/viscoelastic.hpp"
+#include "layerjkr/viscoelastic_adhesion.hpp"
 
 namespace layerjkr {
 
@@ -168,6 +170,34 @@ std::vector<Answer> relaxing(const std::vector<Sample>& ramp, const AdhesiveSolu
   return out;
 }
 
+// Adhesion on a relaxing half-space: the Maugis-Dugdale contact stepped in time
+// (viscoelastic_adhesion.hpp) from the snap-in at the first approach sample at or past d_snap;
+// free before it and once the contact is lost (*lost then true).
+std::vector<Answer> relaxing_adhesive(const std::vector<Sample>& ramp, const Scene& scene, double d_snap,
+                                      bool with_radius, std::string* note, bool* lost) {
+  std::size_t first = 0;
+  while (first < ramp.size() && !(ramp[first].segment == 0 && ramp[first].delta >= d_snap)) ++first;
+  std::vector<double> t, d;
+  for (std::size_t i = first; i < ramp.size(); ++i) t.push_back(ramp[i].t), d.push_back(ramp[i].delta);
+  const double nu = scene.medium.nu, E_star = scene.medium.E / (1.0 - nu * nu);
+  const RelaxingDugdaleResponse r = relaxing_dugdale_response(*scene.profile, E_star, scene.medium.relaxation, scene.w,
+                                                              scene.adhesion.dugdale_stress(scene.w), t, d);
+  std::vector<Answer> out;
+  double peak = 0.0;
+  for (std::size_t i = 0; i < ramp.size(); ++i) {
+    const bool in = i >= first && i - first < r.separated_at;
+    out.push_back({in ? r.P[i - first] : 0.0, in && with_radius ? r.a[i - first] : 0.0, ramp[i].delta});
+    peak = std::max(peak, std::abs(out.back().P));
+  }
+  *lost = r.separated_at < t.size();
+  char figures[160];
+  std::snprintf(figures, sizeof figures, "%d steps per sample, %d points over %.3g m): estimated force error %.2g N (%.2g of the peak)",
+                r.substeps, r.grid_points, r.extent, r.force_error, peak > 0.0 ? r.force_error / peak : 0.0);
+  *note = "adhesion on the relaxing half-space is the Maugis-Dugdale contact stepped in time (" + std::string(figures) +
+          (r.converged ? std::string() : std::string(", above the 1e-3 target: the step reached its bound"));
+  return out;
+}
+
 // The retract's control value at the deepest point: the indenter, or a cantilever's base.
 double control_at_turn(const SimulationOptions& o, double d_max, double P_max) {
   return o.control == RetractControl::cantilever ? d_max + P_max / o.cantilever_stiffness : d_max;
@@ -232,10 +262,15 @@ CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
     throw InputError(std::string("simulate: ") + (relaxes ? "a relaxing medium (" + scene.medium.relaxation.describe() + ")"
                                                            : "crack kinetics (" + scene.adhesion.kinetics->describe() + ")") +
                      " answers in time: give the indenter's speed [m/s] (--speed)");
-  if (relaxes && scene.w > 0.0)
-    throw InputError("simulate: adhesion (w = " + format_double(scene.w) + " J/m^2) on a relaxing medium is not modelled: "
-                     "Lee-Radok and Ting describe the contact without adhesion; set w = 0, or fit rate-dependent "
-                     "adhesion with an elastic medium and adhesion.kinetics");
+  const bool adhesive_relaxing = relaxes && scene.w > 0.0;
+  if (adhesive_relaxing && scene.medium.type != MediumType::half_space)
+    throw InputError("simulate: adhesion (w = " + format_double(scene.w) + " J/m^2) on a relaxing " +
+                     std::string(to_string(scene.medium.type)) + " is not modelled; it is on the half-space "
+                     "(medium.type half_space, with adhesion.model maugis_dugdale)");
+  if (adhesive_relaxing && scene.adhesion.model != AdhesionModel::maugis_dugdale)
+    throw InputError("simulate: adhesion (w = " + format_double(scene.w) + " J/m^2) on a relaxing medium needs its "
+                     "adhesive zone: set adhesion.model = maugis_dugdale with sigma0 or z0 (a sharp JKR edge never "
+                     "relaxes, so its toughening would not depend on the speed)");
   if (o.control == RetractControl::cantilever && !kinetics)
     throw InputError("simulate: a cantilever-controlled retract is modelled with crack kinetics (adhesion.kinetics) only; "
                      "the other scenes follow the fixed-grips branch to the pull-off");
@@ -258,9 +293,22 @@ CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
   const double lo = relaxes ? std::min(d_contact - o.free_fraction * o.max_indentation, 0.0)
                             : d_contact - o.free_fraction * o.max_indentation;
   const double lo_r = d_release - o.free_fraction * (d_max - d_release);
-  const std::vector<Sample> samples = ramp(lo, d_max, lo_r, o);
+  std::vector<Sample> samples = ramp(lo, d_max, lo_r, o);
   std::string accuracy;
-  const std::vector<Answer> answers = relaxes    ? relaxing(samples, sol, scene.medium.relaxation, o.with_radius, &accuracy)
+  std::vector<Answer> adhesive;
+  if (adhesive_relaxing) {
+    // A relaxing contact may hold on past the elastic pull-off: the retract is extended (the span
+    // below d_max doubled, up to 4 times) until the contact is lost within it.
+    bool lost = false;
+    for (int k = 0;; ++k) {
+      adhesive = relaxing_adhesive(samples, scene, d_contact, o.with_radius, &accuracy, &lost);
+      if (lost || k == 4) break;
+      samples = ramp(lo, d_max, d_max - 2.0 * (d_max - samples.back().delta), o);
+    }
+    if (!lost) accuracy += "; the contact holds to the retract's end";
+  }
+  const std::vector<Answer> answers = adhesive_relaxing ? adhesive
+                                      : relaxes    ? relaxing(samples, sol, scene.medium.relaxation, o.with_radius, &accuracy)
                                       : kinetics ? kinetic(samples, sol, scene, o, d_contact, d_max, o.with_radius)
                                                  : equilibrium(samples, sol, d_contact, d_release, o.with_radius);
 

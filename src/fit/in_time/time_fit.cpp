@@ -96,7 +96,8 @@ void check_request(const CurveData& curve, const Scene& scene, const FitOptions&
     else if ((q == FitParameter::v_star || q == FitParameter::n) && relaxes)
       no = "belongs to crack kinetics (adhesion.kinetics)";
     else if ((q == FitParameter::w || q == FitParameter::sigma0 || q == FitParameter::R) && relaxes)
-      no = "is not fitted on a relaxing medium (no adhesion there; R: the indenter is fixed in time fits)";
+      no = "is not fitted on a relaxing medium (adhesion there is simulated, Maugis-Dugdale stepped in time, but not "
+           "fitted yet; R: the indenter is fixed in time fits)";
     else if (q == FitParameter::sigma0 || q == FitParameter::R)
       no = "is not fitted with crack kinetics";
     if (!no.empty())
@@ -218,6 +219,10 @@ FitSummary fit_in_time(const CurveData& curve, const Scene& scene, const FitOpti
     map.drag_scale = force_span / fastest;  // x = 1: a drag force the size of the force span
   }
   out.warnings.insert(out.warnings.end(), fixed.warnings.begin(), fixed.warnings.end());
+  if (relaxes && scene.w > 0.0)
+    out.warnings.push_back("the scene's w = " + format_double(scene.w) + " J/m^2 is not in this fit: a fit on a relaxing "
+                           "medium models no adhesion yet (simulate models it on the half-space); a retract below the "
+                           "baseline is then misfitted, as the residual diagnosis reports");
   out.notices.insert(out.notices.end(), curve.notes.begin(), curve.notes.end());
   out.notices.insert(out.notices.end(), resolved.notices.begin(), resolved.notices.end());
   std::vector<double> x(options.free.size(), 0.0);
