@@ -250,7 +250,8 @@ bool FitRun::resolve_in_place() {
 }
 
 // In acquisition order, the retract samples from the first one the model has let go of up to
-// the first that is back within exclusion_sigmas x noise of the baseline P0 are not JKR.
+// the first that is back within exclusion_sigmas x noise of the baseline are not JKR. The baseline
+// is what the model predicts there: P0, plus the lever's drag b v where a fit in time frees it.
 // Refits without them until the set is stable (at most 4 passes); the baseline then comes from
 // the detached samples beyond.
 std::vector<bool> FitRun::exclude_non_jkr() {
@@ -264,11 +265,13 @@ std::vector<bool> FitRun::exclude_non_jkr() {
   for (int pass = 0; pass < 4; ++pass) {
     if (!ev_.evaluate(x_.data(), false)) break;
     const double P0 = map_.is_free(FitParameter::P0) ? map_.value(FitParameter::P0, x_.data()) : 0.0;
+    const double drag = map_.drag(x_.data());
     std::vector<bool> next(n, false);
     std::size_t first = n;
     for (std::size_t i = 0; i < n; ++i) {
       if (!data_.retract[i] || !ev_.detached()[i]) continue;
-      if (std::abs(data_.P[i] - P0) <= band) break;  // back at the baseline: the rest is baseline
+      const double baseline = P0 + (data_.velocity.empty() ? 0.0 : drag * data_.velocity[i]);
+      if (std::abs(data_.P[i] - baseline) <= band) break;  // back at the baseline: the rest is baseline
       next[i] = true;
       first = std::min(first, i);
     }
