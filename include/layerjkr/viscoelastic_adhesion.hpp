@@ -73,10 +73,11 @@ struct RelaxingDugdaleResponse {
 /// medium) at times t[i] [s] (strictly increasing) into a half-space of plane-strain modulus E_star
 /// [Pa] (instantaneous: E*(t) = E_star psi(t)) with work of adhesion w [J/m^2] and Dugdale stress
 /// sigma0 [Pa]. The history starts with the contact snapping in at delta[0]: the instantaneous
-/// elastic Maugis-Dugdale contact there (its largest radius). The law must have psi(0+) = 1
+/// elastic Maugis-Dugdale contact there (its largest radius): simulate and the fit snap it in at
+/// dugdale_zero_load_indentation at the instantaneous modulus. The law must have psi(0+) = 1
 /// (elastic, Prony, fractional); a power law's infinite instantaneous modulus cannot snap in and
-/// is refused. Once lost, the contact is not formed again: a history that comes back deeper than
-/// where it let go is refused.
+/// is refused. Once lost, the contact is not formed again: a history that comes back afterwards
+/// by more than 2 % of its span (delta's largest value minus delta[0]) is refused (less is noise).
 /// Throws DomainError for invalid values (named, with the valid range), InputError for vectors of
 /// different lengths, fewer than 2 samples, times that do not increase, no contact at delta[0] or a
 /// re-approach; NumericalError when the adhesive zone outgrows the grid.
@@ -84,5 +85,11 @@ RelaxingDugdaleResponse relaxing_dugdale_response(const Profile& profile, double
                                                   double w, double sigma0, const std::vector<double>& t,
                                                   const std::vector<double>& delta,
                                                   const RelaxingDugdaleOptions& options = {});
+
+/// The indentation [m] at which the elastic Maugis-Dugdale contact of `profile` (its largest
+/// radius) on a half-space of plane-strain modulus E_star [Pa], with w [J/m^2] and sigma0 [Pa],
+/// carries no load: Maugis' zero-load point (for a paraboloid, maugis_dugdale_half_space's to the
+/// root solver's 48 bits). Throws DomainError for a value that is not finite and > 0.
+double dugdale_zero_load_indentation(const Profile& profile, double E_star, double w, double sigma0);
 
 }  // namespace layerjkr

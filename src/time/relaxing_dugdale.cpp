@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/tools/roots.hpp>
@@ -43,14 +44,22 @@ class ElasticDugdale {
   double mismatch(double a, double delta) const {
     const double c = zone(a, delta);
     if (c == a) return -1.0;
+    if (!(c < p_.max_radius())) return std::numeric_limits<double>::infinity();
     const double lo = std::atan2(a, root_gap(c, a));
     const double I = boost::math::quadrature::gauss<double, 30>::integrate(
         [&](double th) { return F(c * std::sin(th)) - delta; }, lo, kPi / 2.0);
     return ((2.0 / kPi) * I - 4.0 * s0_ * (c - a) / (kPi * kPi * kappa_)) / h0_ - 1.0;
   }
+  // Maugis' force at contact radius a: 2 E* (delta a - int_0^a F) minus the annulus's tension.
+  double force(double a, double delta) const {
+    const double c = zone(a, delta), s = root_gap(c, a);
+    const double I = boost::math::quadrature::gauss<double, 30>::integrate([&](double x) { return F(x); }, 0.0, a);
+    return 2.0 * kPi * kappa_ * (delta * a - I) - 2.0 * s0_ * (c * c * std::atan2(s, a) - a * s);
+  }
   // The largest root over a geometric scan (0 if none).
   double largest_root(double delta, double a_lo, double a_hi) const {
     const int n = 400;
+    a_hi = std::min(a_hi, 0.99 * p_.max_radius());
     double best = 0.0, prev_a = a_lo, prev = mismatch(a_lo, delta);
     for (int k = 1; k <= n; ++k) {
       const double a = a_lo * std::pow(a_hi / a_lo, double(k) / n), m = mismatch(a, delta);
@@ -77,7 +86,7 @@ class DugdaleStepper {
   DugdaleStepper(const Profile& p, double E_star, const detail::RelaxationKernel<double>& K, double sigma0, double h0,
                  double extent, int n)
       : p_(p), Ek_(E_star / kPi), K_(K), s0_(sigma0), h0_(h0), dx_(extent / (n - 1)), x_(n), F_(n), D_(n, 0.0),
-        Y_(K.c.size() * n, 0.0), r_(n), gh_(n) {
+        Y_(K.c.size() * n, 0.0), r_(n, 0.0), gh_(n, 0.0) {
     for (int j = 0; j < n; ++j) x_[j] = j * dx_, F_[j] = x_[j] * p.sneddon(x_[j]).I0;
   }
 
@@ -92,11 +101,13 @@ class DugdaleStepper {
       psi_bar += K_.c[m] * gain_[m];
     }
     kappa_ = Ek_ * psi_bar;
-    for (std::size_t j = 0; j < n; ++j) {
+    const double inv_kappa = 1.0 / kappa_;
+    // Beyond the reach the points have never moved: D, g and r stay 0 there.
+    for (std::size_t j = 0; j < reach_; ++j) {
       double h = 0.0;
       for (std::size_t m = 0; m < M; ++m) h += K_.c[m] * decay_[m] * Y_[m * n + j];
       gh_[j] = Ek_ * h;
-      r_[j] = D_[j] - gh_[j] / kappa_;  // q = r + F - delta
+      r_[j] = D_[j] - gh_[j] * inv_kappa;  // q = r + F - delta
     }
   }
 
@@ -141,7 +152,8 @@ class DugdaleStepper {
   void commit(double a) {
     const double c = zone(a);
     const std::size_t M = K_.c.size(), n = x_.size();
-    for (std::size_t j = 0; j < n; ++j) {
+    reach_ = std::min(n, std::max(reach_, static_cast<std::size_t>(c / dx_) + 2));
+    for (std::size_t j = 0; j < reach_; ++j) {
       double D = 0.0;
       if (x_[j] < a)
         D = delta_ - F_[j];
@@ -163,25 +175,28 @@ class DugdaleStepper {
   double s0_, h0_, dx_;
   std::vector<double> x_, F_, D_, Y_, r_, gh_, decay_, gain_;
   double kappa_ = 0.0, delta_ = 0.0;
+  std::size_t reach_ = 0;  // the points the zone has ever reached (and two more)
 };
 
-// The root of the stepper's mismatch nearest a_prev, by brackets growing geometrically on both
-// sides; 0 when there is none in (a_floor, the grid's reach).
-double nearest_root(const DugdaleStepper& s, double a_prev, double a_floor) {
-  const double f0 = s.mismatch(a_prev);
-  if (f0 == 0.0) return a_prev;
-  double lo_a = a_prev, lo_f = f0, hi_a = a_prev, hi_f = f0;
+// The root of the stepper's mismatch nearest a_prev + da (da: the last step's change, the guess),
+// by brackets growing geometrically on both sides from there; 0 when there is none in (a_floor,
+// the grid's reach).
+double nearest_root(const DugdaleStepper& s, double a_prev, double a_floor, double da = 0.0) {
+  const double centre = a_prev + da > a_floor ? a_prev + da : a_prev;
+  const double f0 = s.mismatch(centre);
+  if (f0 == 0.0) return centre;
+  double lo_a = centre, lo_f = f0, hi_a = centre, hi_f = f0;
   bool lo_open = true, hi_open = true;
   auto solve = [&](double x1, double f1, double x2, double f2) {
     std::uintmax_t it = 100;
     const auto r = boost::math::tools::toms748_solve([&](double x) { return s.mismatch(x); }, std::min(x1, x2),
                                                      std::max(x1, x2), x1 < x2 ? f1 : f2, x1 < x2 ? f2 : f1,
-                                                     boost::math::tools::eps_tolerance<double>(48), it);
+                                                     boost::math::tools::eps_tolerance<double>(44), it);
     return 0.5 * (r.first + r.second);
   };
-  for (double step = 1e-5 * a_prev; lo_open || hi_open; step *= 2.0) {
+  for (double step = std::max(1e-5 * a_prev, 0.25 * std::abs(da)); lo_open || hi_open; step *= 2.0) {
     if (hi_open) {
-      const double a = a_prev + step, f = s.mismatch(a);
+      const double a = centre + step, f = s.mismatch(a);
       if (!std::isfinite(f)) {
         hi_open = false;
       } else {
@@ -190,7 +205,7 @@ double nearest_root(const DugdaleStepper& s, double a_prev, double a_floor) {
       }
     }
     if (lo_open) {
-      const double a = a_prev - step;
+      const double a = centre - step;
       if (a <= a_floor) {
         lo_open = false;
       } else {
@@ -275,7 +290,7 @@ RelaxingDugdaleResponse run_level(const Profile& profile, double E_star, const R
   if (a == 0.0)
     throw InputError("relaxing_dugdale_response: no adhesive contact at delta[0] = " + format_double(delta[0]) +
                      " m (the history must start where the tip snaps in)");
-  double a_max = a;
+  double a_max = a, da = 0.0;
   for (std::size_t i = 0;; ++i) {
     s.commit(a);
     out.a[i] = a, out.c[i] = s.zone(a), out.P[i] = s.force(a);
@@ -283,7 +298,9 @@ RelaxingDugdaleResponse run_level(const Profile& profile, double E_star, const R
     const double dt = (t[i + 1] - t[i]) / substeps;
     for (int k = 1; k <= substeps && a > 0.0; ++k) {
       s.prepare(dt, delta[i] + (delta[i + 1] - delta[i]) * k / substeps);
-      a = nearest_root(s, a, 1e-4 * a_max);
+      const double a_old = a;
+      a = nearest_root(s, a, 1e-4 * a_max, da);
+      da = a > 0.0 ? a - a_old : 0.0;
       if (a > 0.0 && k < substeps) s.commit(a);
     }
     if (a == 0.0) {
@@ -295,11 +312,17 @@ RelaxingDugdaleResponse run_level(const Profile& profile, double E_star, const R
                            format_double(extent) + " m at t = " + format_double(t[i + 1]) + " s (give a larger extent)");
     a_max = std::max(a_max, a);
   }
-  for (std::size_t i = out.separated_at; i < n; ++i)
-    if (delta[i] > delta[out.separated_at - 1])
-      throw InputError("relaxing_dugdale_response: the history comes back to delta = " + format_double(delta[i]) +
-                       " m at t = " + format_double(t[i]) + " s after the contact was lost at delta = " +
-                       format_double(delta[out.separated_at - 1]) + " m; forming it again is not modelled");
+  // Once lost, the contact stays lost while the history withdraws; noise in a measured retract
+  // steps back a little, but a return by more than 2 % of the indentation's span is an approach
+  // that would form the contact again.
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = out.separated_at; i < n; ++i) {
+    lowest = std::min(lowest, delta[i]);
+    if (delta[i] - lowest > 0.02 * (d_max - delta[0]))
+      throw InputError("relaxing_dugdale_response: the history comes back from delta = " + format_double(lowest) +
+                       " to " + format_double(delta[i]) + " m at t = " + format_double(t[i]) +
+                       " s after the contact was lost; forming it again is not modelled");
+  }
   out.substeps = substeps;
   return out;
 }
@@ -327,6 +350,30 @@ RelaxingDugdaleResponse relaxing_dugdale_response(const Profile& profile, double
     if (fine.converged || 2 * s > o.max_substeps) return fine;
     coarse = std::move(fine);
   }
+}
+
+double dugdale_zero_load_indentation(const Profile& profile, double E_star, double w, double sigma0) {
+  const char* fn = "dugdale_zero_load_indentation";
+  for (const auto& [name, v] : {std::pair{"E_star", E_star}, {"w", w}, {"sigma0", sigma0}})
+    if (!(v > 0.0) || !std::isfinite(v)) throw DomainError(fn, name, v, "finite and > 0");
+  const double h0 = w / sigma0, L = profile.length_scale();
+  const ElasticDugdale e(profile, E_star / kPi, sigma0, h0);
+  // The force on the largest contact at delta; NaN where there is none.
+  const auto force = [&](double delta) {
+    const double a = e.largest_root(delta, 1e-6 * L, 1e2 * L);
+    return a > 0.0 ? e.force(a, delta) : std::numeric_limits<double>::quiet_NaN();
+  };
+  // The zero-load contact lies between a tensile and a compressive one: grow the step from 0 both
+  // ways (the adhesive zone's range h0 sets the first).
+  double lo = 0.0, f_lo = force(0.0), hi = 0.0, f_hi = f_lo;
+  for (double step = h0; !(f_lo < 0.0 && f_hi > 0.0); step *= 2.0) {
+    if (step > 1e3 * L) throw NumericalError(std::string(fn) + ": no zero-load contact found");
+    if (!(f_hi > 0.0)) hi = step, f_hi = force(hi);
+    if (!(f_lo < 0.0)) lo = -step, f_lo = force(lo);
+  }
+  std::uintmax_t it = 200;
+  const auto r = boost::math::tools::toms748_solve(force, lo, hi, f_lo, f_hi, boost::math::tools::eps_tolerance<double>(48), it);
+  return 0.5 * (r.first + r.second);
 }
 
 }  // namespace layerjkr

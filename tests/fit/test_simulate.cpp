@@ -154,27 +154,31 @@ TEST_CASE("simulate adhesion on a relaxing half-space: Maugis' curve when fast, 
   CHECK(compared > 300);
   // tau = 0.2 s. The pull-off is deepest where the crack crosses its adhesive zone in about tau:
   // much slower, the tip and the bulk have relaxed (Maugis at E_inf); much faster, neither has (Maugis
-  // at E). Greenwood & Johnson's toughening peaks in between.
+  // at E). Greenwood & Johnson's toughening peaks in between. (At 0.1 nm/s the pull-off is still 3 %
+  // deeper than Maugis' at E_inf: the crack runs fast near the pull-off, and its tip drags.)
   const Scene cell = scene(R"(, "viscoelastic": {"law": "sls", "E_inf": 800, "tau": 0.2})");
   const auto lowest = [](const CurveData& c) { return *std::min_element(c.P.begin(), c.P.end()); };
   const double E_star = 2000.0 / (1.0 - 0.49 * 0.49);
   std::vector<double> pull;
-  for (double v : {1e-10, 1e-7, 1e-3}) {
+  for (double v : {1e-12, 1e-7, 1e-1}) {
     o.speed = v;
     pull.push_back(lowest(simulate_curve(cell, o)));
   }
   const double relaxed = maugis_dugdale_pull_off(5e-6, 0.4 * E_star, 2e-5, 1500.0).P;
   const double glassy = maugis_dugdale_pull_off(5e-6, E_star, 2e-5, 1500.0).P;
-  INFO("pull-off at 1e-10, 1e-7, 1e-3 m/s: " << pull[0] << ", " << pull[1] << ", " << pull[2] << " N; Maugis at E_inf "
+  INFO("pull-off at 1e-12, 1e-7, 0.1 m/s: " << pull[0] << ", " << pull[1] << ", " << pull[2] << " N; Maugis at E_inf "
                                              << relaxed << " N, at E " << glassy << " N");
   CHECK(pull[1] < 1.5 * std::min(pull[0], pull[2]));
-  CHECK(pull[0] / relaxed == Approx(1.0).epsilon(0.02));
-  CHECK(pull[2] / glassy == Approx(1.0).epsilon(0.02));
-  // A fit in time models no adhesion yet: the scene's w is named as left out, not dropped silently.
+  CHECK(pull[0] / relaxed == Approx(1.0).epsilon(1e-3));
+  CHECK(pull[2] / glassy == Approx(1.0).epsilon(1e-3));
+  // A fit in time models this adhesion only with its zone: with a JKR edge the scene's w is named as
+  // left out, not dropped silently.
   o.speed = 1e-6;
   FitOptions f;
   f.free = {FitParameter::E};
-  const FitSummary s = fit(simulate_curve(cell, o), cell, f);
+  Scene sharp = cell;
+  sharp.adhesion.model = AdhesionModel::jkr;
+  const FitSummary s = fit(simulate_curve(cell, o), sharp, f);
   bool named = false;
   for (const std::string& w : s.warnings) named = named || w.find("w = 2e-05 J/m^2 is not in this fit") != std::string::npos;
   CHECK(named);

@@ -11,6 +11,9 @@
 #include <cstdio>
 #include <vector>
 
+#include <boost/math/quadrature/tanh_sinh.hpp>
+#include <boost/math/tools/roots.hpp>
+
 #include "layerjkr/error.hpp"
 #include "layerjkr/maugis_dugdale.hpp"
 #include "layerjkr/profile.hpp"
@@ -186,6 +189,83 @@ TEST_CASE("As w -> 0 the response is Ting's non-adhesive one, computed different
     if (ting.P[i + 1] > 0.02 * P_max) e = std::max(e, std::abs(r.P[i] - ting.P[i + 1]) / P_max);
   std::printf("against Ting: %.2e of the largest force\n", e);
   CHECK(e < 2e-4);
+}
+
+namespace {
+
+// The small-scale limit (theory.md s.8a): a Dugdale zone of length eps crossed in t_c = eps/v by a
+// crack opening at speed v, on a standard linear solid whose normalised creep compliance is J(t) =
+// E C(t) (J(0) = 1, J(inf) = E/E_inf). The zone's end opens to h0 when eps Phi(t_c) = eps0 =
+// pi w E*/(4 sigma0^2), with
+//   Phi(t_c) = int_0^1 (1 - e)^-1/2 int_0^e J(t_c (e - u)) (1/2) (1 - u)^-1/2 du de,
+// and the relaxed far field then releases G_inf = w (E/E_inf) / Phi(t_c). Written without the grid,
+// the step or the contact: quadrature of the steady inner problem only.
+struct TipKinetics {
+  double ratio, tau, eps0;  // E_inf/E, the law's relaxation time [s], the instantaneous zone [m]
+  double creep(double t) const {  // J(t) for psi = r + (1 - r) exp(-t/tau): retardation time tau/r
+    return 1.0 / ratio - (1.0 / ratio - 1.0) * std::exp(-t * ratio / tau);
+  }
+  double Phi(double t_c) const {
+    boost::math::quadrature::tanh_sinh<double> q;
+    return q.integrate([&](double e) {
+      if (e <= 0.0) return 0.0;
+      const double inner = q.integrate([&](double u) { return creep(t_c * (e - u)) * 0.5 / std::sqrt(1.0 - u); }, 0.0, e);
+      return inner / std::sqrt(1.0 - e);
+    }, 0.0, 1.0);
+  }
+  // The zone's length at crack speed v [m/s], and G_inf/w.
+  double zone(double v) const {
+    std::uintmax_t it = 100;
+    const auto r = boost::math::tools::toms748_solve([&](double eps) { return eps * Phi(eps / v) - eps0; }, eps0 * ratio * 0.5,
+                                                     eps0 * 2.0, boost::math::tools::eps_tolerance<double>(40), it);
+    return 0.5 * (r.first + r.second);
+  }
+  double toughening(double v) const { return 1.0 / (ratio * Phi(zone(v) / v)); }
+};
+
+}  // namespace
+
+TEST_CASE("The small-scale limit: the stepped crack follows the kinetics the law and the zone imply",
+          "[viscoelastic_adhesion]") {
+  // Maugis' lambda = 10: the zone is 0.1-0.2 % of the contact radius (the correction to the
+  // small-scale limit is 1.2-2.7 % at lambda = 5, 0.4-0.6 % at 10, 0.1-0.2 % at 20, measured). Two
+  // law times put the tip's crossing time t_c = eps/v from 0.3 to 30 tau: G_inf/w from near 1 (a slow
+  // tip, relaxed) towards E/E_inf = 3.3 (a fast one, glassy).
+  const auto p = make_paraboloid(kR);
+  const double s0 = sigma_for(10.0), ratio = 0.3;
+  const double eps0 = kPi * kW * kE / (4.0 * s0 * s0);  // the API takes E* = kE directly
+  const Triangle h(1.0, 1e-6, -6e-7, 1000);
+  double worst = 0.0, lowest_G = 10.0, highest_G = 0.0;
+  int compared = 0;
+  for (double tau : {3e-5, 3e-3}) {
+    const TipKinetics tip{ratio, tau, eps0};
+    RelaxingDugdaleOptions o;
+    o.grid_points = tau < 1e-4 ? 32001 : 16001;  // the slow tip's zone is 4x shorter: 7 points across it
+    o.substeps = tau < 1e-4 ? 64 : 16;             // >= 60 steps while the tip crosses its zone
+    const auto r = relaxing_dugdale_response(*p, kE, RelaxationLaw::standard_linear_solid(ratio, tau), kW, s0, h.t, h.d, o);
+    const double a_max = *std::max_element(r.a.begin(), r.a.end());
+    const auto speed = [&](std::size_t i) { return (r.a[i - 1] - r.a[i + 1]) / (h.t[i + 1] - h.t[i - 1]); };
+    for (std::size_t i = 1100; i + 41 < r.separated_at; i += 25) {
+      const double v = speed(i);
+      // Steady: the crack's speed moves by less than 10 % over the 80 samples around.
+      if (!(v > 0.0) || r.a[i] < 0.3 * a_max || std::abs(speed(i + 40) - speed(i - 40)) > 0.1 * v) continue;
+      const double eps = r.c[i] - r.a[i];
+      const double G = 2.0 * s0 * s0 * (r.c[i] * r.c[i] - r.a[i] * r.a[i]) / (kPi * r.a[i] * ratio * kE) / kW;
+      const double eps_p = tip.zone(v), G_p = tip.toughening(v);
+      INFO("tau " << tau << " s, sample " << i << ": v " << v << " m/s, t_c/tau " << eps / v / tau << ", eps " << eps
+                  << " m (small-scale " << eps_p << "), G_inf/w " << G << " (" << G_p << ")");
+      CHECK(std::abs(eps / eps_p - 1.0) < 0.015);
+      CHECK(std::abs(G / G_p - 1.0) < 0.015);
+      worst = std::max(worst, std::abs(G / G_p - 1.0));
+      lowest_G = std::min(lowest_G, G), highest_G = std::max(highest_G, G);
+      ++compared;
+    }
+  }
+  std::printf("small-scale kinetics: %d samples, G_inf/w %.2f-%.2f, largest difference %.2e\n", compared, lowest_G,
+              highest_G, worst);
+  CHECK(compared >= 12);
+  CHECK(lowest_G < 1.5);
+  CHECK(highest_G > 2.8);
 }
 
 TEST_CASE("Bad input is refused by name", "[viscoelastic_adhesion]") {
