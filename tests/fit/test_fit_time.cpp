@@ -386,7 +386,7 @@ TEST_CASE("fit in time refuses what it cannot fit, naming why", "[fit][time]") {
   o.free = {FitParameter::E, FitParameter::v_star};
   CHECK_THAT(refused(c, cell, o), Catch::Contains("v_star belongs to crack kinetics"));
   o.free = {FitParameter::E, FitParameter::w};
-  CHECK_THAT(refused(c, cell, o), Catch::Contains("not fitted on a relaxing medium"));
+  CHECK_THAT(refused(c, cell, o), Catch::Contains("is fitted on a relaxing medium where the scene models its adhesion"));
   o = f;
   o.contact_point = ContactPointMethod::rov;
   CHECK_THAT(refused(c, cell, o), Catch::Contains("no contact-point method"));

@@ -194,8 +194,13 @@ JointFitSummary fit_joint(const std::vector<CurveData>& curves, const Scene& sce
                                           static_cast<std::size_t>(std::find(own.begin(), own.end(), q) - own.begin())
                                     : pos);
     }
-    p.ev = relaxes ? std::unique_ptr<ResidualModel>(new detail::HereditaryEvaluator(*p.model, p.map, p.data, scene.medium.relaxation))
-                   : std::unique_ptr<ResidualModel>(new detail::KineticEvaluator(*p.model, p.map, p.data));
+    if (detail::relaxing_adhesion(scene))
+      p.ev = std::make_unique<detail::RelaxingAdhesionEvaluator>(*scene.profile, scene.medium.nu, p.map, p.data,
+                                                                  scene.medium.relaxation);
+    else if (relaxes)
+      p.ev = std::make_unique<detail::HereditaryEvaluator>(*p.model, p.map, p.data, scene.medium.relaxation);
+    else
+      p.ev = std::make_unique<detail::KineticEvaluator>(*p.model, p.map, p.data);
     joint_parts.push_back({p.ev.get(), p.slot});
   }
   for (std::size_t s = 0; s < shared.size(); ++s) {

@@ -10,13 +10,21 @@
 //     (kinetics.hpp): the approach and the dwell at equilibrium (the curve evaluator), the retract
 //     by the crack's ODE from the equilibrium contact at the deepest sample, driven by the measured
 //     indentation; the retract's Jacobian by central differences of the ODE's answer.
+//   RelaxingAdhesionEvaluator: adhesion on a relaxing half-space (viscoelastic_adhesion.hpp): the
+//     Maugis-Dugdale contact stepped in time over the measured indentation from its snap-in at the
+//     instantaneous elastic contact's zero load; the Jacobian by central differences (P0 and drag
+//     exactly), with the stepping's grid and step held from the first evaluation.
 #pragma once
 
+#include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "fit/evaluators/curve_evaluator.hpp"
+#include "layerjkr/profile.hpp"
 #include "layerjkr/viscoelastic.hpp"
+#include "layerjkr/viscoelastic_adhesion.hpp"
 #include "fit/evaluators/residual_model.hpp"
 #include "time/relaxation_kernel.hpp"
 
@@ -79,6 +87,44 @@ class KineticEvaluator final : public ResidualStore {
   std::vector<std::size_t> retract_;       // the retract samples' indices
   std::size_t turn_ = 0;                   // the last sample before the retract
   std::unique_ptr<CurveEvaluator> equilibrium_ev_;
+  std::vector<double> x_cache_;
+  bool have_cache_ = false, have_jac_ = false, cache_ok_ = false;
+};
+
+class RelaxingAdhesionEvaluator final : public ResidualStore {
+ public:
+  /// profile: the indenter; nu: the half-space's Poisson's ratio (E* = E/(1 - nu^2)); data: every
+  /// sample in acquisition order with its time; law: the scene's law, whose parameters come from
+  /// x. Borrows everything; they outlive the evaluator.
+  RelaxingAdhesionEvaluator(const Profile& profile, double nu, const ParameterMap& map, const FitData& data,
+                            const RelaxationLaw& law);
+
+  bool evaluate(const double* x, bool jacobian) override;
+  void invalidate() override { have_cache_ = false; }
+  std::size_t points() const override { return data_.P.size(); }
+  std::size_t row(std::size_t i) const override { return i; }
+  std::size_t rows(std::size_t) const override { return 1; }
+  /// What the stepping was and how far the held step is from a converged one at x (a notice).
+  std::string stepping_note(const double* x);
+
+ private:
+  struct Forces {
+    std::vector<double> P;         // the contact's force at each sample [N] (0 off contact)
+    std::vector<char> in_contact;
+    double force_error = 0.0;
+    int substeps = 0;
+  };
+  bool forces_at(const double* x, Forces* out, const RelaxingDugdaleOptions* stepping = nullptr);
+
+  const Profile& profile_;
+  double nu_;
+  const ParameterMap& map_;
+  const FitData& data_;
+  const RelaxationLaw& law_;
+  RelaxingDugdaleOptions stepping_;
+  bool stepping_set_ = false;
+  std::array<double, 3> snap_key_{};  // E*, w, sigma0 of the last snap-in indentation, snap_
+  double snap_ = 0.0;
   std::vector<double> x_cache_;
   bool have_cache_ = false, have_jac_ = false, cache_ok_ = false;
 };

@@ -60,6 +60,11 @@ std::vector<double> base_velocity(const CurveData& curve, std::size_t n) {
 
 }  // namespace
 
+bool relaxing_adhesion(const Scene& scene) {
+  return scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic && scene.w > 0.0 &&
+         scene.medium.type == MediumType::half_space && scene.adhesion.model == AdhesionModel::maugis_dugdale;
+}
+
 void check_request(const CurveData& curve, const Scene& scene, const FitOptions& o) {
   const bool relaxes = scene.medium.relaxation.kind != RelaxationLaw::Kind::elastic;
   const RelaxationLaw& law = scene.medium.relaxation;
@@ -75,6 +80,9 @@ void check_request(const CurveData& curve, const Scene& scene, const FitOptions&
            "method and no indentation or force range");
   if (o.retract_window != RetractWindow::all) refuse("the retract window would cut the history: use retract_window all");
   if (o.baseline == Baseline::tilt) refuse("a tilted baseline is not fitted in time: use baseline constant");
+  if (relaxing_adhesion(scene) && law.kind == RelaxationLaw::Kind::power_law)
+    refuse("with adhesion the contact snaps in at the instantaneous modulus, which a power law does not have: use a "
+           "law with one (sls, prony, maxwell2, fractional_sls, fractional_maxwell)");
   if ((o.branch == Branch::dwell || o.branch == Branch::approach_dwell) && !relaxes)
     refuse("the " + std::string(to_string(o.branch)) + " branch is a relaxing medium's: crack kinetics fit approach, "
            "retract or all");
@@ -95,9 +103,11 @@ void check_request(const CurveData& curve, const Scene& scene, const FitOptions&
       no = "is fitted with a relaxing medium (medium.viscoelastic): the crack-kinetics fit does not model it yet";
     else if ((q == FitParameter::v_star || q == FitParameter::n) && relaxes)
       no = "belongs to crack kinetics (adhesion.kinetics)";
-    else if ((q == FitParameter::w || q == FitParameter::sigma0 || q == FitParameter::R) && relaxes)
-      no = "is not fitted on a relaxing medium (adhesion there is simulated, Maugis-Dugdale stepped in time, but not "
-           "fitted yet; R: the indenter is fixed in time fits)";
+    else if (q == FitParameter::R && relaxes)
+      no = "is not fitted on a relaxing medium (the indenter is fixed in time fits)";
+    else if ((q == FitParameter::w || q == FitParameter::sigma0) && relaxes && !relaxing_adhesion(scene))
+      no = "is fitted on a relaxing medium where the scene models its adhesion: a half-space (medium.type "
+           "half_space) with w > 0 and adhesion.model maugis_dugdale";
     else if (q == FitParameter::sigma0 || q == FitParameter::R)
       no = "is not fitted with crack kinetics";
     if (!no.empty())
@@ -219,15 +229,21 @@ FitSummary fit_in_time(const CurveData& curve, const Scene& scene, const FitOpti
     map.drag_scale = force_span / fastest;  // x = 1: a drag force the size of the force span
   }
   out.warnings.insert(out.warnings.end(), fixed.warnings.begin(), fixed.warnings.end());
-  if (relaxes && scene.w > 0.0)
+  const bool adhesive = relaxing_adhesion(scene);
+  if (relaxes && scene.w > 0.0 && !adhesive)
     out.warnings.push_back("the scene's w = " + format_double(scene.w) + " J/m^2 is not in this fit: a fit on a relaxing "
-                           "medium models no adhesion yet (simulate models it on the half-space); a retract below the "
-                           "baseline is then misfitted, as the residual diagnosis reports");
+                           "medium models adhesion on the half-space with adhesion.model maugis_dugdale only; a retract "
+                           "below the baseline is then misfitted, as the residual diagnosis reports");
   out.notices.insert(out.notices.end(), curve.notes.begin(), curve.notes.end());
   out.notices.insert(out.notices.end(), resolved.notices.begin(), resolved.notices.end());
   std::vector<double> x(options.free.size(), 0.0);
   std::unique_ptr<ResidualModel> ev;
-  if (relaxes)
+  RelaxingAdhesionEvaluator* adhesion_ev = nullptr;
+  if (adhesive) {
+    auto a = std::make_unique<RelaxingAdhesionEvaluator>(*scene.profile, scene.medium.nu, map, data, scene.medium.relaxation);
+    adhesion_ev = a.get();
+    ev = std::move(a);
+  } else if (relaxes)
     ev = std::make_unique<HereditaryEvaluator>(*model, map, data, scene.medium.relaxation);
   else
     ev = std::make_unique<KineticEvaluator>(*model, map, data);
@@ -264,6 +280,8 @@ FitSummary fit_in_time(const CurveData& curve, const Scene& scene, const FitOpti
     out.notices.push_back(std::to_string(history) + " samples off the " + std::string(to_string(options.branch)) +
                           " branch enter as the history the force depends on, not as residuals");
   judge_law(map, x, scene, data, &out);
+  if (adhesion_ev)
+    if (const std::string note = adhesion_ev->stepping_note(x.data()); !note.empty()) out.notices.push_back(note);
   record_pull_off(measure_pull_off(data, force_span), &out);  // the data's, whatever the fit did
   return out;
 }

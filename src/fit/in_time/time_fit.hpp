@@ -19,6 +19,9 @@ bool time_parameter(FitParameter q);
 /// time, (P, a) data, the options only an equilibrium curve has (contact-point methods, ranges, a
 /// retract window, a tilted baseline), parameters the scene's law does not have.
 void check_request(const CurveData& curve, const Scene& scene, const FitOptions& options);
+/// True where a fit in time models the scene's adhesion on its relaxing medium: a half-space with
+/// w > 0 and a Maugis-Dugdale zone (RelaxingAdhesionEvaluator).
+bool relaxing_adhesion(const Scene& scene);
 /// Every sample in acquisition order, weighted where options.branch is (an approach fit ends with
 /// the approach: nothing later changes it), with baseline, noise and offset from the elastic
 /// selection of the approach; span and force span [m], [N] of the data.

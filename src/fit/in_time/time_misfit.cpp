@@ -144,7 +144,8 @@ void name_misfit_in_time(const FitData& data, double drag, FitSummary* out) {
       if (lowest_fit - lowest_data > 5.0 * noise)
         retract_note = "the retract's lowest force lies " + short_number(lowest_fit - lowest_data) + " N (" +
                        short_number((lowest_fit - lowest_data) / noise) +
-                       " x noise) below the fit's lowest: adhesion, which a fit on a relaxing medium does not model";
+                       " x noise) below the fit's lowest: adhesion, which this fit does not model (a relaxing half-space "
+                       "models it with adhesion.model maugis_dugdale and w)";
     }
   }
   std::stable_sort(shares.begin(), shares.end(), [](const Share& a, const Share& b) { return a.share > b.share; });
