@@ -48,6 +48,12 @@ struct RelaxingDugdaleOptions {
   int substeps = 0;
   double tolerance = 1e-3;  ///< in (0, 1): of the largest |force|
   int max_substeps = 256;   ///< >= 2
+  /// 0: fixed grips (delta is the tip's indentation). > 0 [N/m]: a cantilever of this stiffness;
+  /// delta is then its base's position z and the tip sits at z - P/k (RelaxingDugdaleResponse::tip),
+  /// found at each step on the contact's branch; the lever lets go where none balances it (past
+  /// dP/d delta = -k). The history snaps in with the lever unbent at delta[0] (simulate snaps in at
+  /// zero load, where it is).
+  double cantilever_stiffness = 0.0;
   /// Throws DomainError naming the first invalid field, its value and the valid range.
   void validate() const;
 };
@@ -56,6 +62,9 @@ struct RelaxingDugdaleResponse {
   /// Per sample: the force [N] (negative = tensile), the contact radius a [m] and the adhesive
   /// zone's outer radius c [m]; all 0 once the contact is lost.
   std::vector<double> P, a, c;
+  /// The tip's indentation [m] per sample: delta itself under fixed grips; under a cantilever
+  /// z - P/k in contact and the base's z once the lever has let go.
+  std::vector<double> tip;
   /// The first sample after the contact was lost (the fixed-grips branch ended or a fell below
   /// 1e-4 of its largest value); P.size() when it never is.
   std::size_t separated_at = 0;

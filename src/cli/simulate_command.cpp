@@ -33,8 +33,8 @@ void add_simulate_options(CLI::App& c, SimulateArguments& a) {
   c.add_flag("--with-radius", o.with_radius, "Also write the contact radius a [m]");
   c.add_option("--branch", a.branch, "approach, retract or all (default all)");
   c.add_option("--control", a.control,
-               "What drives a retract with crack kinetics: grips (the indenter follows the ramp) or cantilever (the "
-               "base of a lever of --stiffness follows it)");
+               "What drives a retract with crack kinetics, or a relaxing adhesive curve throughout: grips (the "
+               "indenter follows the ramp) or cantilever (the base of a lever of --stiffness follows it)");
   a.stiffness = c.add_option("--stiffness", o.cantilever_stiffness, "The cantilever's stiffness [N/m] (needs --control cantilever)");
   c.add_option("--out", a.out, "CSV file to write (- or absent: standard output)");
 }

@@ -173,8 +173,9 @@ std::vector<Answer> relaxing(const std::vector<Sample>& ramp, const AdhesiveSolu
 // Adhesion on a relaxing half-space: the Maugis-Dugdale contact stepped in time
 // (viscoelastic_adhesion.hpp) from the snap-in at the first approach sample at or past d_snap;
 // free before it and once the contact is lost (*lost then true).
-std::vector<Answer> relaxing_adhesive(const std::vector<Sample>& ramp, const Scene& scene, double d_snap,
-                                      bool with_radius, std::string* note, bool* lost) {
+std::vector<Answer> relaxing_adhesive(const std::vector<Sample>& ramp, const Scene& scene, const SimulationOptions& o,
+                                      double d_snap, std::string* note, bool* lost) {
+  const bool with_radius = o.with_radius;
   std::size_t first = 0;
   while (first < ramp.size() && !(ramp[first].segment == 0 && ramp[first].delta >= d_snap)) ++first;
   std::vector<double> t, d;
@@ -184,13 +185,16 @@ std::vector<Answer> relaxing_adhesive(const std::vector<Sample>& ramp, const Sce
   // below the truth's.
   RelaxingDugdaleOptions stepping;
   stepping.tolerance = 1e-4;
+  // A lever drives the whole curve from its base (the ramp's delta), approach and retract alike.
+  if (o.control == RetractControl::cantilever) stepping.cantilever_stiffness = o.cantilever_stiffness;
   const RelaxingDugdaleResponse r = relaxing_dugdale_response(*scene.profile, E_star, scene.medium.relaxation, scene.w,
                                                               scene.adhesion.dugdale_stress(scene.w), t, d, stepping);
   std::vector<Answer> out;
   double peak = 0.0;
   for (std::size_t i = 0; i < ramp.size(); ++i) {
     const bool in = i >= first && i - first < r.separated_at;
-    out.push_back({in ? r.P[i - first] : 0.0, in && with_radius ? r.a[i - first] : 0.0, ramp[i].delta});
+    out.push_back({in ? r.P[i - first] : 0.0, in && with_radius ? r.a[i - first] : 0.0,
+                   i >= first ? r.tip[i - first] : ramp[i].delta});
     peak = std::max(peak, std::abs(out.back().P));
   }
   *lost = r.separated_at < t.size();
@@ -275,9 +279,10 @@ CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
     throw InputError("simulate: adhesion (w = " + format_double(scene.w) + " J/m^2) on a relaxing medium needs its "
                      "adhesive zone: set adhesion.model = maugis_dugdale with sigma0 or z0 (a sharp JKR edge never "
                      "relaxes, so its toughening would not depend on the speed)");
-  if (o.control == RetractControl::cantilever && !kinetics)
-    throw InputError("simulate: a cantilever-controlled retract is modelled with crack kinetics (adhesion.kinetics) only; "
-                     "the other scenes follow the fixed-grips branch to the pull-off");
+  if (o.control == RetractControl::cantilever && !kinetics && !adhesive_relaxing)
+    throw InputError("simulate: a cantilever-controlled retract is modelled with crack kinetics (adhesion.kinetics) or "
+                     "with adhesion on a relaxing half-space only; the other scenes follow the fixed-grips branch to the "
+                     "pull-off");
   // Where contact starts without adhesion sets the radius scale for "auto".
   const double a_scale = std::sqrt(o.max_indentation * scene.profile->length_scale());
   const BuiltScene built = build_scene(scene, 0.1 * a_scale);
@@ -305,7 +310,7 @@ CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
     // below d_max doubled, up to 4 times) until the contact is lost within it.
     bool lost = false;
     for (int k = 0;; ++k) {
-      adhesive = relaxing_adhesive(samples, scene, d_contact, o.with_radius, &accuracy, &lost);
+      adhesive = relaxing_adhesive(samples, scene, o, d_contact, &accuracy, &lost);
       if (lost || k == 4) break;
       samples = ramp(lo, d_max, d_max - 2.0 * (d_max - samples.back().delta), o);
     }

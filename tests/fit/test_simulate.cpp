@@ -171,6 +171,28 @@ TEST_CASE("simulate adhesion on a relaxing half-space: Maugis' curve when fast, 
   CHECK(pull[1] < 1.5 * std::min(pull[0], pull[2]));
   CHECK(pull[0] / relaxed == Approx(1.0).epsilon(1e-3));
   CHECK(pull[2] / glassy == Approx(1.0).epsilon(1e-3));
+  // A lever drives the curve from its base: its tip lags the base by P/k, and it lets go where the
+  // retract's slope reaches -k, before the grips' branch ends - at a more tensile force. At the
+  // lowest force the slope is 0 and the tip moves with the base: the same pull-off.
+  o.speed = 1e-7;
+  const CurveData grips = simulate_curve(cell, o);
+  o.control = RetractControl::cantilever;
+  o.cantilever_stiffness = 0.02;
+  const CurveData lever = simulate_curve(cell, o);
+  o.control = RetractControl::fixed_grips;
+  const auto last_contact = [](const CurveData& c) {
+    double P = 0.0;
+    for (std::size_t i = 0; i < c.P.size(); ++i)
+      if (c.segment[i] == 1 && c.P[i] != 0.0) P = c.P[i];
+    return P;
+  };
+  INFO("pull-off under a 0.02 N/m lever " << lowest(lever) << " N, under grips " << lowest(grips) << " N; let go at "
+                                          << last_contact(lever) << " and " << last_contact(grips) << " N");
+  CHECK(lowest(lever) / lowest(grips) == Approx(1.0).epsilon(1e-3));
+  CHECK(last_contact(lever) < last_contact(grips));
+  const double deepest = *std::max_element(lever.delta.begin(), lever.delta.end());
+  const double lever_peak = *std::max_element(lever.P.begin(), lever.P.end());
+  CHECK(deepest == Approx(*std::max_element(grips.delta.begin(), grips.delta.end()) - lever_peak / 0.02).epsilon(1e-3));
   // A fit in time models this adhesion only with its zone: with a JKR edge the scene's w is named as
   // left out, not dropped silently.
   o.speed = 1e-6;

@@ -86,6 +86,46 @@ TEST_CASE("A law that does not relax gives Maugis' solution at every step, to th
   }
 }
 
+TEST_CASE("Under a cantilever a law that does not relax gives Maugis' solution, let go where dP/d delta = -k",
+          "[viscoelastic_adhesion]") {
+  const auto p = make_paraboloid(kR);
+  const double s0 = sigma_for(5.0), k = 0.05;  // N/m: about the contact's own stiffness
+  const Triangle base(1.0, 1e-6, -6e-7, 400);
+  RelaxingDugdaleOptions o;
+  o.cantilever_stiffness = k;
+  const auto r = relaxing_dugdale_response(*p, kE, RelaxationLaw{}, kW, s0, base.t, base.d, o);
+  REQUIRE(r.separated_at < base.t.size());
+  double misfit_delta = 0.0, misfit_P = 0.0, lever = 0.0;
+  for (std::size_t i = 0; i < r.separated_at; ++i) {
+    const auto md = maugis_dugdale_half_space(kR, kE, kW, s0, r.a[i]);
+    misfit_delta = std::max(misfit_delta, std::abs(md.delta - r.tip[i]) / 1e-6);
+    misfit_P = std::max(misfit_P, std::abs(md.P - r.P[i]) / kScaleP);
+    if (i > 0) lever = std::max(lever, std::abs(r.tip[i] + r.P[i] / k - base.d[i]) / 1e-6);  // snapped in unbent
+  }
+  std::printf("cantilever: delta %.2e, P %.2e pi w R, lever balance %.2e\n", misfit_delta, misfit_P, lever);
+  CHECK(misfit_delta < 1e-5);
+  CHECK(misfit_P < 1e-4);
+  CHECK(lever < 1e-9);
+  // Where Maugis' retract branch reaches dP/d delta = -k (past its lowest force), the base is at
+  // z = delta + P/k: the contact is lost within one sample of it.
+  double z_jump = 0.0, prev_slope = 0.0;
+  for (double a = 2e-6; a > 1e-8; a *= 0.9999) {
+    const auto x = maugis_dugdale_half_space(kR, kE, kW, s0, a), y = maugis_dugdale_half_space(kR, kE, kW, s0, a * 0.9999);
+    const double slope = (x.P - y.P) / (x.delta - y.delta);
+    if (x.P < maugis_dugdale_pull_off(kR, kE, kW, s0).P * 0.5 && slope < 0.0 && prev_slope >= -k && slope < -k) {
+      z_jump = x.delta + x.P / k;
+      break;
+    }
+    prev_slope = slope;
+  }
+  const double step = base.d[1] - base.d[0];
+  INFO("lost between z = " << base.d[r.separated_at - 1] << " and " << base.d[r.separated_at] << " m; Maugis: " << z_jump);
+  CHECK(base.d[r.separated_at - 1] >= z_jump - 1e-3 * step);
+  CHECK(base.d[r.separated_at] <= z_jump + 1e-3 * step);
+  // Let go, the tip is where the unbent lever holds it.
+  CHECK(r.tip.back() == base.d.back());
+}
+
 TEST_CASE("Much faster than the law gives the instantaneous modulus, much slower the relaxed one",
           "[viscoelastic_adhesion]") {
   const auto p = make_paraboloid(kR);
