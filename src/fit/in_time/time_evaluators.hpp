@@ -36,6 +36,17 @@ namespace layerjkr::detail {
 template <class T>
 RelaxationKernel<T> kernel_at(const RelaxationLaw& law, const CurveParameters<T>& p, double t_lo, double t_hi);
 
+/// A sample's derivative by differences at x - step, x, x + step [x's units]: central where the
+/// model's contact there is the same on both sides, one-sided where it changes on one, 0 where on
+/// both (a sample the model takes in or lets go of) - the kinetic and the relaxing adhesive
+/// evaluators' Jacobians.
+inline double contact_difference(bool same_plus, bool same_minus, double plus, double at, double minus, double step) {
+  if (same_plus && same_minus) return (plus - minus) / (2.0 * step);
+  if (same_plus) return (plus - at) / step;
+  if (same_minus) return (at - minus) / step;
+  return 0.0;
+}
+
 class HereditaryEvaluator final : public ResidualStore {
  public:
   /// model: the medium's elastic curve family (its adhesion unused: w = 0); data.t: the times.

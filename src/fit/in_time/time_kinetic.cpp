@@ -128,8 +128,7 @@ bool KineticEvaluator::evaluate(const double* x, bool jacobian) {
     contact_count_ += at.in_contact[k] ? 1 : 0;
   }
   if (jacobian && !retract_.empty()) {
-    // Central differences where the contact holds or has let go on both sides; one-sided where
-    // the loss of contact moves across the sample on one side; 0 where it does on both.
+    // contact_difference: central where the contact holds or has let go on both sides.
     std::vector<double> xp(x, x + n_free), xm(x, x + n_free);
     for (std::size_t j = 0; j < n_free; ++j) {
       if (map_.free[j] == FitParameter::P0) {  // the baseline moves every force alike: no ODE to solve again
@@ -151,10 +150,7 @@ bool KineticEvaluator::evaluate(const double* x, bool jacobian) {
         const std::size_t i = retract_[k];
         const bool same_p = ok_p && plus.in_contact[k] == at.in_contact[k];
         const bool same_m = ok_m && minus.in_contact[k] == at.in_contact[k];
-        double dP = 0.0;
-        if (same_p && same_m) dP = (plus.P[k] - minus.P[k] + dP0p - dP0m) / (2.0 * kStep);
-        else if (same_p) dP = (plus.P[k] - at.P[k] + dP0p - P0) / kStep;
-        else if (same_m) dP = (at.P[k] - minus.P[k] + P0 - dP0m) / kStep;
+        const double dP = contact_difference(same_p, same_m, plus.P[k] + dP0p, at.P[k] + P0, minus.P[k] + dP0m, kStep);
         J_[i * n_free + j] = data_.sqrt_weight[i] * dP / F;
       }
       xp[j] = xm[j] = x[j];

@@ -131,17 +131,12 @@ bool RelaxingAdhesionEvaluator::evaluate(const double* x, bool jacobian) {
         for (std::size_t i = 0; i < n; ++i)
           J_[i * n_free + j] = data_.sqrt_weight[i] * (P0p - P0m + (drag_p - drag_m) * velocity(i)) / (2.0 * kStep * F);
       } else {
-        // Central differences where the contact is the same on both sides, one-sided where it
-        // changes on one, 0 where on both (a sample the model takes in or lets go of).
         Forces plus, minus;
         const bool ok_p = forces_at(xp.data(), &plus), ok_m = forces_at(xm.data(), &minus);
         for (std::size_t i = 0; i < n; ++i) {
           const bool same_p = ok_p && plus.in_contact[i] == at.in_contact[i];
           const bool same_m = ok_m && minus.in_contact[i] == at.in_contact[i];
-          double dP = 0.0;
-          if (same_p && same_m) dP = (plus.P[i] - minus.P[i]) / (2.0 * kStep);
-          else if (same_p) dP = (plus.P[i] - at.P[i]) / kStep;
-          else if (same_m) dP = (at.P[i] - minus.P[i]) / kStep;
+          const double dP = contact_difference(same_p, same_m, plus.P[i], at.P[i], minus.P[i], kStep);
           J_[i * n_free + j] = data_.sqrt_weight[i] * dP / F;
         }
       }
