@@ -171,16 +171,19 @@ std::vector<Answer> relaxing(const std::vector<Sample>& ramp, const AdhesiveSolu
 }
 
 // Adhesion on a relaxing half-space: the Maugis-Dugdale contact stepped in time
-// (viscoelastic_adhesion.hpp) from the snap-in at the first approach sample at or past d_snap;
+// (viscoelastic_adhesion.hpp) from the snap-in at the first approach sample at or past Maugis'
+// zero-load indentation;
 // free before it and once the contact is lost (*lost then true).
 std::vector<Answer> relaxing_adhesive(const std::vector<Sample>& ramp, const Scene& scene, const SimulationOptions& o,
-                                      double d_snap, std::string* note, bool* lost) {
+                                      std::string* note, bool* lost) {
   const bool with_radius = o.with_radius;
+  const double nu = scene.medium.nu, E_star = scene.medium.E / (1.0 - nu * nu);
+  // Where the fit snaps the contact in too (time_relaxing_adhesion.cpp).
+  const double d_snap = dugdale_zero_load_indentation(*scene.profile, E_star, scene.w, scene.adhesion.dugdale_stress(scene.w));
   std::size_t first = 0;
   while (first < ramp.size() && !(ramp[first].segment == 0 && ramp[first].delta >= d_snap)) ++first;
   std::vector<double> t, d;
   for (std::size_t i = first; i < ramp.size(); ++i) t.push_back(ramp[i].t), d.push_back(ramp[i].delta);
-  const double nu = scene.medium.nu, E_star = scene.medium.E / (1.0 - nu * nu);
   // A simulated truth ten times tighter than the stepping's default: a fit's own model error stays
   // below the truth's.
   RelaxingDugdaleOptions stepping;
@@ -310,7 +313,7 @@ CurveData simulate_curve(const Scene& scene, const SimulationOptions& o) {
     // below d_max doubled, up to 4 times) until the contact is lost within it.
     bool lost = false;
     for (int k = 0;; ++k) {
-      adhesive = relaxing_adhesive(samples, scene, o, d_contact, &accuracy, &lost);
+      adhesive = relaxing_adhesive(samples, scene, o, &accuracy, &lost);
       if (lost || k == 4) break;
       samples = ramp(lo, d_max, d_max - 2.0 * (d_max - samples.back().delta), o);
     }
